@@ -1,0 +1,1 @@
+//! Composable Gymnasium wrappers and vector environments.

@@ -1,0 +1,1 @@
+//! Conformance checks for gym-core environments.

@@ -1,0 +1,177 @@
+//! Element types of array spaces and values, with NumPy's casting and promotion rules.
+
+use std::fmt;
+
+/// The element type of an array, named as NumPy names it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum DType {
+    /// `int8` (the dtype of `MultiBinary`).
+    I8,
+    /// `int16`.
+    I16,
+    /// `int32`.
+    I32,
+    /// `int64` (the dtype of `Discrete` and `MultiDiscrete`).
+    I64,
+    /// `uint8` (images).
+    U8,
+    /// `float32`.
+    F32,
+    /// `float64`.
+    F64,
+}
+
+impl DType {
+    /// Every dtype, in declaration order.
+    pub const ALL: [DType; 7] =
+        [DType::I8, DType::I16, DType::I32, DType::I64, DType::U8, DType::F32, DType::F64];
+
+    /// NumPy's name for the dtype (`"float32"`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            DType::I8 => "int8",
+            DType::I16 => "int16",
+            DType::I32 => "int32",
+            DType::I64 => "int64",
+            DType::U8 => "uint8",
+            DType::F32 => "float32",
+            DType::F64 => "float64",
+        }
+    }
+
+    /// Parses NumPy's name of a dtype.
+    pub fn from_name(name: &str) -> Option<DType> {
+        DType::ALL.into_iter().find(|d| d.name() == name)
+    }
+
+    /// Whether this is a floating-point dtype.
+    pub fn is_float(self) -> bool {
+        matches!(self, DType::F32 | DType::F64)
+    }
+
+    /// NumPy's `can_cast(self, to)` under the default "safe" rule: every value of `self`
+    /// is represented exactly (integers to floats follow NumPy: int64 → float64 is safe).
+    pub fn can_cast_to(self, to: DType) -> bool {
+        use DType::*;
+        if self == to {
+            return true;
+        }
+        match self {
+            I8 => matches!(to, I16 | I32 | I64 | F32 | F64),
+            I16 => matches!(to, I32 | I64 | F32 | F64),
+            I32 => matches!(to, I64 | F64),
+            I64 => matches!(to, F64),
+            U8 => matches!(to, I16 | I32 | I64 | F32 | F64),
+            F32 => matches!(to, F64),
+            F64 => false,
+        }
+    }
+
+    /// NumPy's `result_type(self, other)`: the smallest dtype both cast to safely.
+    pub fn promote(self, other: DType) -> DType {
+        use DType::*;
+        if self.can_cast_to(other) {
+            return other;
+        }
+        if other.can_cast_to(self) {
+            return self;
+        }
+        // Neither casts to the other: the first common dtype, smallest first.
+        [I16, I32, I64, F32, F64]
+            .into_iter()
+            .find(|d| self.can_cast_to(*d) && other.can_cast_to(*d))
+            .unwrap_or(F64)
+    }
+}
+
+impl fmt::Display for DType {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// A Rust element type that array spaces hold: `i8`, `i16`, `i32`, `i64`, `u8`, `f32`, `f64`.
+pub trait Scalar:
+    Copy + fmt::Debug + fmt::Display + PartialOrd + PartialEq + Default + Send + Sync + 'static + sealed::Sealed
+{
+    /// The dtype of this element type.
+    const DTYPE: DType;
+    /// The smallest finite value, as `f64`.
+    const MIN: f64;
+    /// The largest finite value, as `f64`.
+    const MAX: f64;
+    /// Converts to `f64` (exact for every type but large `i64`).
+    fn to_f64(self) -> f64;
+    /// Converts from `f64` with Rust's `as` semantics (saturating, NaN becomes 0 for ints).
+    fn from_f64(v: f64) -> Self;
+    /// Zero.
+    fn zero() -> Self {
+        Self::default()
+    }
+    /// One.
+    fn one() -> Self {
+        Self::from_f64(1.0)
+    }
+    /// Whether the value is finite (always true for integers).
+    fn is_finite(self) -> bool;
+}
+
+macro_rules! scalar {
+    ($t:ty, $d:ident, $float:expr) => {
+        impl sealed::Sealed for $t {}
+        impl Scalar for $t {
+            const DTYPE: DType = DType::$d;
+            const MIN: f64 = <$t>::MIN as f64;
+            const MAX: f64 = <$t>::MAX as f64;
+            #[inline]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline]
+            fn from_f64(v: f64) -> Self {
+                v as $t
+            }
+            #[inline]
+            #[allow(clippy::unnecessary_cast)]
+            fn is_finite(self) -> bool {
+                !$float || (self as f64).is_finite()
+            }
+        }
+    };
+}
+scalar!(i8, I8, false);
+scalar!(i16, I16, false);
+scalar!(i32, I32, false);
+scalar!(i64, I64, false);
+scalar!(u8, U8, false);
+scalar!(f32, F32, true);
+scalar!(f64, F64, true);
+
+#[cfg(test)]
+mod tests {
+    use super::DType::*;
+
+    #[test]
+    fn casting_follows_numpy() {
+        assert!(F32.can_cast_to(F64));
+        assert!(!F64.can_cast_to(F32));
+        assert!(!I64.can_cast_to(F32));
+        assert!(I64.can_cast_to(F64));
+        assert!(I32.can_cast_to(I64));
+        assert!(!U8.can_cast_to(I8));
+    }
+
+    #[test]
+    fn promotion_follows_numpy() {
+        assert_eq!(I64.promote(F32), F64);
+        assert_eq!(I8.promote(F32), F32);
+        assert_eq!(I8.promote(U8), I16);
+        assert_eq!(F32.promote(F32), F32);
+        assert_eq!(U8.promote(I64), I64);
+        assert_eq!(I32.promote(F32), F64);
+    }
+}

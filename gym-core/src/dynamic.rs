@@ -1,0 +1,171 @@
+//! The object-safe layer: any typed [`Env`] boxed as a [`BoxedEnv`] whose observations and
+//! actions are [`Value`]s and whose spaces are [`AnySpace`]s. Registries, heterogeneous
+//! collections and the Python export work at this level.
+
+use crate::env::{Env, Frame, Metadata, RenderMode, Step};
+use crate::error::{Error, Result};
+use crate::info::{Info, ResetOptions};
+use crate::rng::EnvRng;
+use crate::space::Space;
+use crate::spaces::AnySpace;
+use crate::value::Value;
+use std::any::Any;
+
+/// An environment seen through dynamic values; object safe.
+pub trait DynEnv: Send + 'static {
+    /// The observation space.
+    fn observation_space(&self) -> &AnySpace;
+    /// The action space.
+    fn action_space(&self) -> &AnySpace;
+    /// See [`Env::reset`].
+    ///
+    /// # Errors
+    /// As [`Env::reset`].
+    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Value, Info)>;
+    /// See [`Env::step`]. An action that does not convert to the typed action is an
+    /// [`Error::InvalidAction`].
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step(&mut self, action: &Value) -> Result<Step<Value>>;
+    /// See [`Env::metadata`].
+    fn metadata(&self) -> &Metadata;
+    /// See [`Env::render_mode`].
+    fn render_mode(&self) -> Option<RenderMode>;
+    /// See [`Env::render`].
+    ///
+    /// # Errors
+    /// As [`Env::render`].
+    fn render(&mut self) -> Result<Option<Frame>>;
+    /// See [`Env::close`].
+    fn close(&mut self);
+    /// See [`Env::rng`].
+    fn rng(&self) -> Option<&EnvRng>;
+    /// See [`Env::unwrapped_any`].
+    fn unwrapped_any(&self) -> &dyn Any;
+    /// See [`Env::unwrapped_any_mut`].
+    fn unwrapped_any_mut(&mut self) -> &mut dyn Any;
+}
+
+/// A boxed dynamic environment.
+pub type BoxedEnv = Box<dyn DynEnv>;
+
+/// Adapts a typed [`Env`] to [`DynEnv`]; made by [`IntoBoxedEnv::boxed`].
+pub struct DynAdapter<E: Env> {
+    env: E,
+    observation_space: AnySpace,
+    action_space: AnySpace,
+}
+
+impl<E: Env> DynAdapter<E> {
+    /// Wraps `env`, computing its dynamic spaces once.
+    pub fn new(env: E) -> Self {
+        let observation_space = env.observation_space().to_any();
+        let action_space = env.action_space().to_any();
+        Self { env, observation_space, action_space }
+    }
+
+    /// The typed environment inside.
+    pub fn get(&self) -> &E {
+        &self.env
+    }
+
+    /// The typed environment inside, mutably.
+    pub fn get_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+}
+
+impl<E: Env> DynEnv for DynAdapter<E> {
+    fn observation_space(&self) -> &AnySpace {
+        &self.observation_space
+    }
+    fn action_space(&self) -> &AnySpace {
+        &self.action_space
+    }
+    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Value, Info)> {
+        let (obs, info) = self.env.reset(seed, options)?;
+        Ok((self.env.observation_space().to_value(&obs), info))
+    }
+    fn step(&mut self, action: &Value) -> Result<Step<Value>> {
+        let action = self.env.action_space().from_value(action).map_err(|e| Error::InvalidAction(e.to_string()))?;
+        let step = self.env.step(&action)?;
+        let space = self.env.observation_space();
+        Ok(step.map_observation(|o| space.to_value(&o)))
+    }
+    fn metadata(&self) -> &Metadata {
+        self.env.metadata()
+    }
+    fn render_mode(&self) -> Option<RenderMode> {
+        self.env.render_mode()
+    }
+    fn render(&mut self) -> Result<Option<Frame>> {
+        self.env.render()
+    }
+    fn close(&mut self) {
+        self.env.close();
+    }
+    fn rng(&self) -> Option<&EnvRng> {
+        self.env.rng()
+    }
+    fn unwrapped_any(&self) -> &dyn Any {
+        self.env.unwrapped_any()
+    }
+    fn unwrapped_any_mut(&mut self) -> &mut dyn Any {
+        self.env.unwrapped_any_mut()
+    }
+}
+
+/// Boxes any typed environment or wrapper stack into a [`BoxedEnv`].
+pub trait IntoBoxedEnv {
+    /// The boxed, dynamic form.
+    fn boxed(self) -> BoxedEnv;
+}
+
+impl<E: Env> IntoBoxedEnv for E {
+    fn boxed(self) -> BoxedEnv {
+        Box::new(DynAdapter::new(self))
+    }
+}
+
+/// A boxed environment is itself an [`Env`] over [`Value`]s, so typed wrappers stack on it.
+impl Env for BoxedEnv {
+    type Obs = Value;
+    type Act = Value;
+    type ObsSpace = AnySpace;
+    type ActSpace = AnySpace;
+
+    fn observation_space(&self) -> &AnySpace {
+        (**self).observation_space()
+    }
+    fn action_space(&self) -> &AnySpace {
+        (**self).action_space()
+    }
+    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Value, Info)> {
+        (**self).reset(seed, options)
+    }
+    fn step(&mut self, action: &Value) -> Result<Step<Value>> {
+        (**self).step(action)
+    }
+    fn metadata(&self) -> &Metadata {
+        (**self).metadata()
+    }
+    fn render_mode(&self) -> Option<RenderMode> {
+        (**self).render_mode()
+    }
+    fn render(&mut self) -> Result<Option<Frame>> {
+        (**self).render()
+    }
+    fn close(&mut self) {
+        (**self).close();
+    }
+    fn rng(&self) -> Option<&EnvRng> {
+        (**self).rng()
+    }
+    fn unwrapped_any(&self) -> &dyn Any {
+        (**self).unwrapped_any()
+    }
+    fn unwrapped_any_mut(&mut self) -> &mut dyn Any {
+        (**self).unwrapped_any_mut()
+    }
+}

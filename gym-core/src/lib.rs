@@ -1,0 +1,48 @@
+//! Gymnasium's environment API in Rust.
+//!
+//! * [`Space`] and the spaces in [`spaces`] (Box, Discrete, MultiDiscrete, MultiBinary,
+//!   Dict, Tuple) with seeded sampling, `contains`, and Gymnasium's flatten / unflatten.
+//! * [`Env`] and [`Wrapper`]: typed environments and owned wrapper stacks with Gymnasium
+//!   1.x semantics (`reset(seed, options)`, `step` → [`Step`] with `terminated` and
+//!   `truncated` apart, a typed [`Info`]).
+//! * The dynamic layer ([`DynEnv`], [`BoxedEnv`], [`Value`], [`AnySpace`]) and the
+//!   [`registry`], so any typed env can be boxed, made by id, and exported to Python.
+//! * Typed errors ([`Error`], [`SpaceError`]).
+//! * With the `proptest-support` feature, proptest strategies for every space and its
+//!   elements in [`proptest`](crate::proptest).
+//!
+//! ```
+//! use gym_core::{rng_from_seed, spaces::{BoxSpace, Discrete}, Space};
+//!
+//! let b = BoxSpace::<f32>::uniform(-1.0, 1.0, &[3])?;
+//! let x = b.sample(&mut rng_from_seed(42));
+//! assert!(b.contains(&x));
+//! let d = Discrete::new(4)?;
+//! assert_eq!(d.flatten(&2)?.to_f64_vec(), [0.0, 0.0, 1.0, 0.0]);
+//! # Ok::<(), gym_core::SpaceError>(())
+//! ```
+
+pub mod dtype;
+pub mod dynamic;
+pub mod env;
+pub mod error;
+pub mod info;
+#[cfg(feature = "proptest-support")]
+pub mod proptest;
+pub mod registry;
+pub mod rng;
+pub mod space;
+pub mod spaces;
+pub mod value;
+pub mod wrapper;
+
+pub use dtype::{DType, Scalar};
+pub use dynamic::{BoxedEnv, DynAdapter, DynEnv, IntoBoxedEnv};
+pub use env::{Env, EnvExt, Frame, Metadata, RenderMode, Step};
+pub use error::{Error, Result, SpaceError};
+pub use info::{Info, InfoValue, ResetOptions};
+pub use rng::{EnvRng, entropy_seed, rng_from_seed};
+pub use space::Space;
+pub use spaces::{AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace};
+pub use value::{ArrayElement, ArrayValue, DictValue, Value};
+pub use wrapper::Wrapper;

@@ -1,0 +1,71 @@
+//! A process-wide registry of environments by id (Gymnasium's `gymnasium.make`).
+//!
+//! Crates that provide environments register them (robosuite-env: `register_envs()`);
+//! [`make`] builds one by id with keyword arguments given as an [`Info`].
+
+use crate::dynamic::BoxedEnv;
+use crate::error::{Error, Result};
+use crate::info::Info;
+use indexmap::IndexMap;
+use std::sync::{Arc, LazyLock, RwLock};
+
+/// Builds an environment from keyword arguments.
+pub type EnvFactory = Arc<dyn Fn(&Info) -> Result<BoxedEnv> + Send + Sync>;
+
+/// How to make a registered environment (Gymnasium's `EnvSpec`).
+#[derive(Clone)]
+pub struct EnvSpec {
+    /// The id, such as `"Lift"`.
+    pub id: String,
+    /// Builds the environment.
+    pub factory: EnvFactory,
+    /// The episode length the environment enforces itself, if any (robosuite's horizon).
+    pub max_episode_steps: Option<u64>,
+    /// Whether the same seed and actions may give different trajectories.
+    pub nondeterministic: bool,
+    /// One line saying what the environment is.
+    pub description: String,
+}
+
+impl std::fmt::Debug for EnvSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EnvSpec")
+            .field("id", &self.id)
+            .field("max_episode_steps", &self.max_episode_steps)
+            .field("nondeterministic", &self.nondeterministic)
+            .field("description", &self.description)
+            .finish_non_exhaustive()
+    }
+}
+
+static REGISTRY: LazyLock<RwLock<IndexMap<String, EnvSpec>>> = LazyLock::new(Default::default);
+
+/// Registers (or replaces) an environment; returns the spec it replaced.
+pub fn register(spec: EnvSpec) -> Option<EnvSpec> {
+    let mut map = REGISTRY.write().unwrap_or_else(std::sync::PoisonError::into_inner);
+    map.insert(spec.id.clone(), spec)
+}
+
+/// The spec registered under `id`.
+///
+/// # Errors
+/// [`Error::UnknownEnv`] listing every registered id.
+pub fn spec(id: &str) -> Result<EnvSpec> {
+    let map = REGISTRY.read().unwrap_or_else(std::sync::PoisonError::into_inner);
+    map.get(id).cloned().ok_or_else(|| Error::UnknownEnv { id: id.to_owned(), available: map.keys().cloned().collect() })
+}
+
+/// Makes the environment registered under `id` with keyword arguments `kwargs`.
+///
+/// # Errors
+/// [`Error::UnknownEnv`] for an unregistered id; whatever the factory returns for bad
+/// arguments.
+pub fn make(id: &str, kwargs: &Info) -> Result<BoxedEnv> {
+    let spec = spec(id)?;
+    (spec.factory)(kwargs)
+}
+
+/// Every registered id, in registration order.
+pub fn registered_ids() -> Vec<String> {
+    REGISTRY.read().unwrap_or_else(std::sync::PoisonError::into_inner).keys().cloned().collect()
+}

@@ -1,0 +1,61 @@
+//! The [`Space`] trait: what every space can do.
+
+use crate::dtype::DType;
+use crate::error::SpaceError;
+use crate::spaces::{AnyBox, AnySpace};
+use crate::value::{ArrayValue, Value};
+use std::fmt::Debug;
+
+/// A set of valid observations or actions, as Gymnasium's `gymnasium.spaces.Space`.
+///
+/// Sampling takes the RNG explicitly (use [`EnvRng`](crate::EnvRng) from
+/// [`rng_from_seed`](crate::rng_from_seed) for reproducible samples); a space holds no RNG of
+/// its own, so sampling never mutates it and the same seed always gives the same samples.
+pub trait Space: Clone + Debug + PartialEq + Send + Sync + 'static {
+    /// The Rust type of one element.
+    type Element: Clone + Debug + PartialEq + Send + Sync + 'static;
+
+    /// Draws one element, as Gymnasium's `sample()` does (see each space for the law).
+    fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> Self::Element;
+
+    /// Whether `x` is an element (`x in space`).
+    fn contains(&self, x: &Self::Element) -> bool;
+
+    /// The shape of an element, for spaces whose elements are arrays or scalars.
+    fn shape(&self) -> Option<&[usize]>;
+
+    /// The length of the flattened element (`gymnasium.spaces.flatdim`).
+    fn flatdim(&self) -> usize;
+
+    /// The dtype of the flattened element.
+    fn flat_dtype(&self) -> DType;
+
+    /// Flattens an element to one dimension (`gymnasium.spaces.flatten`): Discrete becomes a
+    /// one-hot, Dict concatenates in its key order.
+    ///
+    /// # Errors
+    /// When `x` does not have the structure of the space.
+    fn flatten(&self, x: &Self::Element) -> Result<ArrayValue, SpaceError>;
+
+    /// Inverts [`Space::flatten`] (`gymnasium.spaces.unflatten`).
+    ///
+    /// # Errors
+    /// When `flat` has the wrong length, or a one-hot part has no set entry.
+    fn unflatten(&self, flat: &ArrayValue) -> Result<Self::Element, SpaceError>;
+
+    /// The Box that flattened elements lie in (`gymnasium.spaces.flatten_space`).
+    fn flatten_space(&self) -> AnyBox;
+
+    /// This space as the dynamic [`AnySpace`].
+    fn to_any(&self) -> AnySpace;
+
+    /// Converts an element to a dynamic [`Value`].
+    fn to_value(&self, x: &Self::Element) -> Value;
+
+    /// Converts a dynamic [`Value`] to an element, checking structure and dtype (safe casts
+    /// only) but not bounds; use [`Space::contains`] for that.
+    ///
+    /// # Errors
+    /// When the value has another kind, shape or an unsafe dtype.
+    fn from_value(&self, v: &Value) -> Result<Self::Element, SpaceError>;
+}

@@ -1,0 +1,280 @@
+//! Dynamically typed elements: what any space's element becomes in the dynamic layer
+//! (registries, boxed envs, the Python export).
+
+use crate::dtype::{DType, Scalar};
+use crate::error::SpaceError;
+use indexmap::IndexMap;
+use ndarray::{ArrayD, IxDyn};
+
+/// An n-dimensional array of any supported dtype.
+#[derive(Debug, Clone, PartialEq)]
+#[allow(missing_docs)]
+pub enum ArrayValue {
+    I8(ArrayD<i8>),
+    I16(ArrayD<i16>),
+    I32(ArrayD<i32>),
+    I64(ArrayD<i64>),
+    U8(ArrayD<u8>),
+    F32(ArrayD<f32>),
+    F64(ArrayD<f64>),
+}
+
+/// Applies `$body` to the array inside any variant, bound as `$a`.
+#[macro_export]
+#[doc(hidden)]
+macro_rules! for_each_array {
+    ($value:expr, $a:ident => $body:expr) => {
+        match $value {
+            $crate::ArrayValue::I8($a) => $body,
+            $crate::ArrayValue::I16($a) => $body,
+            $crate::ArrayValue::I32($a) => $body,
+            $crate::ArrayValue::I64($a) => $body,
+            $crate::ArrayValue::U8($a) => $body,
+            $crate::ArrayValue::F32($a) => $body,
+            $crate::ArrayValue::F64($a) => $body,
+        }
+    };
+}
+
+/// Conversion between a typed array and [`ArrayValue`].
+pub trait ArrayElement: Scalar {
+    /// Wraps a typed array.
+    fn wrap(array: ArrayD<Self>) -> ArrayValue;
+    /// Borrows the typed array if the value has exactly this dtype.
+    fn peek(value: &ArrayValue) -> Option<&ArrayD<Self>>;
+    /// Wraps a typed Box space into the dynamic [`AnyBox`](crate::spaces::AnyBox).
+    fn any_box(space: crate::spaces::BoxSpace<Self>) -> crate::spaces::AnyBox;
+}
+
+macro_rules! array_element {
+    ($t:ty, $v:ident) => {
+        impl ArrayElement for $t {
+            fn wrap(array: ArrayD<Self>) -> ArrayValue {
+                ArrayValue::$v(array)
+            }
+            fn peek(value: &ArrayValue) -> Option<&ArrayD<Self>> {
+                match value {
+                    ArrayValue::$v(a) => Some(a),
+                    _ => None,
+                }
+            }
+            fn any_box(space: crate::spaces::BoxSpace<Self>) -> crate::spaces::AnyBox {
+                crate::spaces::AnyBox::$v(space)
+            }
+        }
+        impl From<ArrayD<$t>> for ArrayValue {
+            fn from(a: ArrayD<$t>) -> Self {
+                ArrayValue::$v(a)
+            }
+        }
+    };
+}
+array_element!(i8, I8);
+array_element!(i16, I16);
+array_element!(i32, I32);
+array_element!(i64, I64);
+array_element!(u8, U8);
+array_element!(f32, F32);
+array_element!(f64, F64);
+
+impl ArrayValue {
+    /// The dtype of the elements.
+    pub fn dtype(&self) -> DType {
+        match self {
+            ArrayValue::I8(_) => DType::I8,
+            ArrayValue::I16(_) => DType::I16,
+            ArrayValue::I32(_) => DType::I32,
+            ArrayValue::I64(_) => DType::I64,
+            ArrayValue::U8(_) => DType::U8,
+            ArrayValue::F32(_) => DType::F32,
+            ArrayValue::F64(_) => DType::F64,
+        }
+    }
+
+    /// The shape of the array.
+    pub fn shape(&self) -> &[usize] {
+        for_each_array!(self, a => a.shape())
+    }
+
+    /// The number of elements.
+    pub fn len(&self) -> usize {
+        for_each_array!(self, a => a.len())
+    }
+
+    /// Whether the array has no elements.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The elements as `f64`, in logical (row-major) order.
+    pub fn to_f64_vec(&self) -> Vec<f64> {
+        for_each_array!(self, a => a.iter().map(|x| x.to_f64()).collect())
+    }
+
+    /// Whether every element is finite (NaN and ±inf are not).
+    pub fn all_finite(&self) -> bool {
+        for_each_array!(self, a => a.iter().all(|x| x.is_finite()))
+    }
+
+    /// Converts to another dtype with Rust `as` semantics, as NumPy's `astype` (unsafe cast).
+    pub fn cast(&self, to: DType) -> ArrayValue {
+        if self.dtype() == to {
+            return self.clone();
+        }
+        fn conv<T: ArrayElement>(v: &ArrayValue) -> ArrayValue {
+            T::wrap(for_each_array!(v, a => a.mapv(|x| T::from_f64(x.to_f64()))))
+        }
+        match to {
+            DType::I8 => conv::<i8>(self),
+            DType::I16 => conv::<i16>(self),
+            DType::I32 => conv::<i32>(self),
+            DType::I64 => conv::<i64>(self),
+            DType::U8 => conv::<u8>(self),
+            DType::F32 => conv::<f32>(self),
+            DType::F64 => conv::<f64>(self),
+        }
+    }
+
+    /// Converts to `T` if NumPy would cast safely, else a [`SpaceError::DtypeMismatch`].
+    ///
+    /// # Errors
+    /// When the dtype cannot be cast safely to `T`.
+    pub fn to_typed<T: ArrayElement>(&self) -> Result<ArrayD<T>, SpaceError> {
+        if let Some(a) = T::peek(self) {
+            return Ok(a.clone());
+        }
+        if !self.dtype().can_cast_to(T::DTYPE) {
+            return Err(SpaceError::DtypeMismatch { expected: T::DTYPE, got: self.dtype() });
+        }
+        Ok(for_each_array!(self, a => a.mapv(|x| T::from_f64(x.to_f64()))))
+    }
+
+    /// The array reshaped to one dimension (a copy).
+    pub fn flattened(&self) -> ArrayValue {
+        for_each_array!(self, a => {
+            let flat: Vec<_> = a.iter().copied().collect();
+            ArrayValue::from(ArrayD::from_shape_vec(IxDyn(&[flat.len()]), flat).expect("length matches"))
+        })
+    }
+
+    /// Concatenates one-dimensional arrays into one, promoting dtypes as NumPy does.
+    /// An empty list gives an empty `float64` array.
+    pub fn concatenate(parts: &[ArrayValue]) -> ArrayValue {
+        let dtype = parts.iter().map(ArrayValue::dtype).reduce(DType::promote).unwrap_or(DType::F64);
+        fn join<T: ArrayElement>(parts: &[ArrayValue]) -> ArrayValue {
+            let mut out: Vec<T> = Vec::with_capacity(parts.iter().map(ArrayValue::len).sum());
+            for p in parts {
+                for_each_array!(p, a => out.extend(a.iter().map(|x| T::from_f64(x.to_f64()))));
+            }
+            let n = out.len();
+            T::wrap(ArrayD::from_shape_vec(IxDyn(&[n]), out).expect("length matches"))
+        }
+        match dtype {
+            DType::I8 => join::<i8>(parts),
+            DType::I16 => join::<i16>(parts),
+            DType::I32 => join::<i32>(parts),
+            DType::I64 => join::<i64>(parts),
+            DType::U8 => join::<u8>(parts),
+            DType::F32 => join::<f32>(parts),
+            DType::F64 => join::<f64>(parts),
+        }
+    }
+
+    /// The elements `start..end` of a one-dimensional array.
+    pub fn slice_1d(&self, start: usize, end: usize) -> ArrayValue {
+        for_each_array!(self, a => {
+            let v: Vec<_> = a.iter().skip(start).take(end.saturating_sub(start)).copied().collect();
+            let n = v.len();
+            ArrayValue::from(ArrayD::from_shape_vec(IxDyn(&[n]), v).expect("length matches"))
+        })
+    }
+}
+
+/// An ordered dict element (the element of a [`DictSpace`](crate::spaces::DictSpace)).
+pub type DictValue = IndexMap<String, Value>;
+
+/// An element of any space.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    /// An element of a Box, MultiBinary or MultiDiscrete space.
+    Array(ArrayValue),
+    /// An element of a Discrete space.
+    Discrete(i64),
+    /// An element of a Dict space, in the space's key order.
+    Dict(DictValue),
+    /// An element of a Tuple space.
+    Tuple(Vec<Value>),
+}
+
+impl Value {
+    /// A short name of the kind of value, for messages.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Value::Array(_) => "array",
+            Value::Discrete(_) => "integer",
+            Value::Dict(_) => "dict",
+            Value::Tuple(_) => "tuple",
+        }
+    }
+
+    /// The array inside, if this is an array.
+    pub fn as_array(&self) -> Option<&ArrayValue> {
+        match self {
+            Value::Array(a) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The dict inside, if this is a dict.
+    pub fn as_dict(&self) -> Option<&DictValue> {
+        match self {
+            Value::Dict(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    /// Whether every number inside is finite.
+    pub fn all_finite(&self) -> bool {
+        match self {
+            Value::Array(a) => a.all_finite(),
+            Value::Discrete(_) => true,
+            Value::Dict(d) => d.values().all(Value::all_finite),
+            Value::Tuple(t) => t.iter().all(Value::all_finite),
+        }
+    }
+}
+
+impl<T: ArrayElement> From<ArrayD<T>> for Value {
+    fn from(a: ArrayD<T>) -> Self {
+        Value::Array(T::wrap(a))
+    }
+}
+
+impl From<ArrayValue> for Value {
+    fn from(a: ArrayValue) -> Self {
+        Value::Array(a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ndarray::arr1;
+
+    #[test]
+    fn concatenate_promotes() {
+        let a = ArrayValue::from(arr1(&[1i64, 0]).into_dyn());
+        let b = ArrayValue::from(arr1(&[0.5f32]).into_dyn());
+        let c = ArrayValue::concatenate(&[a, b]);
+        assert_eq!(c.dtype(), DType::F64);
+        assert_eq!(c.to_f64_vec(), vec![1.0, 0.0, 0.5]);
+    }
+
+    #[test]
+    fn to_typed_is_safe_only() {
+        let f64s = ArrayValue::from(arr1(&[1.5f64]).into_dyn());
+        assert!(f64s.to_typed::<f32>().is_err());
+        let f32s = ArrayValue::from(arr1(&[1.5f32]).into_dyn());
+        assert_eq!(f32s.to_typed::<f64>().unwrap()[[0]], 1.5);
+    }
+}

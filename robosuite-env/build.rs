@@ -1,0 +1,70 @@
+//! Provides the MuJoCo 3.17.0 shared library that mujoco-rs links against.
+//!
+//! By default the library is fetched once from the PyPI wheel `mujoco==3.17.0` into
+//! `<target>/<profile>/mujoco-3.17.0/lib` (inside the target folder, so `cargo run` and
+//! `cargo test` put it on the loader path, and the rpath in `.cargo/config.toml` finds it
+//! for binaries run directly). Set `MUJOCO_DYNAMIC_LINK_DIR` to use an existing MuJoCo
+//! 3.17.0 instead.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const VERSION: &str = "3.17.0";
+
+fn main() {
+    println!("cargo::rerun-if-changed=build.rs");
+    println!("cargo::rerun-if-changed=../build-support/fetch_mujoco.py");
+    println!("cargo::rerun-if-env-changed=MUJOCO_DYNAMIC_LINK_DIR");
+    if std::env::var_os("DOCS_RS").is_some() {
+        return;
+    }
+    let lib_dir = match std::env::var_os("MUJOCO_DYNAMIC_LINK_DIR") {
+        Some(dir) => user_library(PathBuf::from(dir)),
+        None => fetched_library(),
+    };
+    println!("cargo::rerun-if-changed={}", lib_dir.join(format!("libmujoco.so.{VERSION}")).display());
+    println!("cargo::rustc-link-search=native={}", lib_dir.display());
+    println!("cargo::rustc-link-lib=dylib=mujoco");
+    println!("cargo::rustc-env=ROBOSUITE_MUJOCO_LIB_DIR={}", lib_dir.display());
+}
+
+/// Checks a library folder the user chose.
+fn user_library(dir: PathBuf) -> PathBuf {
+    if !dir.join(format!("libmujoco.so.{VERSION}")).is_file() || !dir.join("libmujoco.so").exists() {
+        fail(&format!(
+            "MUJOCO_DYNAMIC_LINK_DIR={} holds no libmujoco.so.{VERSION} with its libmujoco.so link; \
+             point it at the lib/ folder of MuJoCo {VERSION}, or unset it to fetch the library",
+            dir.display()
+        ));
+    }
+    dir
+}
+
+/// Fetches the library into the profile folder unless it is already there.
+fn fetched_library() -> PathBuf {
+    let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+    // OUT_DIR is <target>/<profile>/build/<package>-<hash>/out.
+    let profile_dir = out_dir.ancestors().nth(3).expect("OUT_DIR lies inside the target folder");
+    let dest = profile_dir.join(format!("mujoco-{VERSION}"));
+    let lib_dir = dest.join("lib");
+    if lib_dir.join(format!("libmujoco.so.{VERSION}")).is_file() {
+        return lib_dir;
+    }
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../build-support/fetch_mujoco.py");
+    let python = std::env::var("PYTHON").unwrap_or_else(|_| "python3".to_owned());
+    println!("cargo::rerun-if-env-changed=PYTHON");
+    let status = Command::new(&python).arg(&script).arg(&dest).status();
+    match status {
+        Ok(s) if s.success() => lib_dir,
+        Ok(_) => fail("fetching MuJoCo failed (see the fetch_mujoco line above)"),
+        Err(e) => fail(&format!(
+            "cannot run `{python}` to fetch MuJoCo {VERSION} ({e}); install python3 with pip, \
+             or set MUJOCO_DYNAMIC_LINK_DIR to the lib/ folder of MuJoCo {VERSION}"
+        )),
+    }
+}
+
+fn fail(message: &str) -> ! {
+    eprintln!("robosuite-env: {message}");
+    std::process::exit(1);
+}
