@@ -58,7 +58,7 @@ impl Space for Discrete {
     }
 
     fn contains(&self, x: &i64) -> bool {
-        *x >= self.start && *x - self.start < self.n
+        *x >= self.start && i128::from(*x) - i128::from(self.start) < i128::from(self.n)
     }
 
     fn shape(&self) -> Option<&[usize]> {

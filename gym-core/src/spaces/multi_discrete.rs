@@ -59,7 +59,7 @@ impl Space for MultiDiscrete {
     }
 
     fn contains(&self, x: &ArrayD<i64>) -> bool {
-        x.shape() == self.nvec.shape() && Zip::from(x).and(&self.nvec).and(&self.start).all(|&v, &n, &s| v >= s && v - s < n)
+        x.shape() == self.nvec.shape() && Zip::from(x).and(&self.nvec).and(&self.start).all(|&v, &n, &s| v >= s && i128::from(v) - i128::from(s) < i128::from(n))
     }
 
     fn shape(&self) -> Option<&[usize]> {

@@ -1,0 +1,44 @@
+# The two commands of the README, and a few more for developers.
+#
+#   make demo   a Lift rollout that prints what happened
+#   make test   every test (Rust and Python)
+#
+# Both need only a Rust toolchain, python3 with pip, and pkg-config (installed with
+# apt-get when missing and possible). MuJoCo 3.17.0 is fetched by the build itself
+# (build-support/README.md).
+
+CARGO ?= cargo
+PYTHON ?= python3
+
+.PHONY: demo test test-rust bench fmt lint doc prerequisites clean
+
+demo: prerequisites
+	$(CARGO) run --release -p examples --example spaces_tour
+
+test: test-rust
+
+test-rust: prerequisites
+	$(CARGO) test --workspace --all-targets --features gym-core/proptest-support
+	$(CARGO) test --workspace --doc
+
+bench: prerequisites
+	$(CARGO) run --release -p robosuite-env --example lift_speed
+
+fmt:
+	$(CARGO) fmt --all
+
+lint: prerequisites
+	$(CARGO) fmt --all -- --check
+	$(CARGO) clippy --workspace --all-targets -- -D warnings
+
+doc: prerequisites
+	$(CARGO) doc --workspace --no-deps
+
+prerequisites:
+	@command -v $(CARGO) >/dev/null || { echo "make: cargo not found; install Rust from https://rustup.rs"; exit 1; }
+	@command -v $(PYTHON) >/dev/null || { echo "make: $(PYTHON) not found; install Python 3 with pip"; exit 1; }
+	@$(PYTHON) -m pip --version >/dev/null 2>&1 || { echo "make: pip is missing; install it (python3 -m ensurepip)"; exit 1; }
+	@command -v pkg-config >/dev/null || sh build-support/install-pkg-config.sh
+
+clean:
+	$(CARGO) clean
