@@ -6,7 +6,10 @@ use gym_core::{AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, Space, rng_
 
 fn main() -> Result<(), gym_core::SpaceError> {
     let space = DictSpace::new([
-        ("position", AnySpace::from(BoxSpace::<f32>::uniform(-1.0, 1.0, &[3])?)),
+        (
+            "position",
+            AnySpace::from(BoxSpace::<f32>::uniform(-1.0, 1.0, &[3])?),
+        ),
         ("gear", AnySpace::from(Discrete::new(4)?)),
         ("switches", AnySpace::from(MultiBinary::new(&[2])?)),
     ])?;

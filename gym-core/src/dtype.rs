@@ -23,8 +23,15 @@ pub enum DType {
 
 impl DType {
     /// Every dtype, in declaration order.
-    pub const ALL: [DType; 7] =
-        [DType::I8, DType::I16, DType::I32, DType::I64, DType::U8, DType::F32, DType::F64];
+    pub const ALL: [DType; 7] = [
+        DType::I8,
+        DType::I16,
+        DType::I32,
+        DType::I64,
+        DType::U8,
+        DType::F32,
+        DType::F64,
+    ];
 
     /// NumPy's name for the dtype (`"float32"`, ...).
     pub fn name(self) -> &'static str {
@@ -96,7 +103,16 @@ mod sealed {
 
 /// A Rust element type that array spaces hold: `i8`, `i16`, `i32`, `i64`, `u8`, `f32`, `f64`.
 pub trait Scalar:
-    Copy + fmt::Debug + fmt::Display + PartialOrd + PartialEq + Default + Send + Sync + 'static + sealed::Sealed
+    Copy
+    + fmt::Debug
+    + fmt::Display
+    + PartialOrd
+    + PartialEq
+    + Default
+    + Send
+    + Sync
+    + 'static
+    + sealed::Sealed
 {
     /// The dtype of this element type.
     const DTYPE: DType;

@@ -21,7 +21,8 @@ pub trait DynEnv: Send + 'static {
     ///
     /// # Errors
     /// As [`Env::reset`].
-    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Value, Info)>;
+    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>)
+    -> Result<(Value, Info)>;
     /// See [`Env::step`]. An action that does not convert to the typed action is an
     /// [`Error::InvalidAction`].
     ///
@@ -62,7 +63,11 @@ impl<E: Env> DynAdapter<E> {
     pub fn new(env: E) -> Self {
         let observation_space = env.observation_space().to_any();
         let action_space = env.action_space().to_any();
-        Self { env, observation_space, action_space }
+        Self {
+            env,
+            observation_space,
+            action_space,
+        }
     }
 
     /// The typed environment inside.
@@ -83,12 +88,20 @@ impl<E: Env> DynEnv for DynAdapter<E> {
     fn action_space(&self) -> &AnySpace {
         &self.action_space
     }
-    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Value, Info)> {
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Value, Info)> {
         let (obs, info) = self.env.reset(seed, options)?;
         Ok((self.env.observation_space().to_value(&obs), info))
     }
     fn step(&mut self, action: &Value) -> Result<Step<Value>> {
-        let action = self.env.action_space().from_value(action).map_err(|e| Error::InvalidAction(e.to_string()))?;
+        let action = self
+            .env
+            .action_space()
+            .from_value(action)
+            .map_err(|e| Error::InvalidAction(e.to_string()))?;
         let step = self.env.step(&action)?;
         let space = self.env.observation_space();
         Ok(step.map_observation(|o| space.to_value(&o)))
@@ -141,7 +154,11 @@ impl Env for BoxedEnv {
     fn action_space(&self) -> &AnySpace {
         (**self).action_space()
     }
-    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Value, Info)> {
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Value, Info)> {
         (**self).reset(seed, options)
     }
     fn step(&mut self, action: &Value) -> Result<Step<Value>> {

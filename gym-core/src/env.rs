@@ -44,7 +44,10 @@ impl<O> Step<O> {
     ///
     /// # Errors
     /// Whatever `f` returns.
-    pub fn try_map_observation<P, E>(self, f: impl FnOnce(O) -> Result<P, E>) -> Result<Step<P>, E> {
+    pub fn try_map_observation<P, E>(
+        self,
+        f: impl FnOnce(O) -> Result<P, E>,
+    ) -> Result<Step<P>, E> {
         Ok(Step {
             observation: f(self.observation)?,
             reward: self.reward,
@@ -103,7 +106,10 @@ pub struct Metadata {
 impl Metadata {
     /// No render modes, no frame rate.
     pub const fn empty() -> Self {
-        Self { render_modes: Vec::new(), render_fps: None }
+        Self {
+            render_modes: Vec::new(),
+            render_fps: None,
+        }
     }
 }
 
@@ -140,7 +146,11 @@ pub trait Env: Send + 'static {
     ///
     /// # Errors
     /// Environment-specific: invalid options, a failed placement, a closed environment.
-    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(Self::Obs, Info)>;
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)>;
 
     /// Applies one action.
     ///

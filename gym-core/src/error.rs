@@ -66,7 +66,9 @@ pub enum Error {
     #[error("cannot call step() before calling reset()")]
     ResetNeeded,
     /// `step` was called after the episode ended; call `reset` first.
-    #[error("cannot call step() after the episode ended (terminated or truncated); call reset() first")]
+    #[error(
+        "cannot call step() after the episode ended (terminated or truncated); call reset() first"
+    )]
     EpisodeEnded,
     /// A constructor or method argument is invalid.
     #[error("invalid argument `{name}`: {reason}")]
@@ -121,6 +123,9 @@ pub enum Error {
 impl Error {
     /// Builds an [`Error::InvalidArgument`].
     pub fn invalid_argument(name: impl Into<String>, reason: impl Into<String>) -> Self {
-        Self::InvalidArgument { name: name.into(), reason: reason.into() }
+        Self::InvalidArgument {
+            name: name.into(),
+            reason: reason.into(),
+        }
     }
 }

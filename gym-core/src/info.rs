@@ -74,7 +74,11 @@ impl Info {
     }
 
     /// Inserts or replaces a value; returns the previous one.
-    pub fn insert(&mut self, key: impl Into<String>, value: impl Into<InfoValue>) -> Option<InfoValue> {
+    pub fn insert(
+        &mut self,
+        key: impl Into<String>,
+        value: impl Into<InfoValue>,
+    ) -> Option<InfoValue> {
         self.0.insert(key.into(), value.into())
     }
 
@@ -166,7 +170,11 @@ impl Info {
 
 impl<K: Into<String>, V: Into<InfoValue>> FromIterator<(K, V)> for Info {
     fn from_iter<I: IntoIterator<Item = (K, V)>>(iter: I) -> Self {
-        Info(iter.into_iter().map(|(k, v)| (k.into(), v.into())).collect())
+        Info(
+            iter.into_iter()
+                .map(|(k, v)| (k.into(), v.into()))
+                .collect(),
+        )
     }
 }
 
@@ -184,7 +192,10 @@ mod tests {
 
     #[test]
     fn typed_getters() {
-        let info = Info::new().with("success", true).with("l", 3usize).with("r", 1.5);
+        let info = Info::new()
+            .with("success", true)
+            .with("l", 3usize)
+            .with("r", 1.5);
         assert_eq!(info.get_bool("success"), Some(true));
         assert_eq!(info.get_i64("l"), Some(3));
         assert_eq!(info.get_f64("r"), Some(1.5));

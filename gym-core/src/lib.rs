@@ -43,6 +43,8 @@ pub use error::{Error, Result, SpaceError};
 pub use info::{Info, InfoValue, ResetOptions};
 pub use rng::{EnvRng, entropy_seed, rng_from_seed};
 pub use space::Space;
-pub use spaces::{AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace};
+pub use spaces::{
+    AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
+};
 pub use value::{ArrayElement, ArrayValue, DictValue, Value};
 pub use wrapper::Wrapper;

@@ -9,7 +9,9 @@
 use crate::dtype::DType;
 use crate::rng::rng_from_seed;
 use crate::space::Space;
-use crate::spaces::{AnyBox, AnySpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace};
+use crate::spaces::{
+    AnyBox, AnySpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
+};
 use ndarray::{ArrayD, IxDyn};
 use proptest::prelude::*;
 
@@ -42,7 +44,11 @@ pub fn box_space(dtype: DType) -> impl Strategy<Value = AnyBox> {
         proptest::collection::vec(bound_pair(dtype.is_float()), n).prop_map(move |pairs| {
             let (mut low, mut high): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
             if !dtype.is_float() {
-                let (lo, hi) = if dtype == DType::U8 { (0.0, 200.0) } else { (-100.0, 150.0) };
+                let (lo, hi) = if dtype == DType::U8 {
+                    (0.0, 200.0)
+                } else {
+                    (-100.0, 150.0)
+                };
                 for (l, h) in low.iter_mut().zip(high.iter_mut()) {
                     *l = l.clamp(lo, hi).floor();
                     *h = h.clamp(*l, hi).floor();
@@ -72,10 +78,14 @@ pub fn discrete() -> impl Strategy<Value = Discrete> {
 pub fn multi_discrete() -> impl Strategy<Value = MultiDiscrete> {
     shape(2, 4).prop_flat_map(|shape| {
         let n: usize = shape.iter().product();
-        (proptest::collection::vec(1i64..=6, n), proptest::collection::vec(-3i64..=3, n)).prop_map(move |(nv, st)| {
-            let arr = |v: Vec<i64>| ArrayD::from_shape_vec(IxDyn(&shape), v).expect("length");
-            MultiDiscrete::with_start(arr(nv), arr(st)).expect("valid")
-        })
+        (
+            proptest::collection::vec(1i64..=6, n),
+            proptest::collection::vec(-3i64..=3, n),
+        )
+            .prop_map(move |(nv, st)| {
+                let arr = |v: Vec<i64>| ArrayD::from_shape_vec(IxDyn(&shape), v).expect("length");
+                MultiDiscrete::with_start(arr(nv), arr(st)).expect("valid")
+            })
     })
 }
 
@@ -99,9 +109,11 @@ pub fn leaf_space() -> impl Strategy<Value = AnySpace> {
 pub fn any_space(depth: u32) -> impl Strategy<Value = AnySpace> {
     leaf_space().prop_recursive(depth, 24, 4, |inner| {
         prop_oneof![
-            proptest::collection::vec(inner.clone(), 1..=4).prop_map(|v| AnySpace::Tuple(TupleSpace::new(v))),
-            proptest::collection::btree_map("[a-z][a-z0-9_-]{0,8}", inner, 1..=4)
-                .prop_map(|m| AnySpace::Dict(DictSpace::new(m.into_iter().rev()).expect("unique keys"))),
+            proptest::collection::vec(inner.clone(), 1..=4)
+                .prop_map(|v| AnySpace::Tuple(TupleSpace::new(v))),
+            proptest::collection::btree_map("[a-z][a-z0-9_-]{0,8}", inner, 1..=4).prop_map(|m| {
+                AnySpace::Dict(DictSpace::new(m.into_iter().rev()).expect("unique keys"))
+            }),
         ]
     })
 }
@@ -125,6 +137,9 @@ pub fn space_and_element(depth: u32) -> impl Strategy<Value = (AnySpace, crate::
 }
 
 /// Sequences of `len` actions from `space` (each drawn from its own seed).
-pub fn action_sequence<S: Space>(space: S, len: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Vec<S::Element>> {
+pub fn action_sequence<S: Space>(
+    space: S,
+    len: std::ops::RangeInclusive<usize>,
+) -> impl Strategy<Value = Vec<S::Element>> {
     proptest::collection::vec(sample_of(space), len)
 }

@@ -42,7 +42,9 @@ static REGISTRY: LazyLock<RwLock<IndexMap<String, EnvSpec>>> = LazyLock::new(Def
 
 /// Registers (or replaces) an environment; returns the spec it replaced.
 pub fn register(spec: EnvSpec) -> Option<EnvSpec> {
-    let mut map = REGISTRY.write().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let mut map = REGISTRY
+        .write()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     map.insert(spec.id.clone(), spec)
 }
 
@@ -51,8 +53,13 @@ pub fn register(spec: EnvSpec) -> Option<EnvSpec> {
 /// # Errors
 /// [`Error::UnknownEnv`] listing every registered id.
 pub fn spec(id: &str) -> Result<EnvSpec> {
-    let map = REGISTRY.read().unwrap_or_else(std::sync::PoisonError::into_inner);
-    map.get(id).cloned().ok_or_else(|| Error::UnknownEnv { id: id.to_owned(), available: map.keys().cloned().collect() })
+    let map = REGISTRY
+        .read()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    map.get(id).cloned().ok_or_else(|| Error::UnknownEnv {
+        id: id.to_owned(),
+        available: map.keys().cloned().collect(),
+    })
 }
 
 /// Makes the environment registered under `id` with keyword arguments `kwargs`.
@@ -67,5 +74,10 @@ pub fn make(id: &str, kwargs: &Info) -> Result<BoxedEnv> {
 
 /// Every registered id, in registration order.
 pub fn registered_ids() -> Vec<String> {
-    REGISTRY.read().unwrap_or_else(std::sync::PoisonError::into_inner).keys().cloned().collect()
+    REGISTRY
+        .read()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+        .keys()
+        .cloned()
+        .collect()
 }

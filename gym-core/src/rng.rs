@@ -54,6 +54,9 @@ mod tests {
         // Guards portability: if the generator or the seed expansion ever changed, recorded
         // trajectories would silently stop replaying.
         let mut rng = rng_from_seed(0);
-        assert_eq!([rng.next_u64(), rng.next_u64()], [2354861276966075475, 6411218084291373563]);
+        assert_eq!(
+            [rng.next_u64(), rng.next_u64()],
+            [2354861276966075475, 6411218084291373563]
+        );
     }
 }

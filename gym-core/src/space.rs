@@ -57,5 +57,6 @@ pub trait Space: Clone + Debug + PartialEq + Send + Sync + 'static {
     ///
     /// # Errors
     /// When the value has another kind, shape or an unsafe dtype.
+    #[allow(clippy::wrong_self_convention)]
     fn from_value(&self, v: &Value) -> Result<Self::Element, SpaceError>;
 }

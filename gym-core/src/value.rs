@@ -144,7 +144,10 @@ impl ArrayValue {
             return Ok(a.clone());
         }
         if !self.dtype().can_cast_to(T::DTYPE) {
-            return Err(SpaceError::DtypeMismatch { expected: T::DTYPE, got: self.dtype() });
+            return Err(SpaceError::DtypeMismatch {
+                expected: T::DTYPE,
+                got: self.dtype(),
+            });
         }
         Ok(for_each_array!(self, a => a.mapv(|x| T::from_f64(x.to_f64()))))
     }
@@ -160,7 +163,11 @@ impl ArrayValue {
     /// Concatenates one-dimensional arrays into one, promoting dtypes as NumPy does.
     /// An empty list gives an empty `float64` array.
     pub fn concatenate(parts: &[ArrayValue]) -> ArrayValue {
-        let dtype = parts.iter().map(ArrayValue::dtype).reduce(DType::promote).unwrap_or(DType::F64);
+        let dtype = parts
+            .iter()
+            .map(ArrayValue::dtype)
+            .reduce(DType::promote)
+            .unwrap_or(DType::F64);
         fn join<T: ArrayElement>(parts: &[ArrayValue]) -> ArrayValue {
             let mut out: Vec<T> = Vec::with_capacity(parts.iter().map(ArrayValue::len).sum());
             for p in parts {

@@ -2,8 +2,8 @@
 
 use gym_core::registry::{self, EnvSpec};
 use gym_core::{
-    BoxSpace, BoxedEnv, Discrete, Env, EnvExt, EnvRng, Error, Info, IntoBoxedEnv, ResetOptions, Result, Space, Step,
-    Value, Wrapper, rng_from_seed,
+    BoxSpace, BoxedEnv, Discrete, Env, EnvExt, EnvRng, Error, Info, IntoBoxedEnv, ResetOptions,
+    Result, Space, Step, Value, Wrapper, rng_from_seed,
 };
 use ndarray::{ArrayD, IxDyn, arr1};
 use rand::RngExt;
@@ -44,21 +44,35 @@ impl Env for Walk {
     fn action_space(&self) -> &Discrete {
         &self.act_space
     }
-    fn reset(&mut self, seed: Option<u64>, _options: Option<&ResetOptions>) -> Result<(ArrayD<f32>, Info)> {
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        _options: Option<&ResetOptions>,
+    ) -> Result<(ArrayD<f32>, Info)> {
         if let Some(s) = seed {
             self.rng = Some(rng_from_seed(s));
         }
-        let rng = self.rng.get_or_insert_with(|| rng_from_seed(gym_core::entropy_seed()));
+        let rng = self
+            .rng
+            .get_or_insert_with(|| rng_from_seed(gym_core::entropy_seed()));
         self.pos = rng.random_range(-1..=1);
         Ok((self.obs(), Info::new()))
     }
     fn step(&mut self, action: &i64) -> Result<Step<ArrayD<f32>>> {
         if !self.act_space.contains(action) {
-            return Err(Error::InvalidAction(format!("{action} is not in Discrete(2)")));
+            return Err(Error::InvalidAction(format!(
+                "{action} is not in Discrete(2)"
+            )));
         }
         self.pos += if *action == 1 { 1 } else { -1 };
         let terminated = self.pos.abs() >= 3;
-        Ok(Step { observation: self.obs(), reward: 1.0, terminated, truncated: false, info: Info::new().with("pos", self.pos) })
+        Ok(Step {
+            observation: self.obs(),
+            reward: 1.0,
+            terminated,
+            truncated: false,
+            info: Info::new().with("pos", self.pos),
+        })
     }
     fn close(&mut self) {
         self.closed += 1;
@@ -96,7 +110,11 @@ impl<E: Env> Env for Double<E> {
     fn action_space(&self) -> &E::ActSpace {
         self.0.action_space()
     }
-    fn reset(&mut self, seed: Option<u64>, options: Option<&ResetOptions>) -> Result<(E::Obs, Info)> {
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(E::Obs, Info)> {
         self.0.reset(seed, options)
     }
     fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
@@ -110,9 +128,19 @@ impl<E: Env> Env for Double<E> {
 #[test]
 fn seeded_reset_is_reproducible_and_rng_state_follows_the_seed() {
     let (mut a, mut b) = (Walk::new(), Walk::new());
-    let pairs: Vec<_> = (0..20).map(|s| (a.reset(Some(s), None).unwrap().0, b.reset(Some(s), None).unwrap().0)).collect();
+    let pairs: Vec<_> = (0..20)
+        .map(|s| {
+            (
+                a.reset(Some(s), None).unwrap().0,
+                b.reset(Some(s), None).unwrap().0,
+            )
+        })
+        .collect();
     assert!(pairs.iter().all(|(x, y)| x == y));
-    assert!(pairs.iter().any(|(x, _)| x[[0]] != pairs[0].0[[0]]), "different seeds give different starts");
+    assert!(
+        pairs.iter().any(|(x, _)| x[[0]] != pairs[0].0[[0]]),
+        "different seeds give different starts"
+    );
     a.reset(Some(123), None).unwrap();
     let state = a.rng().cloned();
     a.reset(None, None).unwrap();
@@ -129,7 +157,10 @@ fn wrappers_forward_and_unwrap() {
     let s = env.step(&1).unwrap();
     assert_eq!(s.reward, 4.0);
     assert!(env.rng().is_some(), "rng is forwarded through wrappers");
-    assert_eq!(env.unwrapped::<Walk>().map(|w| w.pos), Some(s.observation[[0]] as i64));
+    assert_eq!(
+        env.unwrapped::<Walk>().map(|w| w.pos),
+        Some(s.observation[[0]] as i64)
+    );
     assert!(env.unwrapped::<Double<Walk>>().is_none());
     env.close();
     env.close();
@@ -140,17 +171,25 @@ fn wrappers_forward_and_unwrap() {
 fn boxed_env_converts_values_and_rejects_bad_actions() {
     let mut env: BoxedEnv = Double(Walk::new()).boxed();
     assert_eq!(env.action_space().to_string(), "Discrete(2)");
-    assert_eq!(env.observation_space().to_string(), "Box(-3, 3, [1], float32)");
+    assert_eq!(
+        env.observation_space().to_string(),
+        "Box(-3, 3, [1], float32)"
+    );
     let (obs, _) = env.reset(Some(5), None).unwrap();
     assert!(env.observation_space().contains(&obs));
-    let err = env.step(&Value::Array(arr1(&[0.5f64]).into_dyn().into())).unwrap_err();
+    let err = env
+        .step(&Value::Array(arr1(&[0.5f64]).into_dyn().into()))
+        .unwrap_err();
     assert!(matches!(err, Error::InvalidAction(_)), "{err}");
     let err = env.step(&Value::Discrete(7)).unwrap_err();
     assert!(matches!(err, Error::InvalidAction(_)), "{err}");
     // The env is still usable after rejected actions.
     let step = env.step(&Value::Discrete(1)).unwrap();
     assert_eq!(step.reward, 2.0);
-    assert_eq!(step.info.get_i64("pos"), Some(obs.as_array().unwrap().to_f64_vec()[0] as i64 + 1));
+    assert_eq!(
+        step.info.get_i64("pos"),
+        Some(obs.as_array().unwrap().to_f64_vec()[0] as i64 + 1)
+    );
     assert!(env.unwrapped_as::<Walk>().is_some());
     // A boxed env is an Env too, so typed wrappers stack on it.
     let mut wrapped = Double(env);
@@ -182,15 +221,27 @@ fn registry_makes_by_id_and_lists_ids_on_unknown() {
         }
         other => panic!("expected UnknownEnv, got {:?}", other.map(|_| ())),
     }
-    let err = registry::make("Walk-v0", &Info::new().with("bad", true)).map(|_| ()).unwrap_err();
+    let err = registry::make("Walk-v0", &Info::new().with("bad", true))
+        .map(|_| ())
+        .unwrap_err();
     assert_eq!(err.to_string(), "invalid argument `bad`: not accepted");
 }
 
 #[test]
 fn step_result_helpers() {
-    let s = Step { observation: 1, reward: 0.5, terminated: false, truncated: true, info: Info::new() };
+    let s = Step {
+        observation: 1,
+        reward: 0.5,
+        terminated: false,
+        truncated: true,
+        info: Info::new(),
+    };
     assert!(s.done());
     let t = s.map_observation(|o| o * 10);
     assert_eq!(t.observation, 10);
-    assert!(BoxSpace::<f64>::uniform(0.0, 1.0, &[2]).unwrap().contains(&ArrayD::zeros(IxDyn(&[2]))));
+    assert!(
+        BoxSpace::<f64>::uniform(0.0, 1.0, &[2])
+            .unwrap()
+            .contains(&ArrayD::zeros(IxDyn(&[2])))
+    );
 }

@@ -46,7 +46,9 @@ proptest! {
         prop_assert!(!b.contains(&longer));
         // NaN anywhere.
         let mut nan = arr.clone();
-        nan.iter_mut().next().map(|v| *v = f32::NAN);
+        if let Some(v) = nan.iter_mut().next() {
+            *v = f32::NAN;
+        }
         prop_assert!(!b.contains(&ArrayValue::F32(nan)));
         // A dtype that does not cast safely (float64 into float32).
         prop_assert!(!b.contains(&x.cast(DType::F64)));
@@ -81,10 +83,14 @@ proptest! {
         prop_assert!(!d.contains(&(d.start() - 1)));
         prop_assert!(!d.contains(&(d.start() + d.n())));
         let mut x = md.sample(&mut rng_from_seed(1));
-        x.iter_mut().next().map(|v| *v = i64::MAX);
+        if let Some(v) = x.iter_mut().next() {
+            *v = i64::MAX;
+        }
         prop_assert!(!md.contains(&x));
         let mut y = mb.sample(&mut rng_from_seed(2));
-        y.iter_mut().next().map(|v| *v = 2);
+        if let Some(v) = y.iter_mut().next() {
+            *v = 2;
+        }
         prop_assert!(!mb.contains(&y));
         // Floats are not integers: a float array is not a MultiDiscrete element.
         let floats = Value::Array(ArrayValue::F64(md.sample(&mut rng_from_seed(3)).mapv(|v| v as f64)));
@@ -109,8 +115,14 @@ fn values_equal(a: &Value, b: &Value) -> bool {
     match (a, b) {
         (Value::Array(x), Value::Array(y)) => x.shape() == y.shape() && x.cast(y.dtype()) == *y,
         (Value::Discrete(x), Value::Discrete(y)) => x == y,
-        (Value::Dict(x), Value::Dict(y)) => x.len() == y.len() && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| values_equal(v, w))),
-        (Value::Tuple(x), Value::Tuple(y)) => x.len() == y.len() && x.iter().zip(y).all(|(v, w)| values_equal(v, w)),
+        (Value::Dict(x), Value::Dict(y)) => {
+            x.len() == y.len()
+                && x.iter()
+                    .all(|(k, v)| y.get(k).is_some_and(|w| values_equal(v, w)))
+        }
+        (Value::Tuple(x), Value::Tuple(y)) => {
+            x.len() == y.len() && x.iter().zip(y).all(|(v, w)| values_equal(v, w))
+        }
         _ => false,
     }
 }
@@ -120,11 +132,17 @@ fn dict_flatten_follows_key_order_and_promotes() {
     use gym_core::{BoxSpace, DictSpace, Discrete};
     let space = DictSpace::new([
         ("b", AnySpace::from(Discrete::new(3).unwrap())),
-        ("a", AnySpace::from(BoxSpace::<f32>::uniform(-1.0, 1.0, &[2]).unwrap())),
+        (
+            "a",
+            AnySpace::from(BoxSpace::<f32>::uniform(-1.0, 1.0, &[2]).unwrap()),
+        ),
     ])
     .unwrap();
     let x: gym_core::DictValue = [
-        ("a".to_owned(), Value::from(ndarray::arr1(&[0.5f32, -0.25]).into_dyn())),
+        (
+            "a".to_owned(),
+            Value::from(ndarray::arr1(&[0.5f32, -0.25]).into_dyn()),
+        ),
         ("b".to_owned(), Value::Discrete(1)),
     ]
     .into_iter()
@@ -134,8 +152,14 @@ fn dict_flatten_follows_key_order_and_promotes() {
     assert_eq!(flat.dtype(), DType::F64);
     assert_eq!(flat.to_f64_vec(), vec![0.0, 1.0, 0.0, 0.5, -0.25]);
     let sorted = DictSpace::sorted(space.iter().map(|(k, s)| (k.to_owned(), s.clone()))).unwrap();
-    assert_eq!(sorted.flatten(&x).unwrap().to_f64_vec(), vec![0.5, -0.25, 0.0, 1.0, 0.0]);
-    assert!(space.contains(&x), "key order of the value does not matter for contains");
+    assert_eq!(
+        sorted.flatten(&x).unwrap().to_f64_vec(),
+        vec![0.5, -0.25, 0.0, 1.0, 0.0]
+    );
+    assert!(
+        space.contains(&x),
+        "key order of the value does not matter for contains"
+    );
 }
 
 #[test]

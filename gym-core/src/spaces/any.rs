@@ -93,7 +93,10 @@ impl AnyBox {
     /// # Errors
     /// When the array's dtype cannot be cast safely or its shape differs.
     pub fn clip(&self, x: &ArrayValue) -> Result<ArrayValue, SpaceError> {
-        fn clip_typed<T: ArrayElement>(b: &BoxSpace<T>, x: &ArrayValue) -> Result<ArrayValue, SpaceError> {
+        fn clip_typed<T: ArrayElement>(
+            b: &BoxSpace<T>,
+            x: &ArrayValue,
+        ) -> Result<ArrayValue, SpaceError> {
             let typed = b.from_value(&Value::Array(x.clone()))?;
             Ok(T::wrap(b.clip(&typed)))
         }
@@ -168,6 +171,7 @@ impl Space for AnyBox {
 /// Any space; its elements are [`Value`]s. This is what the dynamic layer and the Python
 /// export see.
 #[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 pub enum AnySpace {
     /// A Box of any dtype.
     Box(AnyBox),
@@ -272,7 +276,8 @@ impl Space for AnySpace {
                 !a.dtype().is_float() && a.to_typed::<i64>().is_ok_and(|a| m.contains(&a))
             }
             (AnySpace::MultiBinary(m), v) => {
-                v.as_array().is_some_and(|a| a.to_f64_vec().iter().all(|&x| x == 0.0 || x == 1.0))
+                v.as_array()
+                    .is_some_and(|a| a.to_f64_vec().iter().all(|&x| x == 0.0 || x == 1.0))
                     && m.from_value(v).is_ok_and(|a| m.contains(&a))
             }
             (AnySpace::Dict(d), Value::Dict(v)) => d.contains(v),
@@ -324,7 +329,11 @@ impl std::fmt::Display for AnySpace {
             AnySpace::Box(b) => b.fmt(f),
             AnySpace::Discrete(d) if d.start() == 0 => write!(f, "Discrete({})", d.n()),
             AnySpace::Discrete(d) => write!(f, "Discrete({}, start={})", d.n(), d.start()),
-            AnySpace::MultiDiscrete(m) => write!(f, "MultiDiscrete({:?})", m.nvec().iter().collect::<Vec<_>>()),
+            AnySpace::MultiDiscrete(m) => write!(
+                f,
+                "MultiDiscrete({:?})",
+                m.nvec().iter().collect::<Vec<_>>()
+            ),
             AnySpace::MultiBinary(m) => write!(f, "MultiBinary({:?})", m.shape().unwrap_or(&[])),
             AnySpace::Dict(d) => {
                 f.write_str("Dict(")?;
@@ -362,7 +371,8 @@ pub(crate) fn concat_flat_spaces<'a>(spaces: impl Iterator<Item = &'a AnySpace>)
     }
     let n = low.len();
     let arr = |v: Vec<f64>| ArrayD::from_shape_vec(IxDyn(&[n]), v).expect("length");
-    AnyBox::new(dtype.unwrap_or(DType::F64), arr(low), arr(high)).expect("bounds of valid spaces stay valid")
+    AnyBox::new(dtype.unwrap_or(DType::F64), arr(low), arr(high))
+        .expect("bounds of valid spaces stay valid")
 }
 
 /// Splits a flat vector into the flat parts of `spaces`.
@@ -372,7 +382,10 @@ pub(crate) fn split_flat<'a>(
 ) -> Result<Vec<ArrayValue>, SpaceError> {
     let total: usize = spaces.clone().map(Space::flatdim).sum();
     if flat.len() != total || flat.shape().len() != 1 {
-        return Err(SpaceError::Unflatten(format!("expected a flat vector of {total} entries, got shape {:?}", flat.shape())));
+        return Err(SpaceError::Unflatten(format!(
+            "expected a flat vector of {total} entries, got shape {:?}",
+            flat.shape()
+        )));
     }
     let mut start = 0;
     Ok(spaces

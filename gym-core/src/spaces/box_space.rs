@@ -30,7 +30,10 @@ impl<T: ArrayElement> BoxSpace<T> {
     /// the dtype's range.
     pub fn new(low: ArrayD<f64>, high: ArrayD<f64>) -> Result<Self, SpaceError> {
         if low.shape() != high.shape() {
-            return Err(SpaceError::ShapeMismatch { expected: low.shape().to_vec(), got: high.shape().to_vec() });
+            return Err(SpaceError::ShapeMismatch {
+                expected: low.shape().to_vec(),
+                got: high.shape().to_vec(),
+            });
         }
         let mut problems = Vec::new();
         Zip::from(&low).and(&high).for_each(|&l, &h| {
@@ -53,8 +56,19 @@ impl<T: ArrayElement> BoxSpace<T> {
         }
         let bounded_below = low.mapv(|l| l > f64::NEG_INFINITY);
         let bounded_above = high.mapv(|h| h < f64::INFINITY);
-        let cast = |v: f64| if T::DTYPE.is_float() { T::from_f64(v) } else { T::from_f64(v.clamp(T::MIN, T::MAX)) };
-        Ok(Self { low: low.mapv(cast), high: high.mapv(cast), bounded_below, bounded_above })
+        let cast = |v: f64| {
+            if T::DTYPE.is_float() {
+                T::from_f64(v)
+            } else {
+                T::from_f64(v.clamp(T::MIN, T::MAX))
+            }
+        };
+        Ok(Self {
+            low: low.mapv(cast),
+            high: high.mapv(cast),
+            bounded_below,
+            bounded_above,
+        })
     }
 
     /// A box whose elements all share the bounds `low` and `high`.
@@ -62,13 +76,17 @@ impl<T: ArrayElement> BoxSpace<T> {
     /// # Errors
     /// As [`BoxSpace::new`].
     pub fn uniform(low: f64, high: f64, shape: &[usize]) -> Result<Self, SpaceError> {
-        Self::new(ArrayD::from_elem(IxDyn(shape), low), ArrayD::from_elem(IxDyn(shape), high))
+        Self::new(
+            ArrayD::from_elem(IxDyn(shape), low),
+            ArrayD::from_elem(IxDyn(shape), high),
+        )
     }
 
     /// The unbounded box `(-inf, inf)` of this shape (floating dtypes; integer dtypes get
     /// their full range, marked unbounded).
     pub fn unbounded(shape: &[usize]) -> Self {
-        Self::uniform(f64::NEG_INFINITY, f64::INFINITY, shape).expect("infinite bounds are valid for signed dtypes")
+        Self::uniform(f64::NEG_INFINITY, f64::INFINITY, shape)
+            .expect("infinite bounds are valid for signed dtypes")
     }
 
     /// A box from typed bounds.
@@ -112,13 +130,16 @@ impl<T: ArrayElement> BoxSpace<T> {
     /// Clips every element of `x` into the bounds (`np.clip(x, low, high)`).
     pub fn clip(&self, x: &ArrayD<T>) -> ArrayD<T> {
         let mut out = x.clone();
-        Zip::from(&mut out).and(&self.low).and(&self.high).for_each(|v, &l, &h| {
-            if *v < l {
-                *v = l;
-            } else if *v > h {
-                *v = h;
-            }
-        });
+        Zip::from(&mut out)
+            .and(&self.low)
+            .and(&self.high)
+            .for_each(|v, &l, &h| {
+                if *v < l {
+                    *v = l;
+                } else if *v > h {
+                    *v = h;
+                }
+            });
         out
     }
 
@@ -127,19 +148,34 @@ impl<T: ArrayElement> BoxSpace<T> {
     /// # Errors
     /// When a finite bound does not fit the new dtype.
     pub fn cast<U: ArrayElement>(&self) -> Result<BoxSpace<U>, SpaceError> {
-        let low = Zip::from(&self.low).and(&self.bounded_below).map_collect(|l, &b| if b { l.to_f64() } else { f64::NEG_INFINITY });
-        let high = Zip::from(&self.high).and(&self.bounded_above).map_collect(|h, &b| if b { h.to_f64() } else { f64::INFINITY });
+        let low = Zip::from(&self.low)
+            .and(&self.bounded_below)
+            .map_collect(|l, &b| if b { l.to_f64() } else { f64::NEG_INFINITY });
+        let high = Zip::from(&self.high)
+            .and(&self.bounded_above)
+            .map_collect(|h, &b| if b { h.to_f64() } else { f64::INFINITY });
         BoxSpace::<U>::new(low, high)
     }
 
     /// The bounds as `f64`, with ±inf for unbounded elements.
     pub fn bounds_f64(&self) -> (ArrayD<f64>, ArrayD<f64>) {
-        let low = Zip::from(&self.low).and(&self.bounded_below).map_collect(|l, &b| if b { l.to_f64() } else { f64::NEG_INFINITY });
-        let high = Zip::from(&self.high).and(&self.bounded_above).map_collect(|h, &b| if b { h.to_f64() } else { f64::INFINITY });
+        let low = Zip::from(&self.low)
+            .and(&self.bounded_below)
+            .map_collect(|l, &b| if b { l.to_f64() } else { f64::NEG_INFINITY });
+        let high = Zip::from(&self.high)
+            .and(&self.bounded_above)
+            .map_collect(|h, &b| if b { h.to_f64() } else { f64::INFINITY });
         (low, high)
     }
 
-    fn sample_one<R: rand::Rng + ?Sized>(&self, rng: &mut R, low: f64, high: f64, below: bool, above: bool) -> T {
+    fn sample_one<R: rand::Rng + ?Sized>(
+        &self,
+        rng: &mut R,
+        low: f64,
+        high: f64,
+        below: bool,
+        above: bool,
+    ) -> T {
         let int = !T::DTYPE.is_float();
         let high = if int && above { high + 1.0 } else { high };
         let v = match (below, above) {
@@ -149,7 +185,11 @@ impl<T: ArrayElement> BoxSpace<T> {
             (true, true) => {
                 let u: f64 = rng.random();
                 let v = low + (high - low) * u;
-                if v.is_finite() { v } else { low * (1.0 - u) + high * u }
+                if v.is_finite() {
+                    v
+                } else {
+                    low * (1.0 - u) + high * u
+                }
             }
         };
         if int {
@@ -175,14 +215,23 @@ impl<T: ArrayElement> Space for BoxSpace<T> {
             .and(&self.bounded_above)
             .for_each(|o, &l, &h, &b, &a| {
                 let v = self.sample_one(rng, l.to_f64(), h.to_f64(), b, a);
-                *o = if v < l { l } else if v > h { h } else { v };
+                *o = if v < l {
+                    l
+                } else if v > h {
+                    h
+                } else {
+                    v
+                };
             });
         out
     }
 
     fn contains(&self, x: &ArrayD<T>) -> bool {
         x.shape() == self.low.shape()
-            && Zip::from(x).and(&self.low).and(&self.high).all(|v, l, h| *v >= *l && *v <= *h)
+            && Zip::from(x)
+                .and(&self.low)
+                .and(&self.high)
+                .all(|v, l, h| *v >= *l && *v <= *h)
     }
 
     fn shape(&self) -> Option<&[usize]> {
@@ -199,18 +248,31 @@ impl<T: ArrayElement> Space for BoxSpace<T> {
 
     fn flatten(&self, x: &ArrayD<T>) -> Result<ArrayValue, SpaceError> {
         if x.len() != self.low.len() {
-            return Err(SpaceError::ShapeMismatch { expected: self.low.shape().to_vec(), got: x.shape().to_vec() });
+            return Err(SpaceError::ShapeMismatch {
+                expected: self.low.shape().to_vec(),
+                got: x.shape().to_vec(),
+            });
         }
-        Ok(T::wrap(x.to_shape(IxDyn(&[x.len()])).expect("contiguous reshape").to_owned()))
+        Ok(T::wrap(
+            x.to_shape(IxDyn(&[x.len()]))
+                .expect("contiguous reshape")
+                .to_owned(),
+        ))
     }
 
     fn unflatten(&self, flat: &ArrayValue) -> Result<ArrayD<T>, SpaceError> {
         if flat.len() != self.low.len() {
-            return Err(SpaceError::Unflatten(format!("expected {} elements, got {}", self.low.len(), flat.len())));
+            return Err(SpaceError::Unflatten(format!(
+                "expected {} elements, got {}",
+                self.low.len(),
+                flat.len()
+            )));
         }
         let typed: ArrayD<T> = match T::peek(flat) {
             Some(a) => a.clone(),
-            None => T::peek(&flat.cast(T::DTYPE)).expect("cast gives this dtype").clone(),
+            None => T::peek(&flat.cast(T::DTYPE))
+                .expect("cast gives this dtype")
+                .clone(),
         };
         let data: Vec<T> = typed.iter().copied().collect();
         Ok(ArrayD::from_shape_vec(self.low.raw_dim(), data).expect("length checked"))
@@ -240,11 +302,17 @@ impl<T: ArrayElement> Space for BoxSpace<T> {
             Value::Array(a) => {
                 let typed = a.to_typed::<T>()?;
                 if typed.shape() != self.low.shape() {
-                    return Err(SpaceError::ShapeMismatch { expected: self.low.shape().to_vec(), got: typed.shape().to_vec() });
+                    return Err(SpaceError::ShapeMismatch {
+                        expected: self.low.shape().to_vec(),
+                        got: typed.shape().to_vec(),
+                    });
                 }
                 Ok(typed)
             }
-            other => Err(SpaceError::WrongKind { expected: "array", got: other.kind() }),
+            other => Err(SpaceError::WrongKind {
+                expected: "array",
+                got: other.kind(),
+            }),
         }
     }
 }
@@ -256,7 +324,14 @@ impl<T: ArrayElement> std::fmt::Display for BoxSpace<T> {
             Some(first) if a.iter().all(|v| v == first) => format!("{first}"),
             _ => format!("{:?}", a.iter().collect::<Vec<_>>()),
         };
-        write!(f, "Box({}, {}, {:?}, {})", show(&low), show(&high), self.low.shape(), T::DTYPE)
+        write!(
+            f,
+            "Box({}, {}, {:?}, {})",
+            show(&low),
+            show(&high),
+            self.low.shape(),
+            T::DTYPE
+        )
     }
 }
 
@@ -272,7 +347,9 @@ mod tests {
         assert!(BoxSpace::<f32>::uniform(f64::NAN, 0.0, &[2]).is_err());
         assert!(BoxSpace::<u8>::uniform(0.0, f64::INFINITY, &[2]).is_err());
         assert!(BoxSpace::<i8>::uniform(0.0, 300.0, &[2]).is_err());
-        assert!(BoxSpace::<f32>::new(arr1(&[0.0]).into_dyn(), arr1(&[1.0, 2.0]).into_dyn()).is_err());
+        assert!(
+            BoxSpace::<f32>::new(arr1(&[0.0]).into_dyn(), arr1(&[1.0, 2.0]).into_dyn()).is_err()
+        );
     }
 
     #[test]

@@ -22,12 +22,16 @@ impl DictSpace {
     ///
     /// # Errors
     /// [`SpaceError::InvalidArgument`] for a duplicate key.
-    pub fn new<K: Into<String>>(spaces: impl IntoIterator<Item = (K, AnySpace)>) -> Result<Self, SpaceError> {
+    pub fn new<K: Into<String>>(
+        spaces: impl IntoIterator<Item = (K, AnySpace)>,
+    ) -> Result<Self, SpaceError> {
         let mut map = IndexMap::new();
         for (k, s) in spaces {
             let k = k.into();
             if map.contains_key(&k) {
-                return Err(SpaceError::InvalidArgument(format!("duplicate Dict key `{k}`")));
+                return Err(SpaceError::InvalidArgument(format!(
+                    "duplicate Dict key `{k}`"
+                )));
             }
             map.insert(k, s);
         }
@@ -38,7 +42,9 @@ impl DictSpace {
     ///
     /// # Errors
     /// [`SpaceError::InvalidArgument`] for a duplicate key.
-    pub fn sorted<K: Into<String>>(spaces: impl IntoIterator<Item = (K, AnySpace)>) -> Result<Self, SpaceError> {
+    pub fn sorted<K: Into<String>>(
+        spaces: impl IntoIterator<Item = (K, AnySpace)>,
+    ) -> Result<Self, SpaceError> {
         let mut d = Self::new(spaces)?;
         d.spaces.sort_keys();
         Ok(d)
@@ -97,12 +103,19 @@ impl Space for DictSpace {
     type Element = DictValue;
 
     fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> DictValue {
-        self.spaces.iter().map(|(k, s)| (k.clone(), s.sample(rng))).collect()
+        self.spaces
+            .iter()
+            .map(|(k, s)| (k.clone(), s.sample(rng)))
+            .collect()
     }
 
     /// The same key set (in any order) and every value in its subspace.
     fn contains(&self, x: &DictValue) -> bool {
-        x.len() == self.spaces.len() && self.spaces.iter().all(|(k, s)| x.get(k).is_some_and(|v| s.contains(v)))
+        x.len() == self.spaces.len()
+            && self
+                .spaces
+                .iter()
+                .all(|(k, s)| x.get(k).is_some_and(|v| s.contains(v)))
     }
 
     fn shape(&self) -> Option<&[usize]> {
@@ -114,7 +127,11 @@ impl Space for DictSpace {
     }
 
     fn flat_dtype(&self) -> DType {
-        self.spaces.values().map(Space::flat_dtype).reduce(DType::promote).unwrap_or(DType::F64)
+        self.spaces
+            .values()
+            .map(Space::flat_dtype)
+            .reduce(DType::promote)
+            .unwrap_or(DType::F64)
     }
 
     fn flatten(&self, x: &DictValue) -> Result<ArrayValue, SpaceError> {
@@ -128,7 +145,11 @@ impl Space for DictSpace {
 
     fn unflatten(&self, flat: &ArrayValue) -> Result<DictValue, SpaceError> {
         let parts = split_flat(flat, self.spaces.values())?;
-        self.spaces.iter().zip(parts).map(|((k, s), p)| Ok((k.clone(), s.unflatten(&p)?))).collect()
+        self.spaces
+            .iter()
+            .zip(parts)
+            .map(|((k, s), p)| Ok((k.clone(), s.unflatten(&p)?)))
+            .collect()
     }
 
     fn flatten_space(&self) -> AnyBox {
@@ -152,9 +173,15 @@ impl Space for DictSpace {
                         got: d.keys().cloned().collect(),
                     });
                 }
-                self.spaces.iter().map(|(k, s)| Ok((k.clone(), s.from_value(&d[k])?))).collect()
+                self.spaces
+                    .iter()
+                    .map(|(k, s)| Ok((k.clone(), s.from_value(&d[k])?)))
+                    .collect()
             }
-            other => Err(SpaceError::WrongKind { expected: "dict", got: other.kind() }),
+            other => Err(SpaceError::WrongKind {
+                expected: "dict",
+                got: other.kind(),
+            }),
         }
     }
 }

@@ -30,10 +30,14 @@ impl Discrete {
     /// [`SpaceError::InvalidArgument`] when `n <= 0` or `start + n` overflows.
     pub fn with_start(n: i64, start: i64) -> Result<Self, SpaceError> {
         if n <= 0 {
-            return Err(SpaceError::InvalidArgument(format!("Discrete needs n > 0, got {n}")));
+            return Err(SpaceError::InvalidArgument(format!(
+                "Discrete needs n > 0, got {n}"
+            )));
         }
         if start.checked_add(n).is_none() {
-            return Err(SpaceError::InvalidArgument(format!("start {start} + n {n} overflows int64")));
+            return Err(SpaceError::InvalidArgument(format!(
+                "start {start} + n {n} overflows int64"
+            )));
         }
         Ok(Self { n, start })
     }
@@ -76,7 +80,10 @@ impl Space for Discrete {
     /// A one-hot `int64` vector of length `n`.
     fn flatten(&self, x: &i64) -> Result<ArrayValue, SpaceError> {
         if !self.contains(x) {
-            return Err(SpaceError::InvalidArgument(format!("{x} is not in Discrete({}, start={})", self.n, self.start)));
+            return Err(SpaceError::InvalidArgument(format!(
+                "{x} is not in Discrete({}, start={})",
+                self.n, self.start
+            )));
         }
         let mut v = ArrayD::zeros(IxDyn(&[self.n as usize]));
         v[[(x - self.start) as usize]] = 1i64;
@@ -86,7 +93,11 @@ impl Space for Discrete {
     /// `start` + the index of the first non-zero entry.
     fn unflatten(&self, flat: &ArrayValue) -> Result<i64, SpaceError> {
         if flat.len() != self.n as usize {
-            return Err(SpaceError::Unflatten(format!("expected {} entries, got {}", self.n, flat.len())));
+            return Err(SpaceError::Unflatten(format!(
+                "expected {} entries, got {}",
+                self.n,
+                flat.len()
+            )));
         }
         flat.to_f64_vec()
             .iter()
@@ -110,8 +121,13 @@ impl Space for Discrete {
     fn from_value(&self, v: &Value) -> Result<i64, SpaceError> {
         match v {
             Value::Discrete(i) => Ok(*i),
-            Value::Array(a) if a.shape().is_empty() && !a.dtype().is_float() => Ok(a.to_f64_vec()[0] as i64),
-            other => Err(SpaceError::WrongKind { expected: "integer", got: other.kind() }),
+            Value::Array(a) if a.shape().is_empty() && !a.dtype().is_float() => {
+                Ok(a.to_f64_vec()[0] as i64)
+            }
+            other => Err(SpaceError::WrongKind {
+                expected: "integer",
+                got: other.kind(),
+            }),
         }
     }
 }

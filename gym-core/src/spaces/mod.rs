@@ -9,8 +9,8 @@ mod multi_binary;
 mod multi_discrete;
 mod tuple;
 
-pub(crate) use any::{concat_flat_spaces, split_flat};
 pub use any::{AnyBox, AnySpace};
+pub(crate) use any::{concat_flat_spaces, split_flat};
 pub use box_space::BoxSpace;
 pub use dict::DictSpace;
 pub use discrete::Discrete;

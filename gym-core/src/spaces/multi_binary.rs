@@ -21,9 +21,13 @@ impl MultiBinary {
     /// [`SpaceError::InvalidArgument`] when the shape is empty or has a zero entry.
     pub fn new(shape: &[usize]) -> Result<Self, SpaceError> {
         if shape.is_empty() || shape.contains(&0) {
-            return Err(SpaceError::InvalidArgument(format!("MultiBinary needs positive dimensions, got {shape:?}")));
+            return Err(SpaceError::InvalidArgument(format!(
+                "MultiBinary needs positive dimensions, got {shape:?}"
+            )));
         }
-        Ok(Self { shape: shape.to_vec() })
+        Ok(Self {
+            shape: shape.to_vec(),
+        })
     }
 }
 
@@ -52,14 +56,21 @@ impl Space for MultiBinary {
 
     fn flatten(&self, x: &ArrayD<i8>) -> Result<ArrayValue, SpaceError> {
         if x.shape() != self.shape.as_slice() {
-            return Err(SpaceError::ShapeMismatch { expected: self.shape.clone(), got: x.shape().to_vec() });
+            return Err(SpaceError::ShapeMismatch {
+                expected: self.shape.clone(),
+                got: x.shape().to_vec(),
+            });
         }
         Ok(ArrayValue::I8(x.clone()).flattened())
     }
 
     fn unflatten(&self, flat: &ArrayValue) -> Result<ArrayD<i8>, SpaceError> {
         if flat.len() != self.flatdim() {
-            return Err(SpaceError::Unflatten(format!("expected {} entries, got {}", self.flatdim(), flat.len())));
+            return Err(SpaceError::Unflatten(format!(
+                "expected {} entries, got {}",
+                self.flatdim(),
+                flat.len()
+            )));
         }
         let v: Vec<i8> = flat.to_f64_vec().into_iter().map(|x| x as i8).collect();
         Ok(ArrayD::from_shape_vec(IxDyn(&self.shape), v).expect("length"))
@@ -82,13 +93,26 @@ impl Space for MultiBinary {
     fn from_value(&self, v: &Value) -> Result<ArrayD<i8>, SpaceError> {
         match v {
             Value::Array(a) if a.shape() == self.shape.as_slice() => {
-                if a.to_f64_vec().iter().any(|v| v.fract() != 0.0 || v.abs() > 127.0) {
-                    return Err(SpaceError::InvalidArgument("MultiBinary values must be integers".into()));
+                if a.to_f64_vec()
+                    .iter()
+                    .any(|v| v.fract() != 0.0 || v.abs() > 127.0)
+                {
+                    return Err(SpaceError::InvalidArgument(
+                        "MultiBinary values must be integers".into(),
+                    ));
                 }
-                Ok(<i8 as ArrayElement>::peek(&a.cast(DType::I8)).cloned().expect("cast to int8"))
+                Ok(<i8 as ArrayElement>::peek(&a.cast(DType::I8))
+                    .cloned()
+                    .expect("cast to int8"))
             }
-            Value::Array(a) => Err(SpaceError::ShapeMismatch { expected: self.shape.clone(), got: a.shape().to_vec() }),
-            other => Err(SpaceError::WrongKind { expected: "array", got: other.kind() }),
+            Value::Array(a) => Err(SpaceError::ShapeMismatch {
+                expected: self.shape.clone(),
+                got: a.shape().to_vec(),
+            }),
+            other => Err(SpaceError::WrongKind {
+                expected: "array",
+                got: other.kind(),
+            }),
         }
     }
 }

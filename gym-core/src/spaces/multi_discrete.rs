@@ -32,10 +32,15 @@ impl MultiDiscrete {
     /// [`SpaceError::ShapeMismatch`] when `start` has another shape.
     pub fn with_start(nvec: ArrayD<i64>, start: ArrayD<i64>) -> Result<Self, SpaceError> {
         if nvec.iter().any(|&n| n <= 0) {
-            return Err(SpaceError::InvalidArgument("MultiDiscrete needs every nvec entry > 0".into()));
+            return Err(SpaceError::InvalidArgument(
+                "MultiDiscrete needs every nvec entry > 0".into(),
+            ));
         }
         if start.shape() != nvec.shape() {
-            return Err(SpaceError::ShapeMismatch { expected: nvec.shape().to_vec(), got: start.shape().to_vec() });
+            return Err(SpaceError::ShapeMismatch {
+                expected: nvec.shape().to_vec(),
+                got: start.shape().to_vec(),
+            });
         }
         Ok(Self { nvec, start })
     }
@@ -55,11 +60,17 @@ impl Space for MultiDiscrete {
     type Element = ArrayD<i64>;
 
     fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> ArrayD<i64> {
-        Zip::from(&self.nvec).and(&self.start).map_collect(|&n, &s| s + rng.random_range(0..n))
+        Zip::from(&self.nvec)
+            .and(&self.start)
+            .map_collect(|&n, &s| s + rng.random_range(0..n))
     }
 
     fn contains(&self, x: &ArrayD<i64>) -> bool {
-        x.shape() == self.nvec.shape() && Zip::from(x).and(&self.nvec).and(&self.start).all(|&v, &n, &s| v >= s && i128::from(v) - i128::from(s) < i128::from(n))
+        x.shape() == self.nvec.shape()
+            && Zip::from(x)
+                .and(&self.nvec)
+                .and(&self.start)
+                .all(|&v, &n, &s| v >= s && i128::from(v) - i128::from(s) < i128::from(n))
     }
 
     fn shape(&self) -> Option<&[usize]> {
@@ -77,7 +88,9 @@ impl Space for MultiDiscrete {
     /// Concatenated one-hot vectors, one per entry in row-major order.
     fn flatten(&self, x: &ArrayD<i64>) -> Result<ArrayValue, SpaceError> {
         if !self.contains(x) {
-            return Err(SpaceError::InvalidArgument("value is not in the MultiDiscrete space".into()));
+            return Err(SpaceError::InvalidArgument(
+                "value is not in the MultiDiscrete space".into(),
+            ));
         }
         let mut out = vec![0i64; self.flatdim()];
         let mut offset = 0usize;
@@ -85,22 +98,27 @@ impl Space for MultiDiscrete {
             out[offset + (v - s) as usize] = 1;
             offset += n as usize;
         }
-        Ok(ArrayValue::I64(ArrayD::from_shape_vec(IxDyn(&[out.len()]), out).expect("length")))
+        Ok(ArrayValue::I64(
+            ArrayD::from_shape_vec(IxDyn(&[out.len()]), out).expect("length"),
+        ))
     }
 
     fn unflatten(&self, flat: &ArrayValue) -> Result<ArrayD<i64>, SpaceError> {
         if flat.len() != self.flatdim() {
-            return Err(SpaceError::Unflatten(format!("expected {} entries, got {}", self.flatdim(), flat.len())));
+            return Err(SpaceError::Unflatten(format!(
+                "expected {} entries, got {}",
+                self.flatdim(),
+                flat.len()
+            )));
         }
         let values = flat.to_f64_vec();
         let mut out = Vec::with_capacity(self.nvec.len());
         let mut offset = 0usize;
         for (&n, &s) in self.nvec.iter().zip(&self.start) {
             let part = &values[offset..offset + n as usize];
-            let i = part
-                .iter()
-                .position(|&v| v != 0.0)
-                .ok_or_else(|| SpaceError::Unflatten("one-hot part has no non-zero entry".into()))?;
+            let i = part.iter().position(|&v| v != 0.0).ok_or_else(|| {
+                SpaceError::Unflatten("one-hot part has no non-zero entry".into())
+            })?;
             out.push(s + i as i64);
             offset += n as usize;
         }
@@ -124,11 +142,17 @@ impl Space for MultiDiscrete {
             Value::Array(a) => {
                 let typed = a.to_typed::<i64>()?;
                 if typed.shape() != self.nvec.shape() {
-                    return Err(SpaceError::ShapeMismatch { expected: self.nvec.shape().to_vec(), got: typed.shape().to_vec() });
+                    return Err(SpaceError::ShapeMismatch {
+                        expected: self.nvec.shape().to_vec(),
+                        got: typed.shape().to_vec(),
+                    });
                 }
                 Ok(typed)
             }
-            other => Err(SpaceError::WrongKind { expected: "array", got: other.kind() }),
+            other => Err(SpaceError::WrongKind {
+                expected: "array",
+                got: other.kind(),
+            }),
         }
     }
 }
@@ -140,7 +164,8 @@ mod tests {
 
     #[test]
     fn one_hot_parts() {
-        let md = MultiDiscrete::with_start(arr1(&[2, 3]).into_dyn(), arr1(&[0, 1]).into_dyn()).unwrap();
+        let md =
+            MultiDiscrete::with_start(arr1(&[2, 3]).into_dyn(), arr1(&[0, 1]).into_dyn()).unwrap();
         let x = arr1(&[1, 3]).into_dyn();
         let flat = md.flatten(&x).unwrap();
         assert_eq!(flat.to_f64_vec(), vec![0.0, 1.0, 0.0, 0.0, 1.0]);

@@ -55,20 +55,37 @@ impl Space for TupleSpace {
     }
 
     fn flat_dtype(&self) -> DType {
-        self.spaces.iter().map(Space::flat_dtype).reduce(DType::promote).unwrap_or(DType::F64)
+        self.spaces
+            .iter()
+            .map(Space::flat_dtype)
+            .reduce(DType::promote)
+            .unwrap_or(DType::F64)
     }
 
     fn flatten(&self, x: &Vec<Value>) -> Result<ArrayValue, SpaceError> {
         if x.len() != self.spaces.len() {
-            return Err(SpaceError::InvalidArgument(format!("expected {} items, got {}", self.spaces.len(), x.len())));
+            return Err(SpaceError::InvalidArgument(format!(
+                "expected {} items, got {}",
+                self.spaces.len(),
+                x.len()
+            )));
         }
-        let parts = self.spaces.iter().zip(x).map(|(s, v)| s.flatten(v)).collect::<Result<Vec<_>, _>>()?;
+        let parts = self
+            .spaces
+            .iter()
+            .zip(x)
+            .map(|(s, v)| s.flatten(v))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(ArrayValue::concatenate(&parts))
     }
 
     fn unflatten(&self, flat: &ArrayValue) -> Result<Vec<Value>, SpaceError> {
         let parts = split_flat(flat, self.spaces.iter())?;
-        self.spaces.iter().zip(parts).map(|(s, p)| s.unflatten(&p)).collect()
+        self.spaces
+            .iter()
+            .zip(parts)
+            .map(|(s, p)| s.unflatten(&p))
+            .collect()
     }
 
     fn flatten_space(&self) -> AnyBox {
@@ -85,13 +102,21 @@ impl Space for TupleSpace {
 
     fn from_value(&self, v: &Value) -> Result<Vec<Value>, SpaceError> {
         match v {
-            Value::Tuple(items) if items.len() == self.spaces.len() => {
-                self.spaces.iter().zip(items).map(|(s, i)| s.from_value(i)).collect()
-            }
-            Value::Tuple(items) => {
-                Err(SpaceError::InvalidArgument(format!("expected {} items, got {}", self.spaces.len(), items.len())))
-            }
-            other => Err(SpaceError::WrongKind { expected: "tuple", got: other.kind() }),
+            Value::Tuple(items) if items.len() == self.spaces.len() => self
+                .spaces
+                .iter()
+                .zip(items)
+                .map(|(s, i)| s.from_value(i))
+                .collect(),
+            Value::Tuple(items) => Err(SpaceError::InvalidArgument(format!(
+                "expected {} items, got {}",
+                self.spaces.len(),
+                items.len()
+            ))),
+            other => Err(SpaceError::WrongKind {
+                expected: "tuple",
+                got: other.kind(),
+            }),
         }
     }
 }
