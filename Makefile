@@ -13,7 +13,7 @@ PYTHON ?= python3
 .PHONY: demo test test-rust bench fmt lint doc prerequisites clean
 
 demo: prerequisites
-	$(CARGO) run --release -p examples --example spaces_tour
+	$(CARGO) run --release -p examples --example lift_demo
 
 test: test-rust
 

@@ -1,0 +1,45 @@
+"""Throughput of robosuite 1.5.2's GymWrapper with random actions (one process, one env).
+
+Prints JSON: task, steps_per_s (including resets at the horizon), reset_ms.
+Run through scripts/bench_vs_robosuite.sh, which installs robosuite in a scratch venv.
+"""
+import argparse
+import json
+import time
+
+import numpy as np
+import robosuite as suite
+from robosuite.wrappers import GymWrapper
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--task", default="Lift")
+    parser.add_argument("--seconds", type=float, default=15.0)
+    args = parser.parse_args()
+    env = GymWrapper(suite.make(args.task, robots="Panda", has_renderer=False,
+                                has_offscreen_renderer=False, use_camera_obs=False))
+    rng = np.random.default_rng(0)
+    low, high = env.action_space.low, env.action_space.high
+    env.reset(seed=0)
+    steps, resets, reset_time = 0, 0, 0.0
+    start = time.perf_counter()
+    while time.perf_counter() - start < args.seconds:
+        _, _, terminated, truncated, _ = env.step(rng.uniform(low, high))
+        steps += 1
+        if terminated or truncated:
+            t = time.perf_counter()
+            env.reset()
+            reset_time += time.perf_counter() - t
+            resets += 1
+    elapsed = time.perf_counter() - start
+    t = time.perf_counter()
+    for _ in range(5):
+        env.reset()
+    reset_ms = (time.perf_counter() - t) / 5 * 1000
+    print(json.dumps({"task": args.task, "steps_per_s": steps / elapsed, "steps": steps,
+                      "resets": resets, "reset_ms": reset_ms}))
+
+
+if __name__ == "__main__":
+    main()
