@@ -22,15 +22,22 @@ fn main() {
         Some(dir) => user_library(PathBuf::from(dir)),
         None => fetched_library(),
     };
-    println!("cargo::rerun-if-changed={}", lib_dir.join(format!("libmujoco.so.{VERSION}")).display());
+    println!(
+        "cargo::rerun-if-changed={}",
+        lib_dir.join(format!("libmujoco.so.{VERSION}")).display()
+    );
     println!("cargo::rustc-link-search=native={}", lib_dir.display());
     println!("cargo::rustc-link-lib=dylib=mujoco");
-    println!("cargo::rustc-env=ROBOSUITE_MUJOCO_LIB_DIR={}", lib_dir.display());
+    println!(
+        "cargo::rustc-env=ROBOSUITE_MUJOCO_LIB_DIR={}",
+        lib_dir.display()
+    );
 }
 
 /// Checks a library folder the user chose.
 fn user_library(dir: PathBuf) -> PathBuf {
-    if !dir.join(format!("libmujoco.so.{VERSION}")).is_file() || !dir.join("libmujoco.so").exists() {
+    if !dir.join(format!("libmujoco.so.{VERSION}")).is_file() || !dir.join("libmujoco.so").exists()
+    {
         fail(&format!(
             "MUJOCO_DYNAMIC_LINK_DIR={} holds no libmujoco.so.{VERSION} with its libmujoco.so link; \
              point it at the lib/ folder of MuJoCo {VERSION}, or unset it to fetch the library",
@@ -44,7 +51,10 @@ fn user_library(dir: PathBuf) -> PathBuf {
 fn fetched_library() -> PathBuf {
     let out_dir = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
     // OUT_DIR is <target>/<profile>/build/<package>-<hash>/out.
-    let profile_dir = out_dir.ancestors().nth(3).expect("OUT_DIR lies inside the target folder");
+    let profile_dir = out_dir
+        .ancestors()
+        .nth(3)
+        .expect("OUT_DIR lies inside the target folder");
     let dest = profile_dir.join(format!("mujoco-{VERSION}"));
     let lib_dir = dest.join("lib");
     if lib_dir.join(format!("libmujoco.so.{VERSION}")).is_file() {

@@ -1,1 +1,143 @@
-//! Composable Gymnasium wrappers and vector environments.
+//! Composable Gymnasium wrappers and vector environments over any [`gym_core::Env`].
+//!
+//! Every wrapper is a typed [`gym_core::Wrapper`] that owns the environment it wraps, so a
+//! stack is a plain value (`NormalizeObservation<TimeLimit<GymWrapper<RobosuiteEnv>>>`),
+//! `Send` when the innermost environment is, and convertible into the dynamic
+//! [`gym_core::BoxedEnv`] with [`IntoBoxedEnv::boxed`](gym_core::IntoBoxedEnv::boxed).
+//! [`WrapperExt`] adds one method per wrapper to every environment so stacks read in order:
+//!
+//! ```no_run
+//! use adapters::WrapperExt;
+//! use gym_core::{Env, IntoBoxedEnv};
+//!
+//! let env = robosuite_env::make("Lift")?
+//!     .gym_wrapper(None, true)?
+//!     .time_limit(500)?
+//!     .normalize_observation()?
+//!     .record_episode_statistics();
+//! let mut boxed = env.boxed();
+//! let (obs, _info) = boxed.reset(Some(0), None)?;
+//! # Ok::<(), gym_core::Error>(())
+//! ```
+//!
+//! Semantics follow Gymnasium 1.x exactly (the order of operations, which flags are touched,
+//! the test vectors of its documentation) unless a wrapper's documentation says otherwise.
+//! Gymnasium's assertions and exceptions are typed [`gym_core::Error`]s here, never panics.
+//!
+//! * robosuite: [`GymWrapper`] / [`FlatGymWrapper`] (robosuite's `GymWrapper`, corrected).
+//! * Common: [`TimeLimit`], [`OrderEnforcing`], [`Autoreset`], [`RecordEpisodeStatistics`],
+//!   [`PassiveEnvChecker`].
+//! * Observation: [`FlattenObservation`], [`FilterObservation`], [`DtypeObservation`],
+//!   [`NormalizeObservation`], [`TransformObservation`], [`FrameStackObservation`].
+//! * Action: [`ClipAction`], [`RescaleAction`], [`TransformAction`], [`StickyAction`],
+//!   [`RepeatAction`].
+//! * Reward: [`NormalizeReward`], [`TransformReward`], [`ClipReward`].
+//! * Vector environments: [`vector`] ([`SyncVectorEnv`], [`ThreadVectorEnv`]).
+//! * Space helpers the wrappers are generic over: [`NumericSpace`], [`BatchSpace`],
+//!   [`FilterableSpace`], [`DictObservationSpace`].
+
+/// Implements [`gym_core::Wrapper`] for a wrapper struct whose inner environment is the
+/// field `env` and whose first type parameter is the inner environment `E`.
+macro_rules! impl_wrapper {
+    ($ty:ident $(, $g:ident)* $(; where $($bound:tt)+)?) => {
+        impl<E: gym_core::Env $(, $g)*> gym_core::Wrapper for $ty<E $(, $g)*>
+        where
+            $ty<E $(, $g)*>: gym_core::Env,
+            $($($bound)+)?
+        {
+            type Inner = E;
+            fn inner(&self) -> &E {
+                &self.env
+            }
+            fn inner_mut(&mut self) -> &mut E {
+                &mut self.env
+            }
+            fn into_inner(self) -> E {
+                self.env
+            }
+        }
+    };
+}
+
+/// Like [`gym_core::forward_env!`] but without `render`, for wrappers that override it.
+macro_rules! forward_env_except_render {
+    () => {
+        fn metadata(&self) -> &gym_core::Metadata {
+            gym_core::Wrapper::inner(self).metadata()
+        }
+        fn render_mode(&self) -> Option<gym_core::RenderMode> {
+            gym_core::Wrapper::inner(self).render_mode()
+        }
+        fn close(&mut self) {
+            gym_core::Wrapper::inner_mut(self).close()
+        }
+        fn rng(&self) -> Option<&gym_core::EnvRng> {
+            gym_core::Wrapper::inner(self).rng()
+        }
+        fn unwrapped_any(&self) -> &dyn ::std::any::Any {
+            gym_core::Wrapper::inner(self).unwrapped_any()
+        }
+        fn unwrapped_any_mut(&mut self) -> &mut dyn ::std::any::Any {
+            gym_core::Wrapper::inner_mut(self).unwrapped_any_mut()
+        }
+    };
+}
+
+pub mod autoreset;
+pub mod batch;
+pub mod clip_action;
+pub mod clip_reward;
+pub mod dtype_observation;
+pub mod ext;
+pub mod filter_observation;
+pub mod flatten_observation;
+pub mod frame_stack_observation;
+pub mod gym_wrapper;
+pub mod normalize_observation;
+pub mod normalize_reward;
+pub mod numeric;
+pub mod order_enforcing;
+pub mod passive_env_checker;
+pub mod record_episode_statistics;
+pub mod repeat_action;
+pub mod rescale_action;
+pub mod running_mean_std;
+pub mod sticky_action;
+pub mod time_limit;
+pub mod transform_action;
+pub mod transform_observation;
+pub mod transform_reward;
+pub mod vector;
+
+#[cfg(test)]
+#[path = "../tests/common/mod.rs"]
+#[allow(missing_docs)]
+pub(crate) mod toy;
+
+pub use autoreset::Autoreset;
+pub use batch::{BatchOf, BatchSpace};
+pub use clip_action::ClipAction;
+pub use clip_reward::ClipReward;
+pub use dtype_observation::DtypeObservation;
+pub use ext::WrapperExt;
+pub use filter_observation::{FilterKeys, FilterObservation, FilterableSpace};
+pub use flatten_observation::FlattenObservation;
+pub use frame_stack_observation::{FrameStackObservation, Padding};
+pub use gym_wrapper::{DictObservationSpace, FlatGymWrapper, GymWrapper, default_keys};
+pub use normalize_observation::NormalizeObservation;
+pub use normalize_reward::NormalizeReward;
+pub use numeric::{ArraySpec, NumericSpace};
+pub use order_enforcing::OrderEnforcing;
+pub use passive_env_checker::PassiveEnvChecker;
+pub use record_episode_statistics::RecordEpisodeStatistics;
+pub use repeat_action::RepeatAction;
+pub use rescale_action::{ActionBound, RescaleAction};
+pub use running_mean_std::RunningMeanStd;
+pub use sticky_action::StickyAction;
+pub use time_limit::TimeLimit;
+pub use transform_action::TransformAction;
+pub use transform_observation::TransformObservation;
+pub use transform_reward::TransformReward;
+pub use vector::{
+    AutoresetMode, Seeds, SyncVectorEnv, ThreadVectorEnv, VectorEnv, VectorInfo, VectorStep,
+};

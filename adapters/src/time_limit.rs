@@ -1,0 +1,159 @@
+//! [`TimeLimit`]: truncates episodes after a number of steps (Gymnasium's `TimeLimit`).
+
+use gym_core::{Env, Error, Info, ResetOptions, Result, Step};
+
+/// Sets `truncated = true` once `max_episode_steps` steps have been taken since the last
+/// reset.
+///
+/// As in Gymnasium: the inner `terminated` is never inspected or changed, so an episode that
+/// terminates on its last allowed step returns `terminated = truncated = true`; stepping past
+/// the end keeps counting and keeps forcing `truncated`. Unlike Gymnasium (which fails with a
+/// `TypeError`), a `step` before the first `reset` is [`Error::ResetNeeded`].
+#[derive(Debug, Clone)]
+pub struct TimeLimit<E> {
+    env: E,
+    max_episode_steps: u64,
+    elapsed_steps: Option<u64>,
+}
+
+impl<E: Env> TimeLimit<E> {
+    /// Wraps `env` with a limit of `max_episode_steps` steps per episode.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when `max_episode_steps == 0`.
+    pub fn new(env: E, max_episode_steps: u64) -> Result<Self> {
+        if max_episode_steps == 0 {
+            return Err(Error::invalid_argument(
+                "max_episode_steps",
+                "must be greater than 0, got 0",
+            ));
+        }
+        Ok(Self {
+            env,
+            max_episode_steps,
+            elapsed_steps: None,
+        })
+    }
+
+    /// The episode length limit.
+    pub fn max_episode_steps(&self) -> u64 {
+        self.max_episode_steps
+    }
+
+    /// Steps taken since the last reset (`None` before the first reset).
+    pub fn elapsed_steps(&self) -> Option<u64> {
+        self.elapsed_steps
+    }
+}
+
+impl<E: Env> Env for TimeLimit<E> {
+    type Obs = E::Obs;
+    type Act = E::Act;
+    type ObsSpace = E::ObsSpace;
+    type ActSpace = E::ActSpace;
+
+    fn observation_space(&self) -> &E::ObsSpace {
+        self.env.observation_space()
+    }
+
+    fn action_space(&self) -> &E::ActSpace {
+        self.env.action_space()
+    }
+
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(E::Obs, Info)> {
+        self.elapsed_steps = Some(0);
+        self.env.reset(seed, options)
+    }
+
+    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let elapsed = self.elapsed_steps.ok_or(Error::ResetNeeded)?;
+        let mut step = self.env.step(action)?;
+        let elapsed = elapsed + 1;
+        self.elapsed_steps = Some(elapsed);
+        if elapsed >= self.max_episode_steps {
+            step.truncated = true;
+        }
+        Ok(step)
+    }
+
+    gym_core::forward_env!();
+}
+
+impl_wrapper!(TimeLimit);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::toy::{CountEnv, a64};
+
+    fn flags(env: &mut TimeLimit<CountEnv>, n: usize) -> Vec<(f64, bool, bool)> {
+        (0..n)
+            .map(|_| {
+                let s = env.step(&0).unwrap();
+                (s.observation[[0]], s.terminated, s.truncated)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn truncates_exactly_at_the_limit_and_keeps_counting() {
+        let mut env = TimeLimit::new(CountEnv::new(None, None), 3).unwrap();
+        assert_eq!(env.reset(None, None).unwrap().0, a64(&[0.0]));
+        let f = flags(&mut env, 5);
+        assert_eq!(
+            f,
+            vec![
+                (1.0, false, false),
+                (2.0, false, false),
+                (3.0, false, true),
+                (4.0, false, true),
+                (5.0, false, true)
+            ]
+        );
+        assert_eq!(env.elapsed_steps(), Some(5));
+    }
+
+    #[test]
+    fn terminated_on_the_last_allowed_step_gives_both_flags() {
+        let mut env = TimeLimit::new(CountEnv::new(Some(3), None), 3).unwrap();
+        env.reset(None, None).unwrap();
+        assert_eq!(flags(&mut env, 3)[2], (3.0, true, true));
+        // Terminated before the limit: truncated untouched.
+        let mut env = TimeLimit::new(CountEnv::new(Some(2), None), 3).unwrap();
+        env.reset(None, None).unwrap();
+        assert_eq!(
+            flags(&mut env, 3),
+            vec![(1.0, false, false), (2.0, true, false), (3.0, false, true)]
+        );
+    }
+
+    #[test]
+    fn reset_mid_episode_restarts_the_count() {
+        let mut env = TimeLimit::new(CountEnv::new(None, None), 2).unwrap();
+        env.reset(None, None).unwrap();
+        let _ = env.step(&0).unwrap();
+        env.reset(None, None).unwrap();
+        assert_eq!(
+            flags(&mut env, 2),
+            vec![(1.0, false, false), (2.0, false, true)]
+        );
+    }
+
+    #[test]
+    fn errors() {
+        assert!(matches!(
+            TimeLimit::new(CountEnv::new(None, None), 0),
+            Err(Error::InvalidArgument { .. })
+        ));
+        let mut env = TimeLimit::new(CountEnv::new(None, None), 2).unwrap();
+        assert_eq!(env.step(&0).unwrap_err(), Error::ResetNeeded);
+        env.reset(None, None).unwrap();
+        // An invalid action leaves the count untouched.
+        assert!(matches!(env.step(&7), Err(Error::InvalidAction(_))));
+        assert_eq!(env.elapsed_steps(), Some(0));
+    }
+}

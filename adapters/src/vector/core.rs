@@ -1,0 +1,361 @@
+//! The bookkeeping both vector environments share: what each sub-environment must do for a
+//! `step` or `reset`, and how the results are written into the batch buffers and infos.
+//! [`SyncVectorEnv`](super::SyncVectorEnv) runs the operations in turn,
+//! [`ThreadVectorEnv`](super::ThreadVectorEnv) on its worker threads; the semantics are
+//! identical.
+
+use super::info::VectorInfo;
+use super::{AutoresetMode, Seeds};
+use crate::batch::{BatchOf, BatchSpace};
+use gym_core::{Env, Error, Info, InfoValue, Metadata, ResetOptions, Result, Step};
+
+/// What one sub-environment does.
+#[derive(Debug)]
+pub(crate) enum Op<A> {
+    /// An explicit reset.
+    Reset {
+        seed: Option<u64>,
+        options: Option<ResetOptions>,
+    },
+    /// `NEXT_STEP`'s autoreset: `reset()` without seed or options, action ignored.
+    AutoReset,
+    /// A step.
+    Step(A),
+    /// `SAME_STEP`: a step, then `reset()` if it ended the episode.
+    StepThenReset(A),
+}
+
+/// What one sub-environment returned.
+#[derive(Debug)]
+pub(crate) enum Outcome<O> {
+    /// From `Reset` or `AutoReset`.
+    Reset(O, Info),
+    /// From `Step`, or `StepThenReset` when the episode went on.
+    Step(Step<O>),
+    /// From `StepThenReset` when the step ended the episode.
+    StepReset {
+        step: Step<O>,
+        observation: O,
+        info: Info,
+    },
+}
+
+/// Runs one operation on one environment.
+pub(crate) fn run_op<E: Env>(env: &mut E, op: Op<E::Act>) -> Result<Outcome<E::Obs>> {
+    match op {
+        Op::Reset { seed, options } => {
+            let (o, i) = env.reset(seed, options.as_ref())?;
+            Ok(Outcome::Reset(o, i))
+        }
+        Op::AutoReset => {
+            let (o, i) = env.reset(None, None)?;
+            Ok(Outcome::Reset(o, i))
+        }
+        Op::Step(a) => Ok(Outcome::Step(env.step(&a)?)),
+        Op::StepThenReset(a) => {
+            let step = env.step(&a)?;
+            if step.terminated || step.truncated {
+                let (observation, info) = env.reset(None, None)?;
+                Ok(Outcome::StepReset {
+                    step,
+                    observation,
+                    info,
+                })
+            } else {
+                Ok(Outcome::Step(step))
+            }
+        }
+    }
+}
+
+/// Prefixes the message of a sub-environment's error with its index, where the variant
+/// carries one.
+pub(crate) fn in_env(e: Error, i: usize) -> Error {
+    match e {
+        Error::InvalidAction(m) => Error::InvalidAction(format!("sub-environment {i}: {m}")),
+        Error::Simulation(m) => Error::Simulation(format!("sub-environment {i}: {m}")),
+        Error::Model(m) => Error::Model(format!("sub-environment {i}: {m}")),
+        Error::Unsupported(m) => Error::Unsupported(format!("sub-environment {i}: {m}")),
+        Error::Contract { check, message } => Error::Contract {
+            check,
+            message: format!("sub-environment {i}: {message}"),
+        },
+        other => other,
+    }
+}
+
+/// Spaces, buffers and autoreset flags of a vector environment.
+#[derive(Debug)]
+pub(crate) struct VectorCore<OS: BatchSpace, AS: BatchSpace> {
+    pub(crate) n: usize,
+    pub(crate) mode: AutoresetMode,
+    pub(crate) single_obs: OS,
+    pub(crate) single_act: AS,
+    pub(crate) batched_obs: OS::Batched,
+    pub(crate) batched_act: AS::Batched,
+    pub(crate) metadata: Metadata,
+    pub(crate) observations: BatchOf<OS>,
+    pub(crate) rewards: Vec<f64>,
+    pub(crate) terminations: Vec<bool>,
+    pub(crate) truncations: Vec<bool>,
+    pub(crate) autoreset: Vec<bool>,
+    pub(crate) closed: bool,
+}
+
+impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
+    /// Checks that every sub-environment has the same spaces (Gymnasium's
+    /// `observation_mode="same"`) and allocates the buffers.
+    pub(crate) fn new<E: Env<ObsSpace = OS, ActSpace = AS>>(envs: &[E]) -> Result<Self> {
+        let first = envs.first().ok_or_else(|| {
+            Error::invalid_argument(
+                "envs",
+                "a vector environment needs at least one environment",
+            )
+        })?;
+        let (single_obs, single_act) = (
+            first.observation_space().clone(),
+            first.action_space().clone(),
+        );
+        for (i, e) in envs.iter().enumerate().skip(1) {
+            if e.observation_space() != &single_obs {
+                return Err(Error::invalid_argument(
+                    "envs",
+                    format!(
+                        "sub-environment {i}'s observation space differs from sub-environment 0's"
+                    ),
+                ));
+            }
+            if e.action_space() != &single_act {
+                return Err(Error::invalid_argument(
+                    "envs",
+                    format!("sub-environment {i}'s action space differs from sub-environment 0's"),
+                ));
+            }
+        }
+        let n = envs.len();
+        Ok(Self {
+            n,
+            mode: AutoresetMode::NextStep,
+            batched_obs: single_obs.batch_space(n)?,
+            batched_act: single_act.batch_space(n)?,
+            observations: single_obs.create_empty_batch(n),
+            metadata: first.metadata().clone(),
+            single_obs,
+            single_act,
+            rewards: vec![0.0; n],
+            terminations: vec![false; n],
+            truncations: vec![false; n],
+            autoreset: vec![false; n],
+            closed: false,
+        })
+    }
+
+    pub(crate) fn check_open(&self) -> Result<()> {
+        if self.closed {
+            Err(Error::Closed)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// One operation per sub-environment for `step(actions)`.
+    pub(crate) fn plan_step(&self, actions: &BatchOf<AS>) -> Result<Vec<Op<AS::Element>>> {
+        self.check_open()?;
+        if self.mode == AutoresetMode::Disabled && self.autoreset.iter().any(|&a| a) {
+            // Gymnasium asserts; the caller must reset the ended sub-environments first.
+            return Err(Error::EpisodeEnded);
+        }
+        (0..self.n)
+            .map(|i| {
+                let a = self
+                    .single_act
+                    .read_item(actions, i)
+                    .map_err(|e| Error::InvalidAction(format!("actions[{i}]: {e}")))?;
+                Ok(match self.mode {
+                    AutoresetMode::NextStep if self.autoreset[i] => Op::AutoReset,
+                    AutoresetMode::NextStep | AutoresetMode::Disabled => Op::Step(a),
+                    AutoresetMode::SameStep => Op::StepThenReset(a),
+                })
+            })
+            .collect()
+    }
+
+    /// Records the outcomes of a step (in sub-environment order) and builds the infos. The
+    /// successful sub-environments are recorded even when another failed; the first error
+    /// is then returned.
+    pub(crate) fn finish_step(
+        &mut self,
+        outcomes: Vec<Result<Outcome<OS::Element>>>,
+    ) -> Result<VectorInfo> {
+        let mut infos = VectorInfo::new(self.n);
+        let mut first_err = None;
+        for (i, outcome) in outcomes.into_iter().enumerate() {
+            let written = match outcome {
+                Ok(Outcome::Reset(obs, info)) => {
+                    self.rewards[i] = 0.0;
+                    self.terminations[i] = false;
+                    self.truncations[i] = false;
+                    let w = self.single_obs.write_item(&mut self.observations, i, &obs);
+                    infos.add(&info, i);
+                    w
+                }
+                Ok(Outcome::Step(step)) => {
+                    self.set_step(i, &step);
+                    let w =
+                        self.single_obs
+                            .write_item(&mut self.observations, i, &step.observation);
+                    infos.add(&step.info, i);
+                    w
+                }
+                Ok(Outcome::StepReset {
+                    step,
+                    observation,
+                    info,
+                }) => {
+                    self.set_step(i, &step);
+                    infos.add_final(i, self.single_obs.to_value(&step.observation), &step.info);
+                    let w = self
+                        .single_obs
+                        .write_item(&mut self.observations, i, &observation);
+                    infos.add(&info, i);
+                    w
+                }
+                Err(e) => Err(in_env(e, i)),
+            };
+            match written {
+                Ok(()) => self.autoreset[i] = self.terminations[i] || self.truncations[i],
+                Err(e) => {
+                    first_err.get_or_insert(e);
+                }
+            }
+        }
+        match first_err {
+            Some(e) => Err(e),
+            None => Ok(infos),
+        }
+    }
+
+    fn set_step(&mut self, i: usize, step: &Step<OS::Element>) {
+        self.rewards[i] = step.reward;
+        self.terminations[i] = step.terminated;
+        self.truncations[i] = step.truncated;
+    }
+
+    /// One optional reset per sub-environment (`None` where the mask is off). A
+    /// `"reset_mask"` entry of `options` (an integer array of 0/1 of shape `(n,)`, the form
+    /// a NumPy bool array takes in an [`Info`]) is the mask, removed from the options the
+    /// sub-environments see; `mask` is the typed form. Both at once are an error.
+    pub(crate) fn plan_reset(
+        &self,
+        seeds: Seeds,
+        options: Option<&ResetOptions>,
+        mask: Option<&[bool]>,
+    ) -> Result<Vec<Option<Op<AS::Element>>>> {
+        self.check_open()?;
+        let seeds = seeds.resolve(self.n)?;
+        let mut options = options.cloned();
+        let option_mask = match options.as_mut().and_then(|o| o.remove("reset_mask")) {
+            None => None,
+            Some(InfoValue::Array(a)) => {
+                if a.dtype().is_float()
+                    || a.shape() != [self.n]
+                    || a.to_f64_vec().iter().any(|&v| v != 0.0 && v != 1.0)
+                {
+                    return Err(Error::invalid_argument(
+                        "reset_mask",
+                        format!(
+                            "expected a 0/1 (bool) array of shape ({},), got {} of shape {:?}",
+                            self.n,
+                            a.dtype(),
+                            a.shape()
+                        ),
+                    ));
+                }
+                Some(
+                    a.to_f64_vec()
+                        .iter()
+                        .map(|&v| v == 1.0)
+                        .collect::<Vec<bool>>(),
+                )
+            }
+            Some(other) => {
+                return Err(Error::invalid_argument(
+                    "reset_mask",
+                    format!("expected a bool array, got a {}", other.kind()),
+                ));
+            }
+        };
+        let mask: Option<Vec<bool>> = match (mask, option_mask) {
+            (Some(_), Some(_)) => {
+                return Err(Error::invalid_argument(
+                    "reset_mask",
+                    "given both as an argument and in options",
+                ));
+            }
+            (Some(m), None) => Some(m.to_vec()),
+            (None, m) => m,
+        };
+        if let Some(m) = &mask {
+            if m.len() != self.n {
+                return Err(Error::invalid_argument(
+                    "reset_mask",
+                    format!("expected {} entries, got {}", self.n, m.len()),
+                ));
+            }
+            if !m.iter().any(|&b| b) {
+                return Err(Error::invalid_argument(
+                    "reset_mask",
+                    "at least one sub-environment must be reset",
+                ));
+            }
+        }
+        Ok(seeds
+            .into_iter()
+            .enumerate()
+            .map(|(i, seed)| {
+                mask.as_ref().is_none_or(|m| m[i]).then(|| Op::Reset {
+                    seed,
+                    options: options.clone(),
+                })
+            })
+            .collect())
+    }
+
+    /// Records the outcomes of a (masked) reset: the reset sub-environments' observations,
+    /// cleared flags (including pending autoresets) and infos.
+    pub(crate) fn finish_reset(
+        &mut self,
+        outcomes: Vec<Option<Result<Outcome<OS::Element>>>>,
+    ) -> Result<VectorInfo> {
+        let mut infos = VectorInfo::new(self.n);
+        let mut first_err = None;
+        for (i, outcome) in outcomes.into_iter().enumerate() {
+            let result = match outcome {
+                None => continue,
+                Some(Ok(Outcome::Reset(obs, info))) => {
+                    infos.add(&info, i);
+                    self.single_obs.write_item(&mut self.observations, i, &obs)
+                }
+                Some(Ok(_)) => Err(Error::Contract {
+                    check: "vector reset".into(),
+                    message: "a reset returned a step".into(),
+                }),
+                Some(Err(e)) => Err(in_env(e, i)),
+            };
+            match result {
+                Ok(()) => {
+                    self.terminations[i] = false;
+                    self.truncations[i] = false;
+                    self.autoreset[i] = false;
+                }
+                Err(e) => {
+                    first_err.get_or_insert(e);
+                }
+            }
+        }
+        match first_err {
+            Some(e) => Err(e),
+            None => Ok(infos),
+        }
+    }
+}

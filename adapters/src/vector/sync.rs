@@ -1,0 +1,167 @@
+//! [`SyncVectorEnv`]: sub-environments stepped in turn on the calling thread.
+
+use super::core::{VectorCore, run_op};
+use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
+use crate::batch::{BatchOf, BatchSpace};
+use gym_core::{Env, Metadata, ResetOptions, Result};
+
+/// Gymnasium's `SyncVectorEnv`: `n` environments with identical spaces, stepped one after
+/// the other (see the [module documentation](super) for the semantics).
+#[derive(Debug)]
+pub struct SyncVectorEnv<E: Env>
+where
+    E::ObsSpace: BatchSpace,
+    E::ActSpace: BatchSpace,
+{
+    envs: Vec<E>,
+    core: VectorCore<E::ObsSpace, E::ActSpace>,
+}
+
+impl<E: Env> SyncVectorEnv<E>
+where
+    E::ObsSpace: BatchSpace,
+    E::ActSpace: BatchSpace,
+{
+    /// A vector of `envs` with [`AutoresetMode::NextStep`].
+    ///
+    /// # Errors
+    /// [`gym_core::Error::InvalidArgument`] for no environments or differing spaces.
+    pub fn new(envs: Vec<E>) -> Result<Self> {
+        let core = VectorCore::new(&envs)?;
+        Ok(Self { envs, core })
+    }
+
+    /// `n` environments made by `make(i)`.
+    ///
+    /// # Errors
+    /// The first error of `make`; as [`SyncVectorEnv::new`].
+    pub fn from_fn(n: usize, make: impl FnMut(usize) -> Result<E>) -> Result<Self> {
+        Self::new((0..n).map(make).collect::<Result<Vec<_>>>()?)
+    }
+
+    /// The same vector with another autoreset mode (set it before the first step).
+    #[must_use]
+    pub fn with_autoreset_mode(mut self, mode: AutoresetMode) -> Self {
+        self.core.mode = mode;
+        self
+    }
+
+    /// The sub-environments.
+    pub fn envs(&self) -> &[E] {
+        &self.envs
+    }
+
+    /// The sub-environments, mutably (changing their state bypasses the autoreset flags).
+    pub fn envs_mut(&mut self) -> &mut [E] {
+        &mut self.envs
+    }
+
+    fn run_reset(
+        &mut self,
+        seeds: Seeds,
+        options: Option<&ResetOptions>,
+        mask: Option<&[bool]>,
+    ) -> Result<VectorInfo> {
+        let ops = self.core.plan_reset(seeds, options, mask)?;
+        let outcomes = ops
+            .into_iter()
+            .zip(&mut self.envs)
+            .map(|(op, env)| op.map(|op| run_op(env, op)))
+            .collect();
+        self.core.finish_reset(outcomes)
+    }
+}
+
+impl<E: Env> VectorEnv for SyncVectorEnv<E>
+where
+    E::ObsSpace: BatchSpace,
+    E::ActSpace: BatchSpace,
+{
+    type ObsSpace = E::ObsSpace;
+    type ActSpace = E::ActSpace;
+
+    fn num_envs(&self) -> usize {
+        self.core.n
+    }
+
+    fn single_observation_space(&self) -> &E::ObsSpace {
+        &self.core.single_obs
+    }
+
+    fn single_action_space(&self) -> &E::ActSpace {
+        &self.core.single_act
+    }
+
+    fn observation_space(&self) -> &<E::ObsSpace as BatchSpace>::Batched {
+        &self.core.batched_obs
+    }
+
+    fn action_space(&self) -> &<E::ActSpace as BatchSpace>::Batched {
+        &self.core.batched_act
+    }
+
+    fn metadata(&self) -> &Metadata {
+        &self.core.metadata
+    }
+
+    fn autoreset_mode(&self) -> AutoresetMode {
+        self.core.mode
+    }
+
+    fn reset(
+        &mut self,
+        seed: impl Into<Seeds>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(&BatchOf<E::ObsSpace>, VectorInfo)> {
+        let infos = self.run_reset(seed.into(), options, None)?;
+        Ok((&self.core.observations, infos))
+    }
+
+    fn reset_masked(
+        &mut self,
+        mask: &[bool],
+        seed: impl Into<Seeds>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(&BatchOf<E::ObsSpace>, VectorInfo)> {
+        let infos = self.run_reset(seed.into(), options, Some(mask))?;
+        Ok((&self.core.observations, infos))
+    }
+
+    fn step(
+        &mut self,
+        actions: &BatchOf<E::ActSpace>,
+    ) -> Result<VectorStep<'_, BatchOf<E::ObsSpace>>> {
+        let ops = self.core.plan_step(actions)?;
+        let outcomes = ops
+            .into_iter()
+            .zip(&mut self.envs)
+            .map(|(op, env)| run_op(env, op))
+            .collect();
+        let infos = self.core.finish_step(outcomes)?;
+        let c = &self.core;
+        Ok(VectorStep {
+            observations: &c.observations,
+            rewards: &c.rewards,
+            terminations: &c.terminations,
+            truncations: &c.truncations,
+            infos,
+        })
+    }
+
+    fn observations(&self) -> &BatchOf<E::ObsSpace> {
+        &self.core.observations
+    }
+
+    fn close(&mut self) {
+        if !self.core.closed {
+            self.core.closed = true;
+            for e in &mut self.envs {
+                e.close();
+            }
+        }
+    }
+
+    fn is_closed(&self) -> bool {
+        self.core.closed
+    }
+}

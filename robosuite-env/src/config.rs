@@ -1,0 +1,299 @@
+//! Environment configuration (robosuite's constructor arguments) with validation.
+
+use crate::controllers::OscConfig;
+use crate::robots::{InitNoise, NoiseKind, ROBOT_NAMES};
+use gym_core::{Error, Info, InfoValue, Result};
+
+/// robosuite's environment arguments that this crate supports.
+///
+/// Build it with `EnvConfig::default()` and the `with_*` methods; it is validated when an
+/// environment is made.
+///
+/// ```
+/// use robosuite_env::EnvConfig;
+/// let config = EnvConfig::default().with_horizon(200).with_reward_shaping(true).with_seed(7);
+/// assert!(config.validate().is_ok());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnvConfig {
+    /// Robot names, one per robot the task needs (default `["Panda"]`).
+    pub robots: Vec<String>,
+    /// The arm controller (`OSC_POSE` defaults).
+    pub controller: OscConfig,
+    /// Episode length in env steps (default 1000); reaching it truncates the episode.
+    pub horizon: u64,
+    /// Control frequency in Hz (default 20, i.e. 25 physics substeps of 2 ms).
+    pub control_freq: f64,
+    /// Scale of the maximal reward, `None` for unnormalised rewards (default `Some(1.0)`).
+    pub reward_scale: Option<f64>,
+    /// Dense staged rewards (default false).
+    pub reward_shaping: bool,
+    /// Never end the episode at the horizon (default false).
+    pub ignore_done: bool,
+    /// Noise added to the arm's initial joint positions on each reset (default Gaussian 0.02).
+    pub initialization_noise: InitNoise,
+    /// Include the object observations (default true).
+    pub use_object_obs: bool,
+    /// Seed of the environment RNG; `None` seeds from entropy at the first reset.
+    pub seed: Option<u64>,
+}
+
+impl Default for EnvConfig {
+    fn default() -> Self {
+        Self {
+            robots: vec!["Panda".to_owned()],
+            controller: OscConfig::default(),
+            horizon: 1000,
+            control_freq: 20.0,
+            reward_scale: Some(1.0),
+            reward_shaping: false,
+            ignore_done: false,
+            initialization_noise: InitNoise::default(),
+            use_object_obs: true,
+            seed: None,
+        }
+    }
+}
+
+/// The keyword arguments [`EnvConfig::from_kwargs`] accepts.
+pub const CONFIG_KEYS: &[&str] = &[
+    "robots",
+    "horizon",
+    "control_freq",
+    "reward_scale",
+    "reward_shaping",
+    "ignore_done",
+    "use_object_obs",
+    "seed",
+    "initialization_noise_magnitude",
+    "initialization_noise_type",
+    "controller_kp",
+    "controller_damping_ratio",
+    "controller_output_max_pos",
+    "controller_output_max_ori",
+];
+
+impl EnvConfig {
+    /// Sets the robots.
+    #[must_use]
+    pub fn with_robots<S: Into<String>>(mut self, robots: impl IntoIterator<Item = S>) -> Self {
+        self.robots = robots.into_iter().map(Into::into).collect();
+        self
+    }
+
+    /// Sets the arm controller configuration.
+    #[must_use]
+    pub fn with_controller(mut self, controller: OscConfig) -> Self {
+        self.controller = controller;
+        self
+    }
+
+    /// Sets the horizon.
+    #[must_use]
+    pub fn with_horizon(mut self, horizon: u64) -> Self {
+        self.horizon = horizon;
+        self
+    }
+
+    /// Sets the control frequency (Hz).
+    #[must_use]
+    pub fn with_control_freq(mut self, hz: f64) -> Self {
+        self.control_freq = hz;
+        self
+    }
+
+    /// Sets the reward scale (`None`: unnormalised).
+    #[must_use]
+    pub fn with_reward_scale(mut self, scale: Option<f64>) -> Self {
+        self.reward_scale = scale;
+        self
+    }
+
+    /// Turns reward shaping on or off.
+    #[must_use]
+    pub fn with_reward_shaping(mut self, on: bool) -> Self {
+        self.reward_shaping = on;
+        self
+    }
+
+    /// Sets `ignore_done`.
+    #[must_use]
+    pub fn with_ignore_done(mut self, on: bool) -> Self {
+        self.ignore_done = on;
+        self
+    }
+
+    /// Sets the initialisation noise.
+    #[must_use]
+    pub fn with_initialization_noise(mut self, noise: InitNoise) -> Self {
+        self.initialization_noise = noise;
+        self
+    }
+
+    /// Turns the object observations on or off.
+    #[must_use]
+    pub fn with_object_obs(mut self, on: bool) -> Self {
+        self.use_object_obs = on;
+        self
+    }
+
+    /// Seeds the environment RNG.
+    #[must_use]
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = Some(seed);
+        self
+    }
+
+    /// The number of physics substeps per env step: `int((1 / control_freq) / 0.002)`, as
+    /// robosuite truncates.
+    pub fn substeps(&self, timestep: f64) -> usize {
+        ((1.0 / self.control_freq) / timestep) as usize
+    }
+
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming the argument and what would be valid.
+    pub fn validate(&self) -> Result<()> {
+        if self.robots.is_empty() {
+            return Err(Error::invalid_argument(
+                "robots",
+                format!("give at least one robot; valid: {}", ROBOT_NAMES.join(", ")),
+            ));
+        }
+        for r in &self.robots {
+            if !ROBOT_NAMES.contains(&r.as_str()) {
+                return Err(Error::invalid_argument(
+                    "robots",
+                    format!("unknown robot `{r}`; valid: {}", ROBOT_NAMES.join(", ")),
+                ));
+            }
+        }
+        if self.horizon == 0 {
+            return Err(Error::invalid_argument("horizon", "must be at least 1"));
+        }
+        if !(self.control_freq.is_finite() && self.control_freq > 0.0 && self.substeps(0.002) >= 1)
+        {
+            return Err(Error::invalid_argument(
+                "control_freq",
+                format!(
+                    "must be in (0, 500] Hz so that an env step holds at least one 2 ms substep, got {}",
+                    self.control_freq
+                ),
+            ));
+        }
+        if let Some(s) = self.reward_scale
+            && !s.is_finite()
+        {
+            return Err(Error::invalid_argument(
+                "reward_scale",
+                format!("must be finite or None, got {s}"),
+            ));
+        }
+        let m = self.initialization_noise.magnitude;
+        if !(m.is_finite() && m >= 0.0) {
+            return Err(Error::invalid_argument(
+                "initialization_noise",
+                format!("magnitude must be finite and >= 0, got {m}"),
+            ));
+        }
+        self.controller.validate()
+    }
+
+    /// A configuration from keyword arguments (the registry's `make(id, kwargs)`), starting
+    /// from the defaults. Keys: see [`CONFIG_KEYS`].
+    ///
+    /// # Errors
+    /// [`Error::UnknownKey`] for an unknown key; [`Error::InvalidArgument`] for a value of
+    /// the wrong kind or out of range.
+    pub fn from_kwargs(kwargs: &Info) -> Result<Self> {
+        let mut c = Self::default();
+        let kind = |key: &str, want: &str, got: &InfoValue| {
+            Error::invalid_argument(key, format!("expected {want}, got a {}", got.kind()))
+        };
+        let float = |key: &str, v: &InfoValue| match v {
+            InfoValue::Float(f) => Ok(*f),
+            InfoValue::Int(i) => Ok(*i as f64),
+            other => Err(kind(key, "a number", other)),
+        };
+        let boolean = |key: &str, v: &InfoValue| match v {
+            InfoValue::Bool(b) => Ok(*b),
+            other => Err(kind(key, "a bool", other)),
+        };
+        let unsigned = |key: &str, v: &InfoValue| match v {
+            InfoValue::Int(i) if *i >= 0 => Ok(*i as u64),
+            InfoValue::Int(i) => Err(Error::invalid_argument(
+                key,
+                format!("must be >= 0, got {i}"),
+            )),
+            other => Err(kind(key, "a non-negative integer", other)),
+        };
+        let (mut out_pos, mut out_ori) = (c.controller.output_max[0], c.controller.output_max[3]);
+        for (key, v) in kwargs.iter() {
+            match key {
+                "robots" => match v {
+                    InfoValue::Str(s) => {
+                        c.robots = s.split(',').map(|r| r.trim().to_owned()).collect()
+                    }
+                    other => {
+                        return Err(kind(key, "a robot name (or comma-separated names)", other));
+                    }
+                },
+                "horizon" => c.horizon = unsigned(key, v)?,
+                "control_freq" => c.control_freq = float(key, v)?,
+                "reward_scale" => {
+                    c.reward_scale = match v {
+                        InfoValue::Str(s) if s == "None" || s == "none" => None,
+                        other => Some(float(key, other)?),
+                    }
+                }
+                "reward_shaping" => c.reward_shaping = boolean(key, v)?,
+                "ignore_done" => c.ignore_done = boolean(key, v)?,
+                "use_object_obs" => c.use_object_obs = boolean(key, v)?,
+                "seed" => c.seed = Some(unsigned(key, v)?),
+                "initialization_noise_magnitude" => {
+                    c.initialization_noise.magnitude = float(key, v)?
+                }
+                "initialization_noise_type" => match v {
+                    InfoValue::Str(s) => {
+                        c.initialization_noise = match s.as_str() {
+                            "gaussian" => InitNoise {
+                                kind: NoiseKind::Gaussian,
+                                ..c.initialization_noise
+                            },
+                            "uniform" => InitNoise {
+                                kind: NoiseKind::Uniform,
+                                ..c.initialization_noise
+                            },
+                            "none" | "None" => InitNoise::none(),
+                            other => {
+                                return Err(Error::invalid_argument(
+                                    key,
+                                    format!(
+                                        "unknown noise type `{other}`; valid: gaussian, uniform, none"
+                                    ),
+                                ));
+                            }
+                        }
+                    }
+                    other => return Err(kind(key, "\"gaussian\", \"uniform\" or \"none\"", other)),
+                },
+                "controller_kp" => c.controller = c.controller.with_kp(float(key, v)?),
+                "controller_damping_ratio" => {
+                    c.controller = c.controller.with_damping_ratio(float(key, v)?)
+                }
+                "controller_output_max_pos" => out_pos = float(key, v)?,
+                "controller_output_max_ori" => out_ori = float(key, v)?,
+                other => {
+                    return Err(Error::UnknownKey {
+                        key: other.to_owned(),
+                        available: CONFIG_KEYS.iter().map(|s| (*s).to_owned()).collect(),
+                    });
+                }
+            }
+        }
+        c.controller = c.controller.with_output_limits(out_pos, out_ori);
+        c.validate()?;
+        Ok(c)
+    }
+}

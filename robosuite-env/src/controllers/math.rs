@@ -1,0 +1,209 @@
+//! Small linear-algebra and rotation helpers, written to follow robosuite's
+//! `transform_utils` / `control_utils` (including their float32 steps).
+
+use nalgebra::{Matrix3, SMatrix, Vector3};
+
+/// `numpy.linalg.pinv`'s default relative cutoff.
+const PINV_RCOND: f64 = 1e-15;
+
+/// Pseudo-inverses of symmetric positive semi-definite matrices (the operational-space
+/// inertias), implemented for the 3×3 and 6×6 sizes the controller needs.
+pub trait PsdPinv: Sized {
+    /// The pseudo-inverse. For a well-conditioned matrix (Cholesky succeeds and its pivots
+    /// span less than 10 orders of magnitude) this is the inverse, which is what
+    /// `numpy.linalg.pinv` returns there; otherwise [`PsdPinv::pinv_svd`]. No heap allocation.
+    fn pinv_psd(&self) -> Self;
+    /// The SVD pseudo-inverse with NumPy's cutoff `1e-15·σ_max`.
+    fn pinv_svd(&self) -> Self;
+}
+
+macro_rules! impl_psd_pinv {
+    ($($n:literal),*) => {$(
+        impl PsdPinv for SMatrix<f64, $n, $n> {
+            fn pinv_psd(&self) -> Self {
+                if let Some(chol) = self.cholesky() {
+                    let l = chol.l_dirty();
+                    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+                    for i in 0..$n {
+                        let d = l[(i, i)] * l[(i, i)];
+                        lo = lo.min(d);
+                        hi = hi.max(d);
+                    }
+                    if lo.is_finite() && lo > 1e-10 * hi {
+                        return chol.inverse();
+                    }
+                }
+                self.pinv_svd()
+            }
+
+            fn pinv_svd(&self) -> Self {
+                let svd = self.svd(true, true);
+                let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
+                    return Self::zeros();
+                };
+                let cutoff = PINV_RCOND * svd.singular_values.max();
+                let mut out = Self::zeros();
+                for k in 0..$n {
+                    let s = svd.singular_values[k];
+                    if s > cutoff {
+                        out += (v_t.row(k).transpose() / s) * u.column(k).transpose();
+                    }
+                }
+                out
+            }
+        }
+    )*};
+}
+impl_psd_pinv!(3, 6, 7);
+
+/// The inverse of a symmetric positive definite matrix (robosuite: `np.linalg.inv` of the
+/// arm's mass matrix), with a pseudo-inverse fallback.
+pub fn inv_spd(a: &SMatrix<f64, 7, 7>) -> SMatrix<f64, 7, 7> {
+    match a.cholesky() {
+        Some(chol) => chol.inverse(),
+        None => a.try_inverse().unwrap_or_else(|| a.pinv_svd()),
+    }
+}
+
+/// A row-major MuJoCo 3×3 matrix (`xmat`) as a matrix.
+pub fn mat_from_row_major(m: &[f64; 9]) -> Matrix3<f64> {
+    Matrix3::from_row_slice(m)
+}
+
+/// robosuite's `orientation_error(desired, current)`:
+/// `0.5·Σ_i current[:, i] × desired[:, i]`.
+pub fn orientation_error(desired: &Matrix3<f64>, current: &Matrix3<f64>) -> Vector3<f64> {
+    let rc1: Vector3<f64> = current.column(0).into();
+    let rc2: Vector3<f64> = current.column(1).into();
+    let rc3: Vector3<f64> = current.column(2).into();
+    let rd1: Vector3<f64> = desired.column(0).into();
+    let rd2: Vector3<f64> = desired.column(1).into();
+    let rd3: Vector3<f64> = desired.column(2).into();
+    0.5 * (rc1.cross(&rd1) + rc2.cross(&rd2) + rc3.cross(&rd3))
+}
+
+/// robosuite's `axisangle2quat`: a rotation vector to an `xyzw` quaternion (identity for
+/// an exactly zero vector).
+pub fn axisangle2quat(v: &Vector3<f64>) -> [f64; 4] {
+    let angle = v.norm();
+    if angle == 0.0 {
+        return [0.0, 0.0, 0.0, 1.0];
+    }
+    let axis = v / angle;
+    let s = (angle / 2.0).sin();
+    [axis[0] * s, axis[1] * s, axis[2] * s, (angle / 2.0).cos()]
+}
+
+/// robosuite's `quat2mat` for an `xyzw` quaternion, which rounds the quaternion to float32
+/// and forms the off-diagonal products in float32 (the diagonal `1 − a − b` in float64,
+/// as NumPy 1.x promotes a Python float with a float32 scalar).
+pub fn quat2mat_f32(q_xyzw: [f64; 4]) -> Matrix3<f64> {
+    let q = [
+        q_xyzw[3] as f32,
+        q_xyzw[0] as f32,
+        q_xyzw[1] as f32,
+        q_xyzw[2] as f32,
+    ];
+    let n: f32 = q.iter().map(|v| v * v).sum();
+    if f64::from(n) < 4.0 * f64::EPSILON {
+        return Matrix3::identity();
+    }
+    let s = (2.0 / f64::from(n)).sqrt() as f32;
+    let q = q.map(|v| v * s);
+    let o = |i: usize, j: usize| q[i] * q[j];
+    let d = |i: usize, j: usize| 1.0 - f64::from(o(i, i)) - f64::from(o(j, j));
+    let f = |x: f32| f64::from(x);
+    Matrix3::new(
+        d(2, 3),
+        f(o(1, 2) - o(3, 0)),
+        f(o(1, 3) + o(2, 0)),
+        f(o(1, 2) + o(3, 0)),
+        d(1, 3),
+        f(o(2, 3) - o(1, 0)),
+        f(o(1, 3) - o(2, 0)),
+        f(o(2, 3) + o(1, 0)),
+        d(1, 2),
+    )
+}
+
+/// A rotation matrix to an `xyzw` unit quaternion with `w >= 0` (robosuite's `mat2quat`
+/// convention), computed in float64.
+pub fn mat2quat(m: &Matrix3<f64>) -> [f64; 4] {
+    let (m00, m11, m22) = (m[(0, 0)], m[(1, 1)], m[(2, 2)]);
+    let trace = m00 + m11 + m22;
+    let (w, x, y, z);
+    if trace > 0.0 {
+        let s = (trace + 1.0).sqrt() * 2.0;
+        w = 0.25 * s;
+        x = (m[(2, 1)] - m[(1, 2)]) / s;
+        y = (m[(0, 2)] - m[(2, 0)]) / s;
+        z = (m[(1, 0)] - m[(0, 1)]) / s;
+    } else if m00 > m11 && m00 > m22 {
+        let s = (1.0 + m00 - m11 - m22).sqrt() * 2.0;
+        w = (m[(2, 1)] - m[(1, 2)]) / s;
+        x = 0.25 * s;
+        y = (m[(0, 1)] + m[(1, 0)]) / s;
+        z = (m[(0, 2)] + m[(2, 0)]) / s;
+    } else if m11 > m22 {
+        let s = (1.0 + m11 - m00 - m22).sqrt() * 2.0;
+        w = (m[(0, 2)] - m[(2, 0)]) / s;
+        x = (m[(0, 1)] + m[(1, 0)]) / s;
+        y = 0.25 * s;
+        z = (m[(1, 2)] + m[(2, 1)]) / s;
+    } else {
+        let s = (1.0 + m22 - m00 - m11).sqrt() * 2.0;
+        w = (m[(1, 0)] - m[(0, 1)]) / s;
+        x = (m[(0, 2)] + m[(2, 0)]) / s;
+        y = (m[(1, 2)] + m[(2, 1)]) / s;
+        z = 0.25 * s;
+    }
+    let n = (w * w + x * x + y * y + z * z).sqrt();
+    let sign = if w < 0.0 { -1.0 } else { 1.0 };
+    [sign * x / n, sign * y / n, sign * z / n, sign * w / n]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix6, Rotation3, Unit};
+
+    #[test]
+    fn pinv_matches_inverse_and_handles_singular() {
+        let a = Matrix6::<f64>::from_fn(|i, j| if i == j { 2.0 + i as f64 } else { 0.1 });
+        let p = a.pinv_psd();
+        assert!((p * a - Matrix6::identity()).abs().max() < 1e-12);
+        // Rank 1: pinv(v vᵀ) = v vᵀ / |v|⁴.
+        let v = nalgebra::Vector3::new(1.0, 2.0, 2.0);
+        let s = v * v.transpose();
+        let p = s.pinv_psd();
+        assert!((p - s / 81.0).abs().max() < 1e-12);
+    }
+
+    #[test]
+    fn quaternions_round_trip() {
+        for (axis, angle) in [
+            ((0.0, 0.0, 1.0), 0.3),
+            ((1.0, 2.0, -0.5), 2.9),
+            ((0.0, 1.0, 0.0), 3.1),
+        ] {
+            let r = Rotation3::from_axis_angle(
+                &Unit::new_normalize(Vector3::new(axis.0, axis.1, axis.2)),
+                angle,
+            );
+            let q = mat2quat(r.matrix());
+            let back = quat2mat_f32(q);
+            assert!((back - r.matrix()).abs().max() < 1e-6);
+            assert!(q[3] >= 0.0);
+            let aa = axisangle2quat(&(Vector3::new(axis.0, axis.1, axis.2).normalize() * angle));
+            assert!((quat2mat_f32(aa) - r.matrix()).abs().max() < 1e-6);
+        }
+        assert_eq!(axisangle2quat(&Vector3::zeros()), [0.0, 0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn orientation_error_is_small_angle_axis() {
+        let r = Rotation3::from_axis_angle(&Vector3::z_axis(), 0.01);
+        let e = orientation_error(r.matrix(), &Matrix3::identity());
+        assert!((e - Vector3::new(0.0, 0.0, 0.01)).norm() < 1e-5);
+    }
+}

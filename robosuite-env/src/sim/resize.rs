@@ -1,0 +1,116 @@
+//! Resizing a box-shaped body in place, the run-time equivalent of recompiling a model whose
+//! box was drawn with another size (robosuite re-draws Lift's cube at every hard reset).
+
+use super::Sim;
+use gym_core::{Error, Result};
+
+/// The box geom and its body that [`resize_box_body`] edits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoxGeomUpdate {
+    /// The body that holds the box and nothing else with mass.
+    pub body: usize,
+    /// The box geom (type box, at the body's origin, aligned with it).
+    pub geom: usize,
+    /// The density the mass follows (kg/m³).
+    pub density: f64,
+}
+
+/// Gives the box geom the half-extents `half` and updates everything the compiler derives
+/// from them: `geom_size`, `geom_rbound`, `geom_aabb`, the body's bounding-volume boxes,
+/// `body_mass` and `body_inertia` (solid box of the given density, as MuJoCo's compiler),
+/// `mj_setConst` for the constants derived from masses (subtree masses, inverse weights,
+/// ...), and the statistics the compiler computes but `mj_setConst` does not
+/// (`stat.meanmass`, `stat.meaninertia`, `stat.meansize`, the body's `dof_length`). Leaves
+/// the data at `qpos0`: call `mj_resetData` (or set a state) afterwards.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for non-positive or non-finite half-extents.
+pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate, half: [f64; 3]) -> Result<()> {
+    if half.iter().any(|h| !h.is_finite() || *h <= 0.0) {
+        return Err(Error::invalid_argument(
+            "half_extents",
+            format!("must be positive and finite, got {half:?}"),
+        ));
+    }
+    let [x, y, z] = half;
+    let old_rbound = sim.model().geom_rbound()[target.geom];
+    let mass = target.density * 8.0 * x * y * z;
+    let inertia = [
+        mass * (y * y + z * z) / 3.0,
+        mass * (x * x + z * z) / 3.0,
+        mass * (x * x + y * y) / 3.0,
+    ];
+    {
+        let model = sim.model_mut();
+        model.geom_size_mut()[target.geom] = half;
+        model.geom_rbound_mut()[target.geom] = (x * x + y * y + z * z).sqrt();
+        let aabb = &mut model.geom_aabb_mut()[target.geom];
+        aabb[3..6].copy_from_slice(&half);
+        model.body_mass_mut()[target.body] = mass;
+        model.body_inertia_mut()[target.body] = inertia;
+        let adr = model.body_bvhadr()[target.body];
+        let num = model.body_bvhnum()[target.body];
+        if adr >= 0 {
+            let bvh = model.bvh_aabb_mut();
+            for node in adr as usize..(adr + num) as usize {
+                if let Some(b) = bvh.get_mut(node) {
+                    b[3..6].copy_from_slice(&half);
+                }
+            }
+        }
+    }
+    let (m, d) = sim.raw_mut();
+    // SAFETY: m and d belong together; mj_setConst only rewrites constant fields of the model
+    // (no sizes) and uses the data as scratch.
+    unsafe { mujoco_rs::mujoco_c::mj_setConst(m, d) };
+    update_statistics(sim, target, old_rbound);
+    Ok(())
+}
+
+/// Recomputes `stat.meanmass`, `stat.meaninertia`, `stat.meansize` and the body's
+/// `dof_length` as the compiler's `setStat` does (for a body whose size is its geom's
+/// bounding radius: a single geom at the body origin).
+fn update_statistics(sim: &mut Sim, target: BoxGeomUpdate, old_rbound: f64) {
+    let body = target.body;
+    let (nbody, nv) = {
+        let m = sim.model().ffi();
+        (m.nbody as usize, m.nv as usize)
+    };
+    // Diagonal of the mass matrix at qpos0.
+    sim.reset_data();
+    {
+        let d = sim.data_mut();
+        d.kinematics();
+        d.com_pos();
+        d.make_m();
+    }
+    let mut full = vec![0.0; nv * nv];
+    let meaninertia = if sim.data().full_m(&mut full).is_ok() && nv > 0 {
+        (0..nv).map(|i| full[i * nv + i]).sum::<f64>() / nv as f64
+    } else {
+        sim.model().stat().meaninertia
+    };
+    let model = sim.model_mut();
+    let new_rbound = model.geom_rbound()[target.geom];
+    if nbody > 1 {
+        let meanmass = model.body_mass()[1..].iter().sum::<f64>() / (nbody - 1) as f64;
+        let meansize = model.stat().meansize
+            + (new_rbound.max(1e-5) - old_rbound.max(1e-5)) / (nbody - 1) as f64;
+        let stat = model.stat_mut();
+        stat.meanmass = meanmass;
+        stat.meansize = meansize;
+    }
+    model.stat_mut().meaninertia = meaninertia;
+    let (adr, num) = (model.body_dofadr()[body], model.body_dofnum()[body]);
+    if adr >= 0 {
+        let jnt = model.body_jntadr()[body];
+        let free =
+            jnt >= 0 && model.jnt_type()[jnt as usize] == mujoco_rs::mujoco_c::mjtJoint::mjJNT_FREE;
+        for (k, dof) in (adr as usize..(adr + num) as usize).enumerate() {
+            // Translational dofs of a free joint keep length 1; rotational ones take the body size.
+            if !(free && k < 3) {
+                model.dof_length_mut()[dof] = new_rbound.max(1e-5);
+            }
+        }
+    }
+}

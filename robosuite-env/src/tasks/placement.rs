@@ -1,0 +1,179 @@
+//! robosuite's `UniformRandomSampler`: object positions uniform in a rectangle around a
+//! reference point, a rotation about one axis, and rejection of overlapping placements.
+
+use gym_core::{EnvRng, Error, Result};
+use rand::RngExt;
+use std::f64::consts::PI;
+
+/// How the sampler rotates objects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Rotation {
+    /// Uniform in `[0, 2π)` (robosuite's `rotation=None`).
+    Random,
+    /// Uniform in `[lo, hi)`.
+    Range(f64, f64),
+    /// Always this angle.
+    Fixed(f64),
+}
+
+/// The axis of the sampled rotation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    /// About x.
+    X,
+    /// About y.
+    Y,
+    /// About z.
+    Z,
+}
+
+/// The extent of an object as the sampler sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlacedObject {
+    /// Radius of the object's footprint.
+    pub horizontal_radius: f64,
+    /// Height of the bottom below the object's origin (negative: robosuite's `bottom_offset[2]`).
+    pub bottom_offset: f64,
+    /// Height of the top above the object's origin (robosuite's `top_offset[2]`).
+    pub top_offset: f64,
+}
+
+/// A sampled pose: position and quaternion (wxyz).
+pub type Pose = ([f64; 3], [f64; 4]);
+
+/// robosuite's `UniformRandomSampler`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UniformRandomSampler {
+    /// Range of x around the reference.
+    pub x_range: [f64; 2],
+    /// Range of y around the reference.
+    pub y_range: [f64; 2],
+    /// Rotation law.
+    pub rotation: Rotation,
+    /// Rotation axis.
+    pub rotation_axis: Axis,
+    /// Shrink the ranges by each object's horizontal radius.
+    pub ensure_object_boundary_in_range: bool,
+    /// Reject overlapping placements (up to 5000 tries per object).
+    pub ensure_valid_placement: bool,
+    /// Reference position (the table top, for instance).
+    pub reference_pos: [f64; 3],
+    /// Extra height above the reference.
+    pub z_offset: f64,
+}
+
+fn uniform(rng: &mut EnvRng, lo: f64, hi: f64) -> f64 {
+    lo + (hi - lo) * rng.random::<f64>()
+}
+
+impl UniformRandomSampler {
+    /// The number of tries per object before giving up (robosuite's 5000).
+    pub const MAX_TRIES: usize = 5000;
+
+    /// Samples poses for `objects` in order, avoiding `fixed` ones already placed; the
+    /// object's bottom rests at `reference z + z_offset`. RNG use per try: x, y; then the
+    /// rotation once the position is valid (robosuite's order).
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] when an object finds no valid placement in 5000 tries.
+    pub fn sample(
+        &self,
+        rng: &mut EnvRng,
+        objects: &[PlacedObject],
+        fixed: &[(Pose, PlacedObject)],
+    ) -> Result<Vec<Pose>> {
+        let mut placed: Vec<(Pose, PlacedObject)> = fixed.to_vec();
+        let mut out = Vec::with_capacity(objects.len());
+        for (n, obj) in objects.iter().enumerate() {
+            let r = obj.horizontal_radius;
+            let shrink = if self.ensure_object_boundary_in_range {
+                r
+            } else {
+                0.0
+            };
+            let mut found = None;
+            for _ in 0..Self::MAX_TRIES {
+                let x = uniform(rng, self.x_range[0] + shrink, self.x_range[1] - shrink)
+                    + self.reference_pos[0];
+                let y = uniform(rng, self.y_range[0] + shrink, self.y_range[1] - shrink)
+                    + self.reference_pos[1];
+                let z = self.z_offset + self.reference_pos[2] - obj.bottom_offset;
+                let valid = !self.ensure_valid_placement
+                    || placed.iter().all(|((p, _), other)| {
+                        let overlap_xy = (x - p[0]).hypot(y - p[1]) <= other.horizontal_radius + r;
+                        let overlap_z = z - p[2] <= other.top_offset - obj.bottom_offset;
+                        !(overlap_xy && overlap_z)
+                    });
+                if valid {
+                    let quat = self.sample_quat(rng);
+                    found = Some(([x, y, z], quat));
+                    break;
+                }
+            }
+            let Some(pose) = found else {
+                return Err(Error::Simulation(format!(
+                    "cannot place object {n} without overlap in {} tries",
+                    Self::MAX_TRIES
+                )));
+            };
+            placed.push((pose, *obj));
+            out.push(pose);
+        }
+        Ok(out)
+    }
+
+    fn sample_quat(&self, rng: &mut EnvRng) -> [f64; 4] {
+        let angle = match self.rotation {
+            Rotation::Random => uniform(rng, 0.0, 2.0 * PI),
+            Rotation::Range(a, b) => uniform(rng, a.min(b), a.max(b)),
+            Rotation::Fixed(a) => a,
+        };
+        let (s, c) = (angle / 2.0).sin_cos();
+        match self.rotation_axis {
+            Axis::X => [c, s, 0.0, 0.0],
+            Axis::Y => [c, 0.0, s, 0.0],
+            Axis::Z => [c, 0.0, 0.0, s],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use gym_core::rng_from_seed;
+
+    #[test]
+    fn samples_in_range_without_overlap() {
+        let s = UniformRandomSampler {
+            x_range: [-0.08, 0.08],
+            y_range: [-0.08, 0.08],
+            rotation: Rotation::Random,
+            rotation_axis: Axis::Z,
+            ensure_object_boundary_in_range: false,
+            ensure_valid_placement: true,
+            reference_pos: [0.0, 0.0, 0.8],
+            z_offset: 0.01,
+        };
+        let obj = PlacedObject {
+            horizontal_radius: 0.03,
+            bottom_offset: -0.02,
+            top_offset: 0.02,
+        };
+        let mut rng = rng_from_seed(3);
+        for _ in 0..50 {
+            let poses = s.sample(&mut rng, &[obj, obj], &[]).unwrap();
+            let (a, b) = (poses[0].0, poses[1].0);
+            assert!((a[0] - b[0]).hypot(a[1] - b[1]) > 0.06);
+            assert!((a[2] - 0.83).abs() < 1e-12);
+            assert!(a[0].abs() <= 0.08 && a[1].abs() <= 0.08);
+        }
+        let big = PlacedObject {
+            horizontal_radius: 1.0,
+            ..obj
+        };
+        assert!(matches!(
+            s.sample(&mut rng, &[big, big], &[]),
+            Err(Error::Simulation(_))
+        ));
+    }
+}

@@ -1,0 +1,94 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use gym_core::{DictValue, Env, Result};
+use ndarray::{ArrayD, IxDyn};
+use robosuite_env::RobosuiteEnv;
+
+/// The values of an observation key as `f64`.
+pub fn get(obs: &DictValue, key: &str) -> Vec<f64> {
+    obs.get(key)
+        .and_then(|v| v.as_array())
+        .map(|a| a.to_f64_vec())
+        .unwrap_or_default()
+}
+
+/// An action array.
+pub fn action(values: [f64; 7]) -> ArrayD<f64> {
+    ArrayD::from_shape_vec(IxDyn(&[7]), values.to_vec()).expect("7 values")
+}
+
+/// The zero action.
+pub fn zero() -> ArrayD<f64> {
+    action([0.0; 7])
+}
+
+fn wrap_quarter(a: f64) -> f64 {
+    let q = std::f64::consts::FRAC_PI_2;
+    (a + q / 2.0).rem_euclid(q) - q / 2.0
+}
+
+/// A scripted Lift policy: align the fingers with the cube's faces, move above the cube,
+/// descend, close, lift. Returns whether `info["success"]` was reported, the step it
+/// happened, and the largest "grasp bonus" seen with shaped unnormalised rewards.
+pub fn scripted_lift(env: &mut RobosuiteEnv, seed: u64, max_steps: usize) -> Result<(bool, usize)> {
+    let (mut obs, _) = env.reset(Some(seed), None)?;
+    let start_cube = get(&obs, "cube_pos");
+    let mut phase = 0;
+    let mut in_phase = 0;
+    for t in 0..max_steps {
+        let eef = get(&obs, "robot0_eef_pos");
+        let cube = get(&obs, "cube_pos");
+        let (target, grip) = match phase {
+            0 => ([cube[0], cube[1], cube[2] + 0.08], -1.0),
+            1 => ([cube[0], cube[1], cube[2] - 0.005], -1.0),
+            2 => ([eef[0], eef[1], eef[2]], 1.0),
+            _ => ([start_cube[0], start_cube[1], start_cube[2] + 0.2], 1.0),
+        };
+        let err: Vec<f64> = (0..3).map(|i| target[i] - eef[i]).collect();
+        let dist = err.iter().map(|e| e * e).sum::<f64>().sqrt();
+        // Finger axis (hand y axis) yaw vs the cube's yaw, modulo a quarter turn.
+        let hq = get(&obs, "robot0_eef_quat");
+        let (x, y, z, w) = (hq[0], hq[1], hq[2], hq[3]);
+        let hand_y = [2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z)];
+        let finger_yaw = hand_y[1].atan2(hand_y[0]);
+        let cq = get(&obs, "cube_quat");
+        let (cx, cy, cz, cw) = (cq[0], cq[1], cq[2], cq[3]);
+        let cube_yaw = (2.0 * (cw * cz + cx * cy)).atan2(1.0 - 2.0 * (cy * cy + cz * cz));
+        let yaw_err = if phase < 2 {
+            wrap_quarter(cube_yaw - finger_yaw)
+        } else {
+            0.0
+        };
+        let a = action([
+            (err[0] * 10.0).clamp(-1.0, 1.0),
+            (err[1] * 10.0).clamp(-1.0, 1.0),
+            (err[2] * 10.0).clamp(-1.0, 1.0),
+            0.0,
+            0.0,
+            (yaw_err / 0.5).clamp(-1.0, 1.0),
+            grip,
+        ]);
+        let step = env.step(&a)?;
+        let done = step.done();
+        obs = step.observation;
+        if step.info.get_bool("success") == Some(true) {
+            return Ok((true, t + 1));
+        }
+        if done {
+            break;
+        }
+        in_phase += 1;
+        let next = match phase {
+            0 => dist < 0.01 && yaw_err.abs() < 0.05 || in_phase > 60,
+            1 => dist < 0.006 || in_phase > 40,
+            2 => in_phase >= 15,
+            _ => false,
+        };
+        if next {
+            phase += 1;
+            in_phase = 0;
+        }
+    }
+    Ok((false, max_steps))
+}
