@@ -22,7 +22,7 @@ test-rust: prerequisites
 	$(CARGO) test --workspace --doc
 
 bench: prerequisites
-	$(CARGO) run --release -p robosuite-env --example lift_speed
+	$(CARGO) run --release -p examples --example benchmark -- --json bench.json
 
 fmt:
 	$(CARGO) fmt --all
