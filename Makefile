@@ -10,16 +10,19 @@
 CARGO ?= cargo
 PYTHON ?= python3
 
-.PHONY: demo test test-rust bench fmt lint doc prerequisites clean
+.PHONY: demo test test-rust test-python bench fmt lint doc prerequisites clean
 
 demo: prerequisites
 	$(CARGO) run --release -p examples --example lift_demo
 
-test: test-rust
+test: test-rust test-python
 
 test-rust: prerequisites
 	$(CARGO) test --workspace --all-targets --features gym-core/proptest-support
 	$(CARGO) test --workspace --doc
+
+test-python: prerequisites
+	bash python/scripts/test.sh
 
 bench: prerequisites
 	$(CARGO) run --release -p examples --example benchmark -- --json bench.json

@@ -1,0 +1,420 @@
+"""robosuite's Python API served by the Rust core of robosuite-rs.
+
+A robosuite user changes imports only::
+
+    import robosuite_rs as suite                    # was: import robosuite as suite
+    from robosuite_rs.wrappers import GymWrapper    # was: from robosuite.wrappers import GymWrapper
+
+    env = suite.make("Lift", robots="Panda", has_renderer=False,
+                     has_offscreen_renderer=False, use_camera_obs=False)
+    gym_env = GymWrapper(env)
+
+Importing the package also registers every env with Gymnasium
+(``gymnasium.make("robosuite_rs/Lift-v0")``).
+"""
+
+from __future__ import annotations
+
+# The extension links MuJoCo 3.17.0 dynamically; the `mujoco` wheel ships the library and
+# loads it (by its SONAME) when imported, so it must be imported before `_native`.
+import mujoco as _mujoco  # noqa: F401  (imported for its side effect)
+
+from collections import OrderedDict
+from os import PathLike
+from typing import Any
+
+import numpy as np
+
+from . import _native
+
+__all__ = [
+    "make",
+    "make_vec",
+    "scene_xml",
+    "RobosuiteEnv",
+    "ALL_ENVIRONMENTS",
+    "SUPPORTED_KWARGS",
+    "__version__",
+]
+
+__version__: str = _native.__version__
+
+#: The robosuite tasks this build provides.
+ALL_ENVIRONMENTS: list[str] = list(_native.robosuite_env_names())
+
+_DIRECT_KWARGS = (
+    "horizon",
+    "control_freq",
+    "reward_scale",
+    "reward_shaping",
+    "ignore_done",
+    "use_object_obs",
+    "seed",
+)
+
+# robosuite arguments accepted only with these values (anything else raises).
+_FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
+    "has_renderer": (False,),
+    "has_offscreen_renderer": (False,),
+    "use_camera_obs": (False,),
+    "render_gpu_device_id": (-1,),
+    "lite_physics": (True,),
+    "env_configuration": ("default",),
+    "gripper_types": ("default", "PandaGripper"),
+    "base_types": ("default",),
+    "mount_types": ("default",),
+    "placement_initializer": (None,),
+    "renderer_config": (None,),
+    "table_full_size": ((0.8, 0.8, 0.05),),
+    "table_friction": ((1.0, 5e-3, 1e-4),),
+    "table_offset": ((0, 0, 0.8),),
+}
+
+# robosuite arguments that only matter for rendering or cameras, which are off: accepted
+# with any value because they change nothing while has_renderer, has_offscreen_renderer
+# and use_camera_obs are False.
+_RENDER_ONLY_KWARGS = (
+    "render_camera",
+    "render_collision_mesh",
+    "render_visual_mesh",
+    "camera_names",
+    "camera_heights",
+    "camera_widths",
+    "camera_depths",
+    "camera_segmentations",
+    "renderer",
+    "hard_reset",
+)
+
+#: Every keyword argument :func:`make` accepts.
+SUPPORTED_KWARGS: tuple[str, ...] = (
+    ("robots", "controller_configs", "initialization_noise", "model_xml")
+    + _DIRECT_KWARGS
+    + tuple(_FIXED_KWARGS)
+    + _RENDER_ONLY_KWARGS
+)
+
+# robosuite 1.5.2's OSC_POSE defaults: keys of a controller config accepted when equal.
+_OSC_DEFAULTS: dict[str, Any] = {
+    "type": "OSC_POSE",
+    "input_max": 1,
+    "input_min": -1,
+    "output_min": [-0.05, -0.05, -0.05, -0.5, -0.5, -0.5],
+    "impedance_mode": "fixed",
+    "kp_limits": [0, 300],
+    "damping_ratio_limits": [0, 10],
+    "position_limits": None,
+    "orientation_limits": None,
+    "uncouple_pos_ori": True,
+    "input_type": "delta",
+    "input_ref_frame": "base",
+    "interpolation": None,
+    "ramp_ratio": 0.2,
+    "gripper": {"type": "GRIP"},
+}
+
+
+def _same(a: Any, b: Any) -> bool:
+    try:
+        return bool(np.array_equal(np.asarray(a, dtype=object if a is None else None), np.asarray(b, dtype=object if b is None else None)))
+    except (TypeError, ValueError):
+        return a == b
+
+
+def _controller_kwargs(cfg: Any) -> dict[str, Any]:
+    """Maps robosuite's ``controller_configs`` (composite ``BASIC`` or a bare arm part
+    config) to the Rust controller keys; raises on anything not supported."""
+    if cfg is None:
+        return {}
+    if not isinstance(cfg, dict):
+        raise ValueError(f"controller_configs must be a dict or None, got {type(cfg).__name__}")
+    part = cfg
+    if "body_parts" in cfg:
+        if cfg.get("type", "BASIC") != "BASIC":
+            raise ValueError(f"controller_configs: only the BASIC composite controller is supported, got {cfg.get('type')!r}")
+        parts = dict(cfg["body_parts"])
+        arm = parts.pop("right", None) or parts.pop("arms", {}).get("right")
+        if arm is None:
+            raise ValueError("controller_configs: no `right` arm part found in body_parts")
+        if parts:
+            raise ValueError(f"controller_configs: unsupported body parts {sorted(parts)}")
+        part = arm
+    out: dict[str, Any] = {}
+    for key, value in part.items():
+        if key == "kp":
+            if np.ndim(value) != 0:
+                raise ValueError("controller_configs: only a scalar kp is supported")
+            out["controller_kp"] = float(value)
+        elif key == "damping_ratio":
+            if np.ndim(value) != 0:
+                raise ValueError("controller_configs: only a scalar damping_ratio is supported")
+            out["controller_damping_ratio"] = float(value)
+        elif key == "output_max":
+            om = np.broadcast_to(np.asarray(value, dtype=np.float64), (6,))
+            if not (np.all(om[:3] == om[0]) and np.all(om[3:] == om[3])):
+                raise ValueError("controller_configs: output_max must be equal within position and within orientation")
+            out["controller_output_max_pos"] = float(om[0])
+            out["controller_output_max_ori"] = float(om[3])
+        elif key in _OSC_DEFAULTS:
+            if key == "output_min" and "output_max" in part:
+                if not _same(np.negative(np.asarray(part["output_max"], dtype=float)) * np.ones(6), np.asarray(value, dtype=float) * np.ones(6)):
+                    raise ValueError("controller_configs: output_min must be -output_max")
+                continue
+            if key == "gripper":
+                if not isinstance(value, dict) or value.get("type") != "GRIP":
+                    raise ValueError(f"controller_configs: only the GRIP gripper controller is supported, got {value!r}")
+                continue
+            if not _same(value, _OSC_DEFAULTS[key]):
+                raise ValueError(
+                    f"controller_configs: {key}={value!r} is not supported (only robosuite's default {_OSC_DEFAULTS[key]!r})"
+                )
+        else:
+            raise ValueError(f"controller_configs: unsupported key {key!r}")
+    return out
+
+
+def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[str, Any]:
+    """robosuite keyword arguments → the Rust configuration's keys (validated)."""
+    if isinstance(robots, str):
+        robots_list = [robots]
+    else:
+        robots_list = list(robots)
+    config: dict[str, Any] = {"robots": robots_list}
+    for key, value in kwargs.items():
+        if key in _DIRECT_KWARGS:
+            if value is None and key not in ("reward_scale", "seed"):
+                raise ValueError(f"{key}=None is not supported")
+            if value is not None or key == "reward_scale":
+                config[key] = value.item() if isinstance(value, np.generic) else value
+        elif key in _FIXED_KWARGS:
+            if not any(_same(value, allowed) for allowed in _FIXED_KWARGS[key]):
+                hint = {
+                    "has_renderer": "rendering is not implemented yet",
+                    "has_offscreen_renderer": "rendering is not implemented yet",
+                    "use_camera_obs": "camera observations need rendering, which is not implemented yet",
+                }.get(key, f"only {_FIXED_KWARGS[key][0]!r} is supported")
+                raise ValueError(f"{env_name}: {key}={value!r} is not supported by robosuite_rs ({hint})")
+        elif key in _RENDER_ONLY_KWARGS:
+            continue
+        elif key == "controller_configs":
+            config.update(_controller_kwargs(value))
+        elif key == "initialization_noise":
+            if value is None:
+                config["initialization_noise_type"] = "none"
+            elif value == "default":
+                pass
+            elif isinstance(value, dict):
+                unknown = set(value) - {"magnitude", "type"}
+                if unknown:
+                    raise ValueError(f"initialization_noise: unsupported keys {sorted(unknown)}")
+                if "magnitude" in value:
+                    config["initialization_noise_magnitude"] = float(value["magnitude"])
+                if "type" in value:
+                    config["initialization_noise_type"] = str(value["type"])
+            else:
+                raise ValueError(f"initialization_noise must be 'default', None or a dict, got {value!r}")
+        else:
+            raise TypeError(
+                f"make() got an unexpected keyword argument {key!r} for {env_name}; supported: {', '.join(SUPPORTED_KWARGS)}"
+            )
+    return config
+
+
+class RobosuiteEnv:
+    """A robosuite environment (robosuite's ``MujocoEnv`` API) run by the Rust core.
+
+    ``reset()`` returns an ``OrderedDict`` of NumPy arrays (``float64``, except
+    ``robotN_eef_quat_site`` which is ``float32`` as in robosuite); ``step(action)``
+    returns robosuite's ``(obs, reward, done, info)``.
+    """
+
+    def __init__(self, native: Any) -> None:
+        """Wraps ``native`` (a ``_native.RobosuiteEnv``); use :func:`make` instead."""
+        self._native = native
+
+    # --- robosuite's API -------------------------------------------------------------
+    def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
+        """Starts an episode; ``seed`` (an extension of robosuite's API) re-seeds the env."""
+        return self._native.reset(seed)
+
+    def step(self, action: Any) -> tuple[OrderedDict[str, np.ndarray], float, bool, dict[str, Any]]:
+        """Applies ``action``; returns ``(obs, reward, done, info)``.
+
+        Raises:
+            ValueError: for an action of the wrong length or with NaN/inf (the env is
+                unchanged), or when stepping an episode that is done (as robosuite).
+        """
+        return self._native.step(action)
+
+    @property
+    def action_spec(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(low, high)`` action bounds."""
+        return self._native.action_spec
+
+    @property
+    def action_dim(self) -> int:
+        """The action dimension."""
+        return self._native.action_dim
+
+    def observation_spec(self) -> OrderedDict[str, np.ndarray]:
+        """The current observations (as robosuite's ``observation_spec()``)."""
+        return self._native.observation_spec()
+
+    def observation_keys(self) -> list[str]:
+        """The observation keys, in order."""
+        return list(self._native.observation_keys())
+
+    @property
+    def horizon(self) -> int:
+        """Episode length in env steps."""
+        return self._native.horizon
+
+    @property
+    def control_freq(self) -> float:
+        """Control frequency in Hz."""
+        return self._native.control_freq
+
+    @property
+    def reward_scale(self) -> float | None:
+        """The reward scale (``None``: unnormalised)."""
+        return self._native.reward_scale
+
+    @property
+    def reward_shaping(self) -> bool:
+        """Whether rewards are shaped."""
+        return self._native.reward_shaping
+
+    @property
+    def ignore_done(self) -> bool:
+        """Whether the horizon is ignored."""
+        return self._native.ignore_done
+
+    @property
+    def use_object_obs(self) -> bool:
+        """Whether object observations are included."""
+        return self._native.use_object_obs
+
+    @property
+    def use_camera_obs(self) -> bool:
+        """Always ``False`` (no rendering yet)."""
+        return False
+
+    @property
+    def timestep(self) -> int:
+        """Env steps taken in the current episode."""
+        return self._native.timestep
+
+    @property
+    def name(self) -> str:
+        """The task name."""
+        return self._native.name
+
+    def check_success(self) -> bool:
+        """Whether the task is solved in the current state."""
+        return self._native.check_success()
+
+    _check_success = check_success
+
+    def reward(self, action: Any = None) -> float:
+        """The reward of the current state."""
+        return self._native.reward()
+
+    def get_state(self) -> np.ndarray:
+        """The flat simulator state ``[time, qpos, qvel]``."""
+        return self._native.get_state()
+
+    def set_state(self, state: Any) -> None:
+        """Sets the flat simulator state ``[time, qpos, qvel]`` (runs ``mj_forward``).
+
+        Raises:
+            ValueError: for a wrong length or a non-finite value.
+        """
+        self._native.set_state(state)
+
+    def close(self) -> None:
+        """Closes the env; calling it again does nothing."""
+        self._native.close()
+
+    def __repr__(self) -> str:
+        return f"<robosuite_rs.RobosuiteEnv {self.name} horizon={self.horizon}>"
+
+
+def make(
+    env_name: str,
+    robots: str | list[str] = "Panda",
+    *,
+    model_xml: str | PathLike[str] | None = None,
+    **kwargs: Any,
+) -> RobosuiteEnv:
+    """robosuite's ``suite.make``: the task ``env_name`` with robosuite's keyword arguments.
+
+    Supported: ``horizon``, ``control_freq``, ``reward_scale`` (``None`` allowed),
+    ``reward_shaping``, ``ignore_done``, ``use_object_obs``, ``seed``,
+    ``initialization_noise`` (``"default"``, ``None`` or ``{"magnitude", "type"}``),
+    ``controller_configs`` (robosuite's ``BASIC``/``OSC_POSE`` config: ``kp``,
+    ``damping_ratio``, ``output_max``; other keys only with robosuite's defaults),
+    ``has_renderer`` / ``has_offscreen_renderer`` / ``use_camera_obs`` (``False`` only;
+    ``True`` raises because rendering does not exist yet), the camera and render settings
+    (no effect while rendering is off), ``model_xml`` (a robosuite-style scene file to run
+    the task on, e.g. one saved from robosuite with ``env.sim.model.get_xml()``).
+
+    Raises:
+        ValueError: for an unknown task, an unsupported value, or an invalid argument.
+        TypeError: for an unknown keyword argument.
+    """
+    config = _config_kwargs(env_name, robots, kwargs)
+    native = _native.make_robosuite(env_name, config, None if model_xml is None else str(model_xml))
+    return RobosuiteEnv(native)
+
+
+def scene_xml(env_name: str, robots: str | list[str] = "Panda", **kwargs: Any) -> str:
+    """The MJCF text of the scene :func:`make` builds for ``env_name`` (robosuite's names);
+    save it and pass the path as ``make(..., model_xml=path)``.
+
+    Raises:
+        ValueError: as :func:`make`.
+    """
+    return _native.scene_xml(env_name, _config_kwargs(env_name, robots, kwargs))
+
+
+def make_vec(
+    env_name: str,
+    num_envs: int,
+    robots: str | list[str] = "Panda",
+    *,
+    keys: list[str] | None = None,
+    flatten_obs: bool = True,
+    model_xml: str | PathLike[str] | None = None,
+    threads: int | None = None,
+    **kwargs: Any,
+) -> "RustVectorEnv":
+    """``num_envs`` GymWrapper'd envs as one ``gymnasium.vector.VectorEnv`` stepped in
+    Rust threads with the GIL released; ``reset(seed=s)`` seeds env ``i`` with ``s + i``.
+
+    Takes :func:`make`'s keyword arguments plus GymWrapper's ``keys`` / ``flatten_obs``
+    and ``threads`` (default: the number of CPUs, at most ``num_envs``).
+
+    Raises:
+        ValueError: as :func:`make`, and for ``num_envs < 1``.
+    """
+    from .vector import RustVectorEnv
+
+    if int(num_envs) < 1:
+        raise ValueError(f"num_envs must be at least 1, got {num_envs}")
+    config = _config_kwargs(env_name, robots, kwargs)
+    native = _native.make_robosuite_vec(
+        env_name,
+        int(num_envs),
+        config,
+        None if keys is None else list(keys),
+        bool(flatten_obs),
+        None if model_xml is None else str(model_xml),
+        threads,
+    )
+    return RustVectorEnv(native)
+
+
+from .vector import RustVectorEnv  # noqa: E402
+from .registration import register_envs as _register_envs  # noqa: E402
+
+_register_envs()

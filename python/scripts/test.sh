@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Builds the Python package robosuite_rs into a project-local virtualenv and runs its tests.
+#
+#   python/scripts/test.sh [pytest args...]
+#
+# Creates <repo>/.venv if missing (python3 -m venv), installs maturin, pytest, gymnasium,
+# numpy and mujoco==3.17.0 into it, builds the extension in release mode with
+# `maturin develop` (the same build `pip install .` runs), builds the example of a user's
+# own module (python/examples/own_module) and runs pytest on python/tests.
+# Environment: PYTHON (default python3) picks the interpreter the virtualenv is made from;
+# CARGO_TARGET_DIR is honoured (default: <repo>/target, shared with cargo).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+ROOT="$(pwd)"
+VENV="$ROOT/.venv"
+PYTHON="${PYTHON:-python3}"
+# One target folder for the extension and the example module (outside the workspace), so
+# the example reuses the dependencies the extension built.
+export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
+
+if [ ! -x "$VENV/bin/python" ]; then
+    echo "test.sh: creating $VENV"
+    "$PYTHON" -m venv "$VENV" || {
+        echo "test.sh: '$PYTHON -m venv' failed; install the venv module (Debian: apt-get install python3-venv)" >&2
+        exit 1
+    }
+fi
+PY="$VENV/bin/python"
+# Quiet, idempotent: pip skips what is already installed.
+"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.0" numpy "mujoco==3.17.0"
+
+start=$(date +%s)
+"$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/Cargo.toml"
+echo "test.sh: extension built in $(( $(date +%s) - start )) s"
+
+# The example of a user's own pyo3 module (python/examples/own_module), tested by
+# tests/test_own_module.py. ROBOSUITE_RS_SKIP_OWN_MODULE=1 skips building it.
+if [ "${ROBOSUITE_RS_SKIP_OWN_MODULE:-0}" != "1" ]; then
+    start=$(date +%s)
+    "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/examples/own_module/Cargo.toml"
+    echo "test.sh: example module built in $(( $(date +%s) - start )) s"
+fi
+
+start=$(date +%s)
+status=0
+"$PY" -m pytest -q "$ROOT/python/tests" "$@" || status=$?
+echo "test.sh: pytest finished in $(( $(date +%s) - start )) s"
+exit $status

@@ -1,0 +1,299 @@
+//! Conversions between the dynamic values of gym-core and Python objects.
+
+use gym_core::{AnySpace, ArrayValue, DictValue, Info, InfoValue, Space, Value, for_each_array};
+use numpy::{
+    PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+/// A fresh NumPy array owning a copy of the values, of the value's dtype.
+pub fn array_into_py(py: Python<'_>, a: ArrayValue) -> Bound<'_, PyAny> {
+    for_each_array!(a, x => PyArrayDyn::from_owned_array(py, x).into_any())
+}
+
+/// An observation (or any space element) as Python objects: arrays become fresh NumPy
+/// arrays, Discrete elements Python ints, Dicts `dict`s (an `OrderedDict` when `ordered`),
+/// Tuples `tuple`s.
+///
+/// # Errors
+/// Only when Python itself fails (out of memory, `collections` missing).
+pub fn value_into_py(py: Python<'_>, v: Value, ordered: bool) -> PyResult<Bound<'_, PyAny>> {
+    Ok(match v {
+        Value::Array(a) => array_into_py(py, a),
+        Value::Discrete(i) => i.into_pyobject(py)?.into_any(),
+        Value::Dict(d) => dict_into_py(py, d, ordered)?,
+        Value::Tuple(t) => {
+            let items = t
+                .into_iter()
+                .map(|x| value_into_py(py, x, ordered))
+                .collect::<PyResult<Vec<_>>>()?;
+            PyTuple::new(py, items)?.into_any()
+        }
+    })
+}
+
+fn dict_into_py(py: Python<'_>, d: DictValue, ordered: bool) -> PyResult<Bound<'_, PyAny>> {
+    let out = if ordered {
+        py.import("collections")?.getattr("OrderedDict")?.call0()?
+    } else {
+        PyDict::new(py).into_any()
+    };
+    for (k, v) in d {
+        out.set_item(k, value_into_py(py, v, ordered)?)?;
+    }
+    Ok(out)
+}
+
+/// An [`Info`] as a Python `dict` (bools, ints, floats, strs, fresh arrays, nested dicts).
+///
+/// # Errors
+/// Only when Python itself fails.
+pub fn info_into_py(py: Python<'_>, info: Info) -> PyResult<Bound<'_, PyDict>> {
+    let out = PyDict::new(py);
+    for (k, v) in info {
+        let v = match v {
+            InfoValue::Bool(b) => PyBool::new(py, b).to_owned().into_any(),
+            InfoValue::Int(i) => i.into_pyobject(py)?.into_any(),
+            InfoValue::Float(f) => PyFloat::new(py, f).into_any(),
+            InfoValue::Str(s) => PyString::new(py, &s).into_any(),
+            InfoValue::Array(a) => array_into_py(py, a),
+            InfoValue::Map(m) => info_into_py(py, m)?.into_any(),
+        };
+        out.set_item(k, v)?;
+    }
+    Ok(out)
+}
+
+/// A Python object (usually a dict of keyword arguments or reset options) as an [`Info`]:
+/// `bool`, `int`, `float`, `str`, `None` (as the string `"None"`), a list or tuple of
+/// strings (joined with commas, for `robots=["Panda"]`), arrays and nested dicts.
+///
+/// # Errors
+/// `ValueError` naming the key whose value has an unsupported type.
+pub fn py_to_info(d: &Bound<'_, PyDict>) -> PyResult<Info> {
+    let mut info = Info::new();
+    for (k, v) in d.iter() {
+        let key: String = k
+            .extract()
+            .map_err(|_| PyValueError::new_err("keyword names must be strings"))?;
+        let value = py_to_info_value(&key, &v)?;
+        info.insert(key, value);
+    }
+    Ok(info)
+}
+
+fn py_to_info_value(key: &str, v: &Bound<'_, PyAny>) -> PyResult<InfoValue> {
+    if v.is_none() {
+        return Ok(InfoValue::Str("None".into()));
+    }
+    if v.is_instance_of::<PyBool>() {
+        return Ok(InfoValue::Bool(v.extract()?));
+    }
+    if v.is_instance_of::<PyInt>() {
+        return Ok(InfoValue::Int(v.extract()?));
+    }
+    if v.is_instance_of::<PyFloat>() {
+        return Ok(InfoValue::Float(v.extract()?));
+    }
+    if let Ok(s) = v.cast::<PyString>() {
+        return Ok(InfoValue::Str(s.to_str()?.to_owned()));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        return Ok(InfoValue::Map(py_to_info(d)?));
+    }
+    if (v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>())
+        && let Ok(items) = v.extract::<Vec<String>>()
+    {
+        return Ok(InfoValue::Str(items.join(",")));
+    }
+    if v.is_instance_of::<PyUntypedArray>() {
+        return Ok(InfoValue::Array(array_from_py(v)?));
+    }
+    // NumPy scalars and other numbers.
+    if let Ok(b) = v.extract::<bool>()
+        && v.get_type().name()?.to_str()? == "bool"
+    {
+        return Ok(InfoValue::Bool(b));
+    }
+    if let Ok(i) = v.extract::<i64>() {
+        return Ok(InfoValue::Int(i));
+    }
+    if let Ok(f) = v.extract::<f64>() {
+        return Ok(InfoValue::Float(f));
+    }
+    Err(PyValueError::new_err(format!(
+        "argument `{key}`: unsupported value of type {}",
+        v.get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_else(|_| "?".into())
+    )))
+}
+
+/// Any array-like (NumPy array, list, scalar) as an [`ArrayValue`] of its NumPy dtype
+/// (`bool` becomes `int8`, other integer types `int64`, other float types `float64`).
+///
+/// # Errors
+/// `ValueError` for objects NumPy cannot turn into a numeric array.
+pub fn array_from_py(obj: &Bound<'_, PyAny>) -> PyResult<ArrayValue> {
+    let py = obj.py();
+    let np = py.import("numpy")?;
+    let arr = np.call_method1("asarray", (obj,))?;
+    if let Some(a) = typed_array(&arr) {
+        return Ok(a);
+    }
+    let kind = arr
+        .cast::<PyUntypedArray>()
+        .map(|a| a.dtype().kind())
+        .unwrap_or(b'O');
+    let target = match kind {
+        b'b' => "int8",
+        b'i' | b'u' => "int64",
+        b'f' => "float64",
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "expected a numeric array, got {}",
+                obj.repr().map(|r| r.to_string()).unwrap_or_default()
+            )));
+        }
+    };
+    typed_array(&arr.call_method1("astype", (target,))?)
+        .ok_or_else(|| PyValueError::new_err("cannot convert the array to a supported dtype"))
+}
+
+/// The array as an [`ArrayValue`] if its dtype is one gym-core supports.
+fn typed_array(arr: &Bound<'_, PyAny>) -> Option<ArrayValue> {
+    macro_rules! try_dtype {
+        ($($t:ty),*) => {$(
+            if let Ok(a) = arr.cast::<PyArrayDyn<$t>>() {
+                return Some(ArrayValue::from(a.readonly().as_array().to_owned()));
+            }
+        )*};
+    }
+    try_dtype!(f64, f32, i64, i32, i16, i8, u8);
+    None
+}
+
+/// A Python object as an element of `space` (structure from the space, dtype from the
+/// object; bounds are the environment's to check).
+///
+/// # Errors
+/// `ValueError` when the object does not have the space's structure.
+pub fn py_to_value(obj: &Bound<'_, PyAny>, space: &AnySpace) -> PyResult<Value> {
+    match space {
+        // As `np.asarray(action, dtype=space.dtype)` for float boxes: a float64 policy
+        // output (or a list) is accepted by a float32 action space.
+        AnySpace::Box(b) => {
+            let a = array_from_py(obj)?;
+            Ok(Value::Array(
+                if b.dtype().is_float() && a.dtype() != b.dtype() {
+                    a.cast(b.dtype())
+                } else {
+                    a
+                },
+            ))
+        }
+        AnySpace::MultiDiscrete(_) | AnySpace::MultiBinary(_) => {
+            Ok(Value::Array(array_from_py(obj)?))
+        }
+        AnySpace::Discrete(_) => {
+            if let Ok(i) = obj.extract::<i64>() {
+                return Ok(Value::Discrete(i));
+            }
+            let a = array_from_py(obj)?;
+            match (a.len(), a.dtype().is_float()) {
+                (1, false) => Ok(Value::Discrete(a.to_f64_vec()[0] as i64)),
+                _ => Err(PyValueError::new_err(format!(
+                    "invalid action: expected an integer for {space}"
+                ))),
+            }
+        }
+        AnySpace::Dict(d) => {
+            let mut out = DictValue::with_capacity(d.len());
+            for (k, s) in d.iter() {
+                let item = obj.get_item(k).map_err(|_| {
+                    PyValueError::new_err(format!("invalid action: missing key `{k}` for {space}"))
+                })?;
+                out.insert(k.to_owned(), py_to_value(&item, s)?);
+            }
+            Ok(Value::Dict(out))
+        }
+        AnySpace::Tuple(t) => {
+            let n = obj.len().map_err(|_| {
+                PyValueError::new_err(format!("invalid action: expected a tuple for {space}"))
+            })?;
+            if n != t.len() {
+                return Err(PyValueError::new_err(format!(
+                    "invalid action: expected a tuple of {} elements, got {n}",
+                    t.len()
+                )));
+            }
+            let items = t
+                .spaces()
+                .iter()
+                .enumerate()
+                .map(|(i, s)| py_to_value(&obj.get_item(i)?, s))
+                .collect::<PyResult<Vec<_>>>()?;
+            Ok(Value::Tuple(items))
+        }
+    }
+}
+
+/// A description of `space` that `robosuite_rs.spaces.from_spec` turns into a
+/// `gymnasium.spaces.Space`: `("Box", low, high, dtype)`, `("Discrete", n, start)`,
+/// `("MultiDiscrete", nvec, start)`, `("MultiBinary", shape)`, `("Dict", [(key, spec)])`,
+/// `("Tuple", [spec])`. Box bounds are `float64` arrays with ±inf where unbounded.
+///
+/// # Errors
+/// Only when Python itself fails.
+pub fn space_spec<'py>(py: Python<'py>, space: &AnySpace) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match space {
+        AnySpace::Box(b) => {
+            let (low, high) = b.bounds_f64();
+            (
+                "Box",
+                PyArrayDyn::from_owned_array(py, low),
+                PyArrayDyn::from_owned_array(py, high),
+                b.dtype().name(),
+            )
+                .into_pyobject(py)?
+                .into_any()
+        }
+        AnySpace::Discrete(d) => ("Discrete", d.n(), d.start()).into_pyobject(py)?.into_any(),
+        AnySpace::MultiDiscrete(m) => (
+            "MultiDiscrete",
+            PyArrayDyn::from_owned_array(py, m.nvec().clone()),
+            PyArrayDyn::from_owned_array(py, m.start().clone()),
+        )
+            .into_pyobject(py)?
+            .into_any(),
+        AnySpace::MultiBinary(m) => ("MultiBinary", m.shape().unwrap_or(&[]).to_vec())
+            .into_pyobject(py)?
+            .into_any(),
+        AnySpace::Dict(d) => {
+            let items = d
+                .iter()
+                .map(|(k, s)| {
+                    Ok((k.to_owned(), space_spec(py, s)?)
+                        .into_pyobject(py)?
+                        .into_any())
+                })
+                .collect::<PyResult<Vec<_>>>()?;
+            ("Dict", PyList::new(py, items)?)
+                .into_pyobject(py)?
+                .into_any()
+        }
+        AnySpace::Tuple(t) => {
+            let items = t
+                .spaces()
+                .iter()
+                .map(|s| space_spec(py, s))
+                .collect::<PyResult<Vec<_>>>()?;
+            ("Tuple", PyList::new(py, items)?)
+                .into_pyobject(py)?
+                .into_any()
+        }
+    })
+}

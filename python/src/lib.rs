@@ -1,0 +1,42 @@
+//! The Python export of robosuite-rs.
+//!
+//! Without features this crate is plain Rust (built and tested by `cargo test --workspace`):
+//! [`SharedEnv`](shared::SharedEnv), one environment reachable from robosuite's Python env
+//! object and from the `GymWrapper` over it. The wrappers and the vector environment are
+//! the `adapters` crate's (`GymWrapper`, `ThreadVectorEnv`).
+//!
+//! With the `python` feature it offers Rust users the one call that turns any env into a
+//! `gymnasium.Env` from their own pyo3 module (`export_env`; see
+//! `python/examples/own_module`):
+//!
+//! ```ignore
+//! use gym_core::IntoBoxedEnv;
+//! use pyo3::prelude::*;
+//!
+//! #[pyfunction]
+//! fn make_my_env(py: Python<'_>) -> PyResult<Py<PyAny>> {
+//!     robosuite_py::export_env(py, MyEnv::new().boxed())
+//! }
+//! ```
+//!
+//! With the `module` feature it is also the extension module `robosuite_rs._native` (built
+//! by maturin from the repository's `pyproject.toml`); a user's own module must not enable
+//! it (two `PyInit__native` symbols would clash).
+
+pub mod shared;
+
+#[cfg(feature = "python")]
+mod convert;
+#[cfg(feature = "python")]
+mod errors;
+#[cfg(feature = "module")]
+mod module;
+#[cfg(feature = "python")]
+mod pyenv;
+#[cfg(feature = "python")]
+pub mod robosuite;
+
+#[cfg(feature = "python")]
+pub use errors::to_pyerr;
+#[cfg(feature = "python")]
+pub use pyenv::{PyEnv, PyVecEnv, export_env, export_native_env};

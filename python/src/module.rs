@@ -1,0 +1,146 @@
+//! The extension module `robosuite_rs._native`.
+
+use crate::convert::py_to_info;
+use crate::errors::to_pyerr;
+use crate::pyenv::{PyEnv, PyVecEnv};
+use crate::robosuite::PyRobosuiteEnv;
+use gym_core::{BoxedEnv, IntoBoxedEnv};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use robosuite_env::{EnvConfig, RobosuiteEnv};
+use std::path::PathBuf;
+
+fn config(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<EnvConfig> {
+    let info = kwargs.map(py_to_info).transpose()?.unwrap_or_default();
+    EnvConfig::from_kwargs(&info).map_err(to_pyerr)
+}
+
+fn build(
+    env_name: &str,
+    config: EnvConfig,
+    model_xml: Option<&PathBuf>,
+) -> gym_core::Result<RobosuiteEnv> {
+    match model_xml {
+        None => robosuite_env::make_with(env_name, config),
+        Some(path) => {
+            RobosuiteEnv::from_scene_file(robosuite_env::make_task(env_name)?, path, config)
+        }
+    }
+}
+
+/// Makes the robosuite task `env_name` with robosuite keyword arguments already mapped to
+/// the Rust configuration keys (see `robosuite_env::config::CONFIG_KEYS`), optionally on
+/// the scene file `model_xml`.
+#[pyfunction]
+#[pyo3(signature = (env_name, kwargs=None, model_xml=None))]
+fn make_robosuite(
+    py: Python<'_>,
+    env_name: &str,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    model_xml: Option<PathBuf>,
+) -> PyResult<PyRobosuiteEnv> {
+    let config = config(kwargs)?;
+    let env = py
+        .detach(|| build(env_name, config, model_xml.as_ref()))
+        .map_err(to_pyerr)?;
+    Ok(PyRobosuiteEnv::new(env, env_name))
+}
+
+/// `num_envs` GymWrapper'd robosuite envs stepped in parallel Rust threads.
+#[pyfunction]
+#[pyo3(signature = (env_name, num_envs, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn make_robosuite_vec(
+    py: Python<'_>,
+    env_name: &str,
+    num_envs: usize,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    keys: Option<Vec<String>>,
+    flatten_obs: bool,
+    model_xml: Option<PathBuf>,
+    threads: Option<usize>,
+) -> PyResult<PyVecEnv> {
+    let config = config(kwargs)?;
+    let envs = py
+        .detach(|| {
+            (0..num_envs)
+                .map(|_| {
+                    let env = build(env_name, config.clone(), model_xml.as_ref())?;
+                    Ok(adapters::GymWrapper::new(env, keys.clone(), flatten_obs)?.boxed())
+                })
+                .collect::<gym_core::Result<Vec<BoxedEnv>>>()
+        })
+        .map_err(to_pyerr)?;
+    PyVecEnv::new(envs, threads)
+}
+
+/// Makes any env registered in `gym_core::registry` by id, as a [`PyEnv`].
+#[pyfunction]
+#[pyo3(signature = (env_id, kwargs=None))]
+fn make_registered(
+    py: Python<'_>,
+    env_id: &str,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<PyEnv> {
+    let info = kwargs.map(py_to_info).transpose()?.unwrap_or_default();
+    let env = py
+        .detach(|| gym_core::registry::make(env_id, &info))
+        .map_err(to_pyerr)?;
+    Ok(PyEnv::new(env))
+}
+
+/// The MJCF text of the scene the task `env_name` builds with these (mapped) keyword
+/// arguments: a robosuite-style scene file for `make(..., model_xml=path)`.
+#[pyfunction]
+#[pyo3(signature = (env_name, kwargs=None))]
+fn scene_xml(
+    py: Python<'_>,
+    env_name: &str,
+    kwargs: Option<&Bound<'_, PyDict>>,
+) -> PyResult<String> {
+    let config = config(kwargs)?;
+    py.detach(|| robosuite_env::scene_xml(env_name, &config))
+        .map_err(to_pyerr)
+}
+
+/// Every id registered in `gym_core::registry`.
+#[pyfunction]
+fn registered_ids() -> Vec<String> {
+    gym_core::registry::registered_ids()
+}
+
+/// The robosuite task names this build provides.
+#[pyfunction]
+fn robosuite_env_names() -> Vec<String> {
+    robosuite_env::ENV_NAMES
+        .iter()
+        .map(|s| (*s).to_owned())
+        .collect()
+}
+
+/// The keyword arguments the Rust configuration accepts.
+#[pyfunction]
+fn config_keys() -> Vec<String> {
+    robosuite_env::config::CONFIG_KEYS
+        .iter()
+        .map(|s| (*s).to_owned())
+        .collect()
+}
+
+/// The extension module.
+#[pymodule(name = "_native")]
+fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    robosuite_env::register_envs();
+    m.add_class::<PyEnv>()?;
+    m.add_class::<PyVecEnv>()?;
+    m.add_class::<PyRobosuiteEnv>()?;
+    m.add_function(wrap_pyfunction!(make_robosuite, m)?)?;
+    m.add_function(wrap_pyfunction!(make_robosuite_vec, m)?)?;
+    m.add_function(wrap_pyfunction!(make_registered, m)?)?;
+    m.add_function(wrap_pyfunction!(registered_ids, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_xml, m)?)?;
+    m.add_function(wrap_pyfunction!(robosuite_env_names, m)?)?;
+    m.add_function(wrap_pyfunction!(config_keys, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,336 @@
+//! [`PyEnv`] and [`PyVecEnv`]: any boxed environment (and a vector of them) as a Python
+//! object; the Python classes `robosuite_rs.wrappers.RustEnv` (a `gymnasium.Env`) and
+//! `robosuite_rs.vector.RustVectorEnv` (a `gymnasium.vector.VectorEnv`) delegate to them.
+
+use crate::convert::{
+    array_into_py, info_into_py, py_to_info, py_to_value, space_spec, value_into_py,
+};
+use crate::errors::to_pyerr;
+use adapters::vector::{ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
+use gym_core::{AnySpace, BoxedEnv, Info, Metadata};
+use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+/// A seed from Python: a non-negative integer that fits in 64 bits, or `None`.
+pub(crate) fn extract_seed(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u64>> {
+    match seed {
+        None => Ok(None),
+        Some(s) if s.is_none() => Ok(None),
+        Some(s) => s.extract::<u64>().map(Some).map_err(|_| {
+            PyValueError::new_err(format!(
+                "seed must be a non-negative integer below 2**64, got {s}"
+            ))
+        }),
+    }
+}
+
+/// `metadata` as a Python dict: `{"render_modes": [...], "render_fps": fps or None}`.
+fn metadata_into_py<'py>(py: Python<'py>, m: &Metadata) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let modes: Vec<&str> = m.render_modes.iter().map(|r| r.as_str()).collect();
+    d.set_item("render_modes", PyList::new(py, modes)?)?;
+    d.set_item("render_fps", m.render_fps)?;
+    Ok(d)
+}
+
+/// Any [`BoxedEnv`] as a Python object with Gymnasium's methods (`reset`, `step`, `close`)
+/// and the descriptions of its spaces. Calls release the GIL while the environment runs.
+/// Errors are Python exceptions carrying the Rust message (see [`to_pyerr`]); the
+/// environment stays usable after an invalid action.
+#[pyclass(name = "NativeEnv", module = "robosuite_rs._native")]
+pub struct PyEnv {
+    env: Mutex<BoxedEnv>,
+    observation_space: AnySpace,
+    action_space: AnySpace,
+    metadata: Metadata,
+}
+
+impl PyEnv {
+    /// Wraps `env`.
+    pub fn new(env: BoxedEnv) -> Self {
+        let observation_space = env.observation_space().clone();
+        let action_space = env.action_space().clone();
+        let metadata = env.metadata().clone();
+        Self {
+            env: Mutex::new(env),
+            observation_space,
+            action_space,
+            metadata,
+        }
+    }
+
+    /// Locks the environment (ignoring poisoning by an earlier panic).
+    pub fn lock(&self) -> MutexGuard<'_, BoxedEnv> {
+        self.env.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// What `step` returns to Python: `(obs, reward, terminated, truncated, info)`.
+type StepPy<'py> = (Bound<'py, PyAny>, f64, bool, bool, Bound<'py, PyDict>);
+
+#[pymethods]
+impl PyEnv {
+    /// `reset(seed=None, options=None) -> (obs, info)`: fresh arrays of the space's dtypes.
+    #[pyo3(signature = (seed=None, options=None))]
+    fn reset<'py>(
+        &self,
+        py: Python<'py>,
+        seed: Option<&Bound<'py, PyAny>>,
+        options: Option<&Bound<'py, PyDict>>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+        let seed = extract_seed(seed)?;
+        let options = options
+            .map(py_to_info)
+            .transpose()?
+            .filter(|o| !o.is_empty());
+        let (obs, info) = py
+            .detach(|| self.lock().reset(seed, options.as_ref()))
+            .map_err(to_pyerr)?;
+        Ok((value_into_py(py, obs, false)?, info_into_py(py, info)?))
+    }
+
+    /// `step(action) -> (obs, reward: float, terminated: bool, truncated: bool, info)`.
+    fn step<'py>(&self, py: Python<'py>, action: &Bound<'py, PyAny>) -> PyResult<StepPy<'py>> {
+        let action = py_to_value(action, &self.action_space)?;
+        let step = py.detach(|| self.lock().step(&action)).map_err(to_pyerr)?;
+        Ok((
+            value_into_py(py, step.observation, false)?,
+            step.reward,
+            step.terminated,
+            step.truncated,
+            info_into_py(py, step.info)?,
+        ))
+    }
+
+    /// The observation space's description (see `robosuite_rs.spaces.from_spec`).
+    fn observation_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        space_spec(py, &self.observation_space)
+    }
+
+    /// The action space's description (see `robosuite_rs.spaces.from_spec`).
+    fn action_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        space_spec(py, &self.action_space)
+    }
+
+    /// `{"render_modes": [...], "render_fps": ...}`.
+    fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        metadata_into_py(py, &self.metadata)
+    }
+
+    /// Closes the environment; calling it again does nothing.
+    fn close(&self, py: Python<'_>) {
+        py.detach(|| self.lock().close());
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "NativeEnv(observation_space={}, action_space={})",
+            self.observation_space, self.action_space
+        )
+    }
+}
+
+/// Several boxed environments stepped in parallel on persistent Rust worker threads
+/// (adapters' [`ThreadVectorEnv`], Gymnasium's `NEXT_STEP` autoreset) with the GIL
+/// released. Observations come back batched (`(n, ...)` arrays), infos with Gymnasium's
+/// `_key` masks.
+#[pyclass(name = "NativeVecEnv", module = "robosuite_rs._native")]
+pub struct PyVecEnv {
+    vec: Mutex<ThreadVectorEnv<BoxedEnv>>,
+    observation_space: AnySpace,
+    action_space: AnySpace,
+    batched_action_space: AnySpace,
+    metadata: Metadata,
+    num_envs: usize,
+}
+
+impl PyVecEnv {
+    /// Vectorises `envs` over up to `threads` threads (`None`: the available parallelism).
+    ///
+    /// # Errors
+    /// `ValueError` for an empty list or differing spaces.
+    pub fn new(envs: Vec<BoxedEnv>, threads: Option<usize>) -> PyResult<Self> {
+        let vec = match threads {
+            Some(t) => ThreadVectorEnv::with_threads(envs, t),
+            None => ThreadVectorEnv::new(envs),
+        }
+        .map_err(to_pyerr)?;
+        Ok(Self {
+            observation_space: vec.single_observation_space().clone(),
+            action_space: vec.single_action_space().clone(),
+            batched_action_space: vec.action_space().clone(),
+            metadata: vec.metadata().clone(),
+            num_envs: vec.num_envs(),
+            vec: Mutex::new(vec),
+        })
+    }
+
+    fn lock(&self) -> MutexGuard<'_, ThreadVectorEnv<BoxedEnv>> {
+        self.vec.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// A batched info as Gymnasium's dict: one array per key (length `n`) and a `_key` mask.
+fn vector_info_into_py<'py>(py: Python<'py>, info: &VectorInfo) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    for (k, v) in info.iter() {
+        let value = match v {
+            VectorInfoValue::Bool(b) => PyArray1::from_slice(py, b).into_any(),
+            VectorInfoValue::Int(x) => PyArray1::from_slice(py, x).into_any(),
+            VectorInfoValue::Float(x) => PyArray1::from_slice(py, x).into_any(),
+            VectorInfoValue::Array(a) => array_into_py(py, a.clone()),
+            VectorInfoValue::Objects(items) => {
+                let objs = items
+                    .iter()
+                    .map(|o| match o {
+                        None => Ok(py.None().into_bound(py)),
+                        Some(x) => {
+                            let d = info_into_py(py, Info::new().with("v", x.clone()))?;
+                            Ok(d.get_item("v")?.expect("just inserted"))
+                        }
+                    })
+                    .collect::<PyResult<Vec<_>>>()?;
+                object_array(py, objs)?
+            }
+            VectorInfoValue::Observations(items) => {
+                let objs = items
+                    .iter()
+                    .map(|o| match o {
+                        None => Ok(py.None().into_bound(py)),
+                        Some(x) => value_into_py(py, x.clone(), false),
+                    })
+                    .collect::<PyResult<Vec<_>>>()?;
+                object_array(py, objs)?
+            }
+            VectorInfoValue::Map(m) => vector_info_into_py(py, m)?.into_any(),
+        };
+        out.set_item(k, value)?;
+    }
+    Ok(out)
+}
+
+/// A NumPy object array holding `items` (as Gymnasium builds for `final_obs`).
+fn object_array<'py>(
+    py: Python<'py>,
+    items: Vec<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let arr = py
+        .import("numpy")?
+        .call_method1("empty", (items.len(), "object"))?;
+    for (i, item) in items.into_iter().enumerate() {
+        arr.set_item(i, item)?;
+    }
+    Ok(arr)
+}
+
+/// What a vector step returns to Python.
+type VecStepPy<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyDict>,
+);
+
+#[pymethods]
+impl PyVecEnv {
+    /// The number of environments.
+    #[getter]
+    fn num_envs(&self) -> usize {
+        self.num_envs
+    }
+
+    /// `reset(seed=None) -> (batched obs, infos)`; env `i` gets `seed + i`.
+    #[pyo3(signature = (seed=None))]
+    fn reset<'py>(
+        &self,
+        py: Python<'py>,
+        seed: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+        let seed = extract_seed(seed)?;
+        let (obs, info) = py
+            .detach(|| {
+                let mut vec = self.lock();
+                vec.reset(seed, None).map(|(o, i)| (o.clone(), i))
+            })
+            .map_err(to_pyerr)?;
+        Ok((
+            value_into_py(py, obs, false)?,
+            vector_info_into_py(py, &info)?,
+        ))
+    }
+
+    /// `step(actions) -> (batched obs, rewards, terminations, truncations, infos)` for
+    /// batched actions (an `(n, ...)` array for Box action spaces).
+    fn step<'py>(&self, py: Python<'py>, actions: &Bound<'py, PyAny>) -> PyResult<VecStepPy<'py>> {
+        let actions = py_to_value(actions, &self.batched_action_space)?;
+        let (obs, rewards, terms, truncs, info) = py
+            .detach(|| {
+                let mut vec = self.lock();
+                vec.step(&actions).map(|s| {
+                    (
+                        s.observations.clone(),
+                        s.rewards.to_vec(),
+                        s.terminations.to_vec(),
+                        s.truncations.to_vec(),
+                        s.infos,
+                    )
+                })
+            })
+            .map_err(to_pyerr)?;
+        Ok((
+            value_into_py(py, obs, false)?,
+            PyArray1::from_vec(py, rewards),
+            PyArray1::from_vec(py, terms),
+            PyArray1::from_vec(py, truncs),
+            vector_info_into_py(py, &info)?,
+        ))
+    }
+
+    /// The description of one environment's observation space.
+    fn observation_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        space_spec(py, &self.observation_space)
+    }
+
+    /// The description of one environment's action space.
+    fn action_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        space_spec(py, &self.action_space)
+    }
+
+    /// The metadata of environment 0.
+    fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        metadata_into_py(py, &self.metadata)
+    }
+
+    /// Closes every environment and joins the worker threads; calling it again does
+    /// nothing.
+    fn close(&self, py: Python<'_>) {
+        py.detach(|| self.lock().close());
+    }
+}
+
+/// Exports any environment (anything that converts into a [`BoxedEnv`] with
+/// `gym_core::IntoBoxedEnv::boxed`) as a real `gymnasium.Env`: the Python class
+/// `robosuite_rs.wrappers.RustEnv` around a [`PyEnv`]. This is the one call a Rust user
+/// needs in their own pyo3 module.
+///
+/// # Errors
+/// When the Python package `robosuite_rs` (which holds the `gymnasium.Env` shim) cannot be
+/// imported.
+pub fn export_env(py: Python<'_>, env: BoxedEnv) -> PyResult<Py<PyAny>> {
+    let native = Py::new(py, PyEnv::new(env))?;
+    let cls = py.import("robosuite_rs.wrappers")?.getattr("RustEnv")?;
+    Ok(cls.call1((native,))?.unbind())
+}
+
+/// Exports an environment as the bare [`PyEnv`] (no `gymnasium.Env` shim); wrap it in
+/// Python with `robosuite_rs.wrappers.RustEnv(native)`.
+///
+/// # Errors
+/// Only when Python fails to allocate the object.
+pub fn export_native_env(py: Python<'_>, env: BoxedEnv) -> PyResult<Py<PyEnv>> {
+    Py::new(py, PyEnv::new(env))
+}

@@ -1,0 +1,89 @@
+"""Gymnasium's own checker on every registered env, and gymnasium.make for every id."""
+
+from __future__ import annotations
+
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import robosuite_rs  # noqa: F401  (registers the ids)
+from robosuite_rs.registration import register_envs
+from robosuite_rs.wrappers import GymWrapper
+
+from .conftest import unexpected
+
+IDS = register_envs()
+
+
+def test_every_rust_env_is_registered() -> None:
+    assert "robosuite_rs/Lift-v0" in IDS
+    for env_id in IDS:
+        assert env_id in gym.registry
+
+
+@pytest.mark.parametrize("env_id", IDS)
+def test_check_env_on_registered_env(env_id: str) -> None:
+    env = gym.make(env_id, horizon=30)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(env.unwrapped)
+    assert unexpected(caught) == []
+    env.close()
+
+
+@pytest.mark.parametrize("env_id", IDS)
+def test_gymnasium_make_and_run(env_id: str) -> None:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        env = gym.make(env_id, horizon=5, reward_shaping=True)
+        obs, info = env.reset(seed=3)
+        assert obs in env.observation_space
+        assert isinstance(info, dict)
+        steps = 0
+        while True:
+            obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
+            steps += 1
+            assert type(reward) is float and type(terminated) is bool and type(truncated) is bool
+            assert obs.dtype == np.float32 and obs in env.observation_space
+            assert "success" in info
+            if terminated or truncated:
+                break
+        assert steps == 5 and truncated
+        env.close()
+        env.close()
+    assert unexpected(caught) == []
+
+
+def test_check_env_on_wrapper_built_directly(gym_env: GymWrapper) -> None:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(gym_env, skip_render_check=True)
+    assert unexpected(caught) == []
+    assert isinstance(gym_env, gym.Env)
+    assert gym_env.unwrapped is gym_env
+    assert gym_env.metadata == {"render_modes": [], "render_fps": 20}
+
+
+def test_check_env_dict_observations(env) -> None:  # type: ignore[no-untyped-def]
+    g = GymWrapper(env, keys=["robot0_eef_pos", "robot0_eef_quat_site", "cube_pos"], flatten_obs=False)
+    assert list(g.observation_space.spaces) == ["robot0_eef_pos", "robot0_eef_quat_site", "cube_pos"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(g, skip_render_check=True)
+    assert unexpected(caught) == []
+    obs, _ = g.reset(seed=0)
+    assert list(obs) == ["robot0_eef_pos", "robot0_eef_quat_site", "cube_pos"]
+    assert obs["robot0_eef_quat_site"].dtype == np.float32
+    assert obs["robot0_eef_pos"].dtype == np.float64
+
+
+def test_gymnasium_make_kwargs_reach_the_env() -> None:
+    env = gym.make("robosuite_rs/Lift-v0", horizon=7, keys=["object-state"], reward_scale=None)
+    assert env.observation_space.shape == (10,)
+    assert env.unwrapped.env.horizon == 7
+    assert env.unwrapped.env.reward_scale is None
+    with pytest.raises(ValueError, match="has_renderer"):
+        gym.make("robosuite_rs/Lift-v0", has_renderer=True)
