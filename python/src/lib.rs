@@ -9,7 +9,7 @@
 //! `gymnasium.Env` from their own pyo3 module (`export_env`; see
 //! `python/examples/own_module`):
 //!
-//! ```ignore
+//! ```text
 //! use gym_core::IntoBoxedEnv;
 //! use pyo3::prelude::*;
 //!
