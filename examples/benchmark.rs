@@ -26,9 +26,15 @@ struct Args {
 
 fn parse_args() -> Args {
     let mut args = Args {
-        tasks: robosuite_env::ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
+        tasks: robosuite_env::ENV_NAMES
+            .iter()
+            .map(|s| (*s).to_owned())
+            .collect(),
         seconds: 3.0,
-        max_envs: std::thread::available_parallelism().map_or(2, |n| n.get()).max(2) * 2,
+        max_envs: std::thread::available_parallelism()
+            .map_or(2, |n| n.get())
+            .max(2)
+            * 2,
         json: None,
     };
     let mut it = std::env::args().skip(1);
@@ -60,7 +66,11 @@ fn rate(budget: Duration, mut step: impl FnMut() -> Result<()>) -> Result<f64> {
 fn rss_mib() -> f64 {
     std::fs::read_to_string("/proc/self/statm")
         .ok()
-        .and_then(|s| s.split_whitespace().nth(1).and_then(|v| v.parse::<f64>().ok()))
+        .and_then(|s| {
+            s.split_whitespace()
+                .nth(1)
+                .and_then(|v| v.parse::<f64>().ok())
+        })
         .map_or(f64::NAN, |pages| pages * 4096.0 / 1048576.0)
 }
 
@@ -100,7 +110,11 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
     let start = env.get_state();
     let mut sim = Sim::new(env.sim().model().clone())?;
     sim.set_state(&start)?;
-    let dofs: Vec<Vec<usize>> = env.robots().iter().map(|r| r.controller().binding().dofs.to_vec()).collect();
+    let dofs: Vec<Vec<usize>> = env
+        .robots()
+        .iter()
+        .map(|r| r.controller().binding().dofs.to_vec())
+        .collect();
     let mut n = 0u64;
     let physics_rate = rate(budget, || {
         for _ in 0..substeps {
@@ -149,7 +163,9 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
     let mut n_envs = 1;
     let mut base = None;
     while n_envs <= args.max_envs {
-        let envs = (0..n_envs).map(|_| make(task)?.flat_gym_wrapper(None)).collect::<Result<Vec<_>>>()?;
+        let envs = (0..n_envs)
+            .map(|_| make(task)?.flat_gym_wrapper(None))
+            .collect::<Result<Vec<_>>>()?;
         let mut venv = ThreadVectorEnv::new(envs)?;
         venv.reset(0u64, None)?;
         let steps_rate = rate(budget, || {
@@ -159,8 +175,10 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
         let threads = venv.num_threads();
         venv.close();
         let base_rate = *base.get_or_insert(steps_rate);
-        vector.push(json!({"envs": n_envs, "threads": threads, "steps_per_s": steps_rate,
-                           "speedup": steps_rate / base_rate}));
+        vector.push(
+            json!({"envs": n_envs, "threads": threads, "steps_per_s": steps_rate,
+                           "speedup": steps_rate / base_rate}),
+        );
         n_envs *= 2;
     }
 
@@ -181,21 +199,45 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
 fn main() -> Result<()> {
     let args = parse_args();
     let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
-    println!("robosuite-rs benchmark: {cpus} logical CPUs, {:.0} s per measurement, random actions", args.seconds);
+    println!(
+        "robosuite-rs benchmark: {cpus} logical CPUs, {:.0} s per measurement, random actions",
+        args.seconds
+    );
     let mut results = Vec::new();
     for task in &args.tasks {
         let r = bench_task(task, &args)?;
         println!("\n{task} ({} substeps per env step)", r["substeps"]);
-        println!("  env steps/s, one thread             {:>10.0}", r["steps_per_s"].as_f64().unwrap_or(0.0));
-        println!("  through GymWrapper (flat f32)        {:>10.0}", r["gym_wrapper_steps_per_s"].as_f64().unwrap_or(0.0));
-        println!("  physics only (mj_step x substeps)    {:>10.0}", r["physics_only_steps_per_s"].as_f64().unwrap_or(0.0));
-        println!("  env cost / physics-only cost         {:>10.2}x", r["cost_ratio"].as_f64().unwrap_or(0.0));
-        println!("  reset                                {:>10.1} us", r["reset_us"].as_f64().unwrap_or(0.0));
-        println!("  resident memory per extra instance   {:>10.2} MiB", r["mib_per_env"].as_f64().unwrap_or(0.0));
+        println!(
+            "  env steps/s, one thread             {:>10.0}",
+            r["steps_per_s"].as_f64().unwrap_or(0.0)
+        );
+        println!(
+            "  through GymWrapper (flat f32)        {:>10.0}",
+            r["gym_wrapper_steps_per_s"].as_f64().unwrap_or(0.0)
+        );
+        println!(
+            "  physics only (mj_step x substeps)    {:>10.0}",
+            r["physics_only_steps_per_s"].as_f64().unwrap_or(0.0)
+        );
+        println!(
+            "  env cost / physics-only cost         {:>10.2}x",
+            r["cost_ratio"].as_f64().unwrap_or(0.0)
+        );
+        println!(
+            "  reset                                {:>10.1} us",
+            r["reset_us"].as_f64().unwrap_or(0.0)
+        );
+        println!(
+            "  resident memory per extra instance   {:>10.2} MiB",
+            r["mib_per_env"].as_f64().unwrap_or(0.0)
+        );
         for v in r["vector"].as_array().into_iter().flatten() {
             println!(
                 "  ThreadVectorEnv {:>2} envs / {} threads {:>10.0} steps/s ({:.2}x one env)",
-                v["envs"], v["threads"], v["steps_per_s"].as_f64().unwrap_or(0.0), v["speedup"].as_f64().unwrap_or(0.0)
+                v["envs"],
+                v["threads"],
+                v["steps_per_s"].as_f64().unwrap_or(0.0),
+                v["speedup"].as_f64().unwrap_or(0.0)
             );
         }
         results.push(r);

@@ -38,16 +38,25 @@ fn toward(eef: [f64; 3], target: [f64; 3], grip: f64) -> ArrayD<f64> {
 }
 
 fn main() -> gym_core::Result<()> {
-    let seed = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(0u64);
+    let seed = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0u64);
     let mut env = robosuite_env::make_with("Lift", EnvConfig::default().with_horizon(200))?;
     println!("Lift with a Panda arm, OSC_POSE controller, 20 Hz control, horizon 200, seed {seed}");
-    println!("action space:      {}", gym_core::AnySpace::from(env.action_space().clone()));
+    println!(
+        "action space:      {}",
+        gym_core::AnySpace::from(env.action_space().clone())
+    );
     let keys: Vec<&str> = env.observation_space().keys().collect();
     println!("observation keys:  {}", keys.join(", "));
 
     let (mut obs, _) = env.reset(Some(seed), None)?;
     let cube0 = vec3(&obs, "cube_pos");
-    println!("cube starts at     ({:.3}, {:.3}, {:.3})", cube0[0], cube0[1], cube0[2]);
+    println!(
+        "cube starts at     ({:.3}, {:.3}, {:.3})",
+        cube0[0], cube0[1], cube0[2]
+    );
     let mut phase = Phase::Approach;
     let mut total = 0.0;
     let mut first_success = None;
@@ -63,10 +72,16 @@ fn main() -> gym_core::Result<()> {
         total += step.reward;
         if step.info.get_bool("success") == Some(true) && first_success.is_none() {
             first_success = Some(t);
-            println!("step {t:3}: success: cube lifted above the table by > 4 cm ({})", format_info(&step.info));
+            println!(
+                "step {t:3}: success: cube lifted above the table by > 4 cm ({})",
+                format_info(&step.info)
+            );
         }
         let next = match phase {
-            Phase::Approach if (eef[0] - cube[0]).hypot(eef[1] - cube[1]) < 0.01 && (eef[2] - cube[2] - 0.1).abs() < 0.02 => {
+            Phase::Approach
+                if (eef[0] - cube[0]).hypot(eef[1] - cube[1]) < 0.01
+                    && (eef[2] - cube[2] - 0.1).abs() < 0.02 =>
+            {
                 Phase::Descend
             }
             Phase::Descend if (eef[2] - cube[2]).abs() < 0.01 => Phase::Grasp(0),
@@ -75,7 +90,10 @@ fn main() -> gym_core::Result<()> {
             p => p,
         };
         if std::mem::discriminant(&next) != std::mem::discriminant(&phase) {
-            println!("step {t:3}: {phase:?} done, eef ({:.3}, {:.3}, {:.3}) -> {next:?}", eef[0], eef[1], eef[2]);
+            println!(
+                "step {t:3}: {phase:?} done, eef ({:.3}, {:.3}, {:.3}) -> {next:?}",
+                eef[0], eef[1], eef[2]
+            );
         }
         phase = next;
         obs = step.observation;
@@ -89,7 +107,9 @@ fn main() -> gym_core::Result<()> {
         }
     }
     match first_success {
-        Some(t) => println!("result: the scripted policy lifted the cube (first success at step {t})"),
+        Some(t) => {
+            println!("result: the scripted policy lifted the cube (first success at step {t})")
+        }
         None => println!("result: no success this episode"),
     }
 
@@ -105,6 +125,9 @@ fn main() -> gym_core::Result<()> {
         }
         steps += 1;
     }
-    println!("random actions:    {:.0} env steps/s on one thread", steps as f64 / start.elapsed().as_secs_f64());
+    println!(
+        "random actions:    {:.0} env steps/s on one thread",
+        steps as f64 / start.elapsed().as_secs_f64()
+    );
     Ok(())
 }

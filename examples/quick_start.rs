@@ -14,6 +14,10 @@ fn main() -> gym_core::Result<()> {
     let mut rng = rng_from_seed(0);
     let action = env.action_space().sample(&mut rng);
     let step = env.step(&action)?;
-    println!("reward {} success {:?}", step.reward, step.info.get_bool("success"));
+    println!(
+        "reward {} success {:?}",
+        step.reward,
+        step.info.get_bool("success")
+    );
     Ok(())
 }
