@@ -120,7 +120,11 @@ static NO_METADATA: Metadata = Metadata::empty();
 /// * `reset(seed, options)`: `Some(seed)` re-seeds the environment's RNG; `None` continues
 ///   its stream (and seeds it from entropy on the very first reset), as in Gymnasium.
 /// * `step(action)` returns a [`Step`]; after `terminated || truncated` the caller must
-///   `reset` (an environment may answer [`Error::EpisodeEnded`](crate::Error::EpisodeEnded)).
+///   `reset`. A step after the end should be refused with
+///   [`Error::EpisodeEnded`](crate::Error::EpisodeEnded) (robosuite-env's tasks do, as
+///   robosuite raises); an environment that accepts it must keep reporting the episode as
+///   ended (Gymnasium's `TimeLimit` keeps answering `truncated`). Before the first `reset`,
+///   `step` answers [`Error::ResetNeeded`](crate::Error::ResetNeeded).
 /// * Invalid actions are a typed error ([`Error::InvalidAction`](crate::Error::InvalidAction)),
 ///   never a panic, and leave the environment usable.
 /// * `close` is idempotent.
