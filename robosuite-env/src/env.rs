@@ -3,7 +3,7 @@
 
 use crate::config::EnvConfig;
 use crate::models::scene::SceneBuilder;
-use crate::observations::ObsLayout;
+use crate::observations::{ObsKey, ObsLayout};
 use crate::robots::{Robot, RobotState, robot_spec};
 use crate::sim::{Sim, check_mujoco_version};
 use crate::tasks::{ModelSource, RewardConfig, Task};
@@ -63,6 +63,7 @@ pub struct RobosuiteEnv {
     source: ModelSource,
     layout: ObsLayout,
     robot_ranges: Vec<Range<usize>>,
+    robot_obs_len: Vec<usize>,
     object_range: Option<Range<usize>>,
     obs_space: DictSpace,
     act_space: BoxSpace<f64>,
@@ -158,7 +159,7 @@ impl RobosuiteEnv {
             robots.push(Robot::bind(
                 &model,
                 i,
-                robot_spec(name)?,
+                task.robot_spec(i, robot_spec(name)?)?,
                 config.controller.clone(),
                 config.initialization_noise,
             )?);
@@ -166,7 +167,18 @@ impl RobosuiteEnv {
         task.bind(&model, &robots, source)?;
 
         let mut layout = ObsLayout::new();
-        let robot_keys: Vec<_> = robots.iter().map(Robot::observation_keys).collect();
+        let robot_keys: Vec<_> = robots
+            .iter()
+            .map(|r| {
+                let mut keys = r.observation_keys();
+                keys.extend(task.robot_observation_keys(r.index()));
+                keys
+            })
+            .collect();
+        let robot_obs_len: Vec<usize> = robots
+            .iter()
+            .map(|r| r.observation_keys().iter().map(ObsKey::len).sum())
+            .collect();
         let object_keys = if config.use_object_obs {
             Some(task.observation_keys())
         } else {
@@ -214,6 +226,7 @@ impl RobosuiteEnv {
             source,
             layout,
             robot_ranges,
+            robot_obs_len,
             object_range,
             obs_space,
             act_space,
@@ -359,12 +372,27 @@ impl RobosuiteEnv {
         RewardConfig {
             reward_scale: self.config.reward_scale,
             reward_shaping: self.config.reward_shaping,
+            horizon: self.config.horizon,
         }
     }
 
     fn fill_observation(&mut self) {
-        for (robot, range) in self.robots.iter().zip(&self.robot_ranges) {
-            robot.write_observations(&self.sim, &mut self.buf[range.clone()]);
+        for ((robot, range), own) in self
+            .robots
+            .iter()
+            .zip(&self.robot_ranges)
+            .zip(&self.robot_obs_len)
+        {
+            let out = &mut self.buf[range.clone()];
+            robot.write_observations(&self.sim, &mut out[..*own]);
+            if out.len() > *own {
+                self.task.write_robot_observations(
+                    &self.sim,
+                    &self.robots,
+                    robot.index(),
+                    &mut out[*own..],
+                );
+            }
         }
         if let Some(range) = &self.object_range {
             self.task
@@ -398,6 +426,9 @@ impl RobosuiteEnv {
                 }
                 robot.apply_control(&mut self.sim);
             }
+            if sub == 0 {
+                self.task.on_policy_step(&self.sim, &self.robots);
+            }
             self.sim.step2();
         }
     }
@@ -415,7 +446,7 @@ pub fn compose_scene(task: &dyn Task, config: &EnvConfig) -> Result<SceneBuilder
     let mut scene = SceneBuilder::with_arena(&task.arena_xml())?;
     for (i, name) in config.robots.iter().enumerate() {
         let (pos, quat) = task.robot_base_pose(i);
-        scene.add_robot(i, &robot_spec(name)?, pos, quat)?;
+        scene.add_robot(i, &task.robot_spec(i, robot_spec(name)?)?, pos, quat)?;
     }
     task.build_objects(&mut scene)?;
     Ok(scene)
@@ -512,6 +543,9 @@ impl gym_core::Env for RobosuiteEnv {
         self.simulate(&flat);
         self.action_buf = flat;
         let reward = self.reward();
+        let reward_config = self.reward_config();
+        self.task
+            .after_reward(&mut self.sim, &self.robots, &reward_config);
         let success = self.check_success();
         let terminated = self.task.check_terminated(&self.sim, &self.robots);
         let truncated = self.timestep >= self.config.horizon && !self.config.ignore_done;

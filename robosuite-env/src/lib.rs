@@ -19,7 +19,8 @@
 //! * [`sim`]: the simulator an environment owns, name lookups, contacts, in-place model edits;
 //! * [`controllers`]: `OSC_POSE` and the gripper controller;
 //! * [`robots`]: robot descriptions and the run-time [`Robot`](robots::Robot);
-//! * [`tasks`]: the [`Task`](tasks::Task) trait, placement samplers and the tasks (Lift);
+//! * [`tasks`]: the [`Task`](tasks::Task) trait, placement samplers and the tasks (Lift,
+//!   Stack, NutAssembly*, PickPlace*, Door, Wipe, ToolHang);
 //! * [`observations`]: robosuite's ordered observation dict;
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
 //!   [`register_envs`]).
@@ -37,6 +38,7 @@ pub mod tasks;
 pub use config::EnvConfig;
 pub use env::{EnvSnapshot, RobosuiteEnv};
 pub use registry::{
-    ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,
+    ENV_NAMES, default_config, make, make_from_scene_xml, make_task, make_with, register_envs,
+    scene_xml,
 };
 pub use robots::{InitNoise, NoiseKind};

@@ -3,13 +3,29 @@
 
 use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
-use crate::tasks::{Lift, LiftConfig, Task};
+use crate::tasks::{Door, Lift, LiftConfig, NutAssembly, PickPlace, Stack, Task, ToolHang, Wipe};
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
 use std::sync::Arc;
 
 /// The environment names this crate provides.
-pub const ENV_NAMES: &[&str] = &["Lift"];
+pub const ENV_NAMES: &[&str] = &[
+    "Lift",
+    "Stack",
+    "NutAssembly",
+    "NutAssemblySingle",
+    "NutAssemblySquare",
+    "NutAssemblyRound",
+    "PickPlace",
+    "PickPlaceSingle",
+    "PickPlaceMilk",
+    "PickPlaceBread",
+    "PickPlaceCereal",
+    "PickPlaceCan",
+    "Door",
+    "Wipe",
+    "ToolHang",
+];
 
 /// The task registered under `name`, with its default settings.
 ///
@@ -18,6 +34,12 @@ pub const ENV_NAMES: &[&str] = &["Lift"];
 pub fn make_task(name: &str) -> Result<Box<dyn Task>> {
     match name {
         "Lift" => Ok(Box::new(Lift::new(LiftConfig::default())?)),
+        "Stack" => Ok(Box::new(Stack::new())),
+        "Door" => Ok(Box::new(Door::default())),
+        "Wipe" => Ok(Box::new(Wipe::default())),
+        "ToolHang" => Ok(Box::new(ToolHang::new())),
+        n if n.starts_with("NutAssembly") => Ok(Box::new(NutAssembly::variant(n)?)),
+        n if n.starts_with("PickPlace") => Ok(Box::new(PickPlace::variant(n)?)),
         other => Err(Error::UnknownEnv {
             id: other.to_owned(),
             available: ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
@@ -37,7 +59,13 @@ pub fn make_task(name: &str) -> Result<Box<dyn Task>> {
 /// [`Error::UnknownEnv`] listing the valid names; [`Error::Model`] when the scene cannot
 /// be built.
 pub fn make(name: &str) -> Result<RobosuiteEnv> {
-    make_with(name, EnvConfig::default())
+    make_with(name, default_config(name))
+}
+
+/// robosuite's default configuration for `name`: [`EnvConfig::default`], except that
+/// `Wipe` shapes its reward by default.
+pub fn default_config(name: &str) -> EnvConfig {
+    EnvConfig::default().with_reward_shaping(name == "Wipe")
 }
 
 /// Makes the environment `name` with `config`.
@@ -75,7 +103,11 @@ pub fn register_envs() {
         register(EnvSpec {
             id: name.to_owned(),
             factory: Arc::new(move |kwargs| {
-                Ok(make_with(name, EnvConfig::from_kwargs(kwargs)?)?.boxed())
+                let mut config = EnvConfig::from_kwargs(kwargs)?;
+                if name == "Wipe" && kwargs.get("reward_shaping").is_none() {
+                    config.reward_shaping = true;
+                }
+                Ok(make_with(name, config)?.boxed())
             }),
             max_episode_steps: None,
             nondeterministic: false,

@@ -1,33 +1,110 @@
-//! Lift against the workspace's Gymnasium `check_env` mirror and its property suite.
+//! Every registered task against the workspace's Gymnasium `check_env` mirror and its
+//! property suite.
 
 use conformance_tests::prop::{FnStateHook, prop_check_env_with_state};
 use conformance_tests::{CheckOptions, EpisodeEndSpec, PropConfig, check_env};
-use robosuite_env::{EnvConfig, EnvSnapshot, RobosuiteEnv, make_with};
+use robosuite_env::{ENV_NAMES, EnvSnapshot, RobosuiteEnv, default_config, make_with};
 
-fn lift(horizon: u64) -> RobosuiteEnv {
-    make_with("Lift", EnvConfig::default().with_horizon(horizon)).expect("Lift builds")
+fn env(name: &str, horizon: u64) -> RobosuiteEnv {
+    make_with(name, default_config(name).with_horizon(horizon))
+        .unwrap_or_else(|e| panic!("{name} builds: {e}"))
 }
 
-#[test]
-fn lift_passes_check_env() {
-    let mut env = lift(30);
-    let report = check_env(&mut env, &CheckOptions::default()).unwrap_or_else(|e| panic!("{e}"));
-    assert!(report.passed(conformance_tests::Check::ResetSeedDeterminism));
-    assert!(report.passed(conformance_tests::Check::InvalidAction));
-    assert!(report.passed(conformance_tests::Check::StepAfterEnd));
+fn passes_check_env(name: &str) {
+    let mut env = env(name, 30);
+    let report =
+        check_env(&mut env, &CheckOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(
+        report.passed(conformance_tests::Check::ResetSeedDeterminism),
+        "{name}"
+    );
+    assert!(
+        report.passed(conformance_tests::Check::InvalidAction),
+        "{name}"
+    );
+    assert!(
+        report.passed(conformance_tests::Check::StepAfterEnd),
+        "{name}"
+    );
 }
 
-#[test]
-fn lift_passes_the_property_suite() {
+fn passes_the_property_suite(name: &str) {
     let config = PropConfig::cheap().episode_end(EpisodeEndSpec {
         truncate_at: Some(8),
-        can_terminate: false,
+        // Only Wipe ends early (arm contact, joint limit, everything wiped).
+        can_terminate: name == "Wipe",
     });
     let hook = FnStateHook::new(
         |env: &RobosuiteEnv| -> gym_core::Result<EnvSnapshot> { Ok(env.snapshot()) },
         |env: &mut RobosuiteEnv, s: &EnvSnapshot| env.restore(s),
     );
-    let report =
-        prop_check_env_with_state(|| lift(8), &hook, &config).unwrap_or_else(|e| panic!("{e}"));
-    assert!(report.skipped.is_empty(), "{:?}", report.skipped);
+    let report = prop_check_env_with_state(|| env(name, 8), &hook, &config)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(report.skipped.is_empty(), "{name}: {:?}", report.skipped);
+}
+
+#[test]
+fn lift_passes_check_env() {
+    passes_check_env("Lift");
+}
+
+#[test]
+fn lift_passes_the_property_suite() {
+    passes_the_property_suite("Lift");
+}
+
+/// One `check_env` test and one property-suite test per task, so the test harness runs
+/// them in parallel.
+macro_rules! task_tests {
+    ($($check:ident, $prop:ident => $name:literal;)*) => {
+        $(
+            #[test]
+            fn $check() {
+                passes_check_env($name);
+            }
+
+            #[test]
+            fn $prop() {
+                passes_the_property_suite($name);
+            }
+        )*
+
+        #[test]
+        fn every_registered_task_is_covered() {
+            let covered = ["Lift", $($name),*];
+            for name in ENV_NAMES {
+                assert!(covered.contains(name), "{name} has no conformance test");
+            }
+        }
+    };
+}
+
+task_tests! {
+    stack_check_env, stack_prop => "Stack";
+    nut_assembly_check_env, nut_assembly_prop => "NutAssembly";
+    nut_assembly_single_check_env, nut_assembly_single_prop => "NutAssemblySingle";
+    nut_assembly_square_check_env, nut_assembly_square_prop => "NutAssemblySquare";
+    nut_assembly_round_check_env, nut_assembly_round_prop => "NutAssemblyRound";
+    pick_place_check_env, pick_place_prop => "PickPlace";
+    pick_place_single_check_env, pick_place_single_prop => "PickPlaceSingle";
+    pick_place_milk_check_env, pick_place_milk_prop => "PickPlaceMilk";
+    pick_place_bread_check_env, pick_place_bread_prop => "PickPlaceBread";
+    pick_place_cereal_check_env, pick_place_cereal_prop => "PickPlaceCereal";
+    pick_place_can_check_env, pick_place_can_prop => "PickPlaceCan";
+    door_check_env, door_prop => "Door";
+    wipe_check_env, wipe_prop => "Wipe";
+    tool_hang_check_env, tool_hang_prop => "ToolHang";
+}
+
+#[test]
+fn every_task_reports_success_in_info() {
+    use gym_core::Env;
+    for name in ENV_NAMES {
+        let mut e = env(name, 5);
+        let (_, info) = e.reset(Some(0), None).unwrap();
+        assert_eq!(info.get_bool("success"), Some(false), "{name}");
+        let a = ndarray::ArrayD::zeros(ndarray::IxDyn(&[e.action_dim()]));
+        let step = e.step(&a).unwrap();
+        assert_eq!(step.info.get_bool("success"), Some(false), "{name}");
+    }
 }

@@ -23,3 +23,6 @@ pub const PANDA_GRIPPER_XML: &str = include_str!("assets/panda_gripper.xml");
 
 /// The Rethink-style pedestal mount under the robot base (prefix `fixed_mount{i}_`).
 pub const RETHINK_MOUNT_XML: &str = include_str!("assets/rethink_mount.xml");
+
+/// robosuite's WipingGripper: a flat wiping tool without fingers (prefix `gripper{i}_right_`).
+pub const WIPING_GRIPPER_XML: &str = include_str!("assets/wiping_gripper.xml");

@@ -6,7 +6,7 @@ mod panda;
 mod robot;
 mod spec;
 
-pub use panda::{PANDA, PANDA_GRIPPER, panda};
+pub use panda::{PANDA, PANDA_GRIPPER, WIPING_GRIPPER, panda};
 pub use robot::{ARM_DOF, InitNoise, NoiseKind, Robot, RobotState};
 pub use spec::{ArmSpec, GripperSpec, RobotSpec};
 

@@ -1,7 +1,7 @@
 //! The Franka Panda with the Panda gripper, as robosuite 1.5.2 configures them.
 
 use super::spec::{ArmSpec, GripperSpec, RobotSpec};
-use crate::models::{PANDA_ARM_XML, PANDA_GRIPPER_XML, RETHINK_MOUNT_XML};
+use crate::models::{PANDA_ARM_XML, PANDA_GRIPPER_XML, RETHINK_MOUNT_XML, WIPING_GRIPPER_XML};
 use std::f64::consts::PI;
 
 /// The Panda arm: `init_qpos = [0, π/16, 0, −π/2 − π/3, 0, π − 0.2, π/4]` on a Rethink mount.
@@ -46,3 +46,17 @@ pub fn panda() -> RobotSpec {
         gripper: Some(PANDA_GRIPPER),
     }
 }
+
+/// robosuite's `WipingGripper` (Wipe's tool): no fingers, so no gripper action, no finger
+/// pads; the grip site sits at the pad's centre, 1.5 cm below the hand.
+pub const WIPING_GRIPPER: GripperSpec = GripperSpec {
+    name: "WipingGripper",
+    xml: WIPING_GRIPPER_XML,
+    joints: &[],
+    init_qpos: &[],
+    grip_site: "grip_site",
+    left_pads: &[],
+    right_pads: &[],
+    speed: 0.0,
+    command_signs: &[],
+};

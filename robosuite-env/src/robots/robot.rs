@@ -208,9 +208,10 @@ impl Robot {
         &self.spec
     }
 
-    /// The action dimension: 6 for the arm plus 1 for a gripper.
+    /// The action dimension: 6 for the arm plus 1 for a gripper with fingers (a wiping
+    /// tool has none).
     pub fn action_dim(&self) -> usize {
-        6 + usize::from(self.gripper.is_some())
+        6 + usize::from(self.gripper.as_ref().is_some_and(|g| !g.qpos.is_empty()))
     }
 
     /// The arm controller.

@@ -73,3 +73,12 @@ pub fn actuator_for_joint(model: &MjModel, joint: usize, joint_name: &str) -> Re
         })
         .ok_or_else(|| Error::Model(format!("no actuator drives the joint `{joint_name}`")))
 }
+
+/// The address in `sensordata` of the sensor `name`.
+///
+/// # Errors
+/// [`Error::Model`] when there is no such sensor.
+pub fn sensor_adr(model: &MjModel, name: &str) -> Result<usize> {
+    let id = lookup(model, mjtObj::mjOBJ_SENSOR, "sensor", name)?;
+    Ok(model.sensor_adr()[id] as usize)
+}

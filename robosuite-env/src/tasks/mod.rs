@@ -4,14 +4,27 @@
 //! A [`Task`] is object safe; [`RobosuiteEnv`](crate::RobosuiteEnv) holds one as
 //! `Box<dyn Task>`, so every robosuite task plugs into the same environment mechanics.
 
+pub mod common;
+mod door;
 mod lift;
+mod nut_assembly;
+mod pick_place;
 pub mod placement;
+mod stack;
+mod tool_hang;
+mod wipe;
 
+pub use door::{Door, DoorConfig, door_xml};
 pub use lift::{Lift, LiftConfig};
+pub use nut_assembly::{NutAssembly, PEG_POS, pegs_arena_xml};
+pub use pick_place::{PickPlace, bins_arena_xml, in_quadrant, target_placement};
+pub use stack::Stack;
+pub use tool_hang::{ToolHang, frame_xml, stand_xml, tool_xml};
+pub use wipe::{Wipe, WipeConfig};
 
 use crate::models::scene::SceneBuilder;
 use crate::observations::ObsKey;
-use crate::robots::Robot;
+use crate::robots::{Robot, RobotSpec};
 use crate::sim::Sim;
 use gym_core::{EnvRng, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
@@ -34,6 +47,8 @@ pub struct RewardConfig {
     pub reward_scale: Option<f64>,
     /// Dense staged rewards instead of the sparse success reward.
     pub reward_shaping: bool,
+    /// The episode length (Wipe normalises its reward by it).
+    pub horizon: u64,
 }
 
 /// A robosuite task.
@@ -119,4 +134,39 @@ pub trait Task: Send + std::fmt::Debug + 'static {
     fn check_terminated(&self, _sim: &Sim, _robots: &[Robot]) -> bool {
         false
     }
+
+    /// The robot the task uses for robot `index`, given the configured one (Wipe swaps in
+    /// its wiping tool for the gripper). The default keeps it.
+    ///
+    /// # Errors
+    /// [`gym_core::Error::InvalidArgument`] when the task cannot use the robot.
+    fn robot_spec(&self, _index: usize, spec: RobotSpec) -> Result<RobotSpec> {
+        Ok(spec)
+    }
+
+    /// Extra keys the task appends to robot `index`'s proprioception (Wipe's
+    /// `robot0_contact`). The default has none.
+    fn robot_observation_keys(&self, _index: usize) -> Vec<ObsKey> {
+        Vec::new()
+    }
+
+    /// Writes the keys of [`Task::robot_observation_keys`].
+    fn write_robot_observations(
+        &self,
+        _sim: &Sim,
+        _robots: &[Robot],
+        _index: usize,
+        _out: &mut [f64],
+    ) {
+    }
+
+    /// Called on the first substep of every env step, after the controllers wrote their
+    /// controls (where robosuite pushes its per-step force/torque buffers). The default
+    /// does nothing.
+    fn on_policy_step(&mut self, _sim: &Sim, _robots: &[Robot]) {}
+
+    /// Called after the step's reward was computed and before success and termination are
+    /// checked (robosuite's reward updates Wipe's wiped markers). The default does
+    /// nothing.
+    fn after_reward(&mut self, _sim: &mut Sim, _robots: &[Robot], _config: &RewardConfig) {}
 }

@@ -92,3 +92,61 @@ pub fn scripted_lift(env: &mut RobosuiteEnv, seed: u64, max_steps: usize) -> Res
     }
     Ok((false, max_steps))
 }
+
+/// Yaw of the Panda's finger axis (hand y axis) from `robot0_eef_quat` (xyzw).
+pub fn finger_yaw(obs: &DictValue) -> f64 {
+    let hq = get(obs, "robot0_eef_quat");
+    let (x, y, z, w) = (hq[0], hq[1], hq[2], hq[3]);
+    let hand_y = [2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z)];
+    hand_y[1].atan2(hand_y[0])
+}
+
+/// Yaw of an xyzw quaternion.
+pub fn yaw_of(q: &[f64]) -> f64 {
+    let (x, y, z, w) = (q[0], q[1], q[2], q[3]);
+    (2.0 * (w * z + x * y)).atan2(1.0 - 2.0 * (y * y + z * z))
+}
+
+/// Wraps an angle to (−π/4, π/4] (a box's yaw modulo a quarter turn).
+pub fn wrap_to_quarter(a: f64) -> f64 {
+    wrap_quarter(a)
+}
+
+/// Wraps an angle to (−π/2, π/2] (the gripper is symmetric under a half turn).
+pub fn wrap_half(a: f64) -> f64 {
+    let h = std::f64::consts::PI;
+    (a + h / 2.0).rem_euclid(h) - h / 2.0
+}
+
+/// A proportional OSC action toward `target` with a yaw correction and a gripper command.
+pub fn move_to(eef: &[f64], target: [f64; 3], gain: f64, yaw_err: f64, grip: f64) -> ArrayD<f64> {
+    action([
+        ((target[0] - eef[0]) * gain).clamp(-1.0, 1.0),
+        ((target[1] - eef[1]) * gain).clamp(-1.0, 1.0),
+        ((target[2] - eef[2]) * gain).clamp(-1.0, 1.0),
+        0.0,
+        0.0,
+        (yaw_err / 0.5).clamp(-1.0, 1.0),
+        grip,
+    ])
+}
+
+/// Euclidean distance between a target and a point.
+pub fn dist3(a: [f64; 3], b: &[f64]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// A waypoint of a scripted pick-and-place: a target for the grip site, the gripper
+/// command, whether to align the fingers, and how long to stay at most / at least.
+pub struct Waypoint {
+    /// The target.
+    pub target: [f64; 3],
+    /// Gripper command (−1 open, +1 close).
+    pub grip: f64,
+    /// Tolerance that ends the waypoint.
+    pub tol: f64,
+    /// Minimum steps.
+    pub min_steps: usize,
+    /// Maximum steps.
+    pub max_steps: usize,
+}
