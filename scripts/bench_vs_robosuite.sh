@@ -12,7 +12,7 @@ seconds=${2:-15}
 venv=${BENCH_VENV:-.bench-venv/robosuite}
 if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
-    "$venv/bin/pip" install --quiet "robosuite==1.5.2" "mujoco==3.3.7" gymnasium
+    "$venv/bin/pip" install --quiet "robosuite==1.5.2" "mujoco==3.3.7" gymnasium h5py
 fi
 echo "robosuite 1.5.2 (Python GymWrapper):"
 MUJOCO_GL=disable "$venv/bin/python" scripts/bench_robosuite.py --task "$task" --seconds "$seconds" > .bench-robosuite.json
