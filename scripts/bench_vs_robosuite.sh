@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Measures robosuite 1.5.2's GymWrapper (Python, mujoco==3.3.7) and robosuite-rs on the
-# same task in the same run, and prints both and their ratio.
+# same task in the same run, and prints both and their ratio; with the project's .venv
+# (made by `make test`) it also measures robosuite_rs from Python (Lift).
 #
 # Not part of CI: it installs robosuite from PyPI into a scratch virtualenv
 # (.bench-venv/robosuite by default). Usage:
@@ -29,3 +30,7 @@ rust = next(t for t in rs["tasks"] if t["task"] == task)
 print(f"{task}: robosuite {py['steps_per_s']:.0f} steps/s, robosuite-rs {rust['steps_per_s']:.0f} steps/s, "
       f"ratio {rust['steps_per_s'] / py['steps_per_s']:.1f}x; reset {py['reset_ms']:.1f} ms vs {rust['reset_us'] / 1000:.3f} ms")
 PY
+if [ -x .venv/bin/python ] && [ "$task" = Lift ]; then
+    echo "robosuite_rs from Python (python/scripts/bench.py):"
+    .venv/bin/python python/scripts/bench.py
+fi
