@@ -1,9 +1,10 @@
 //! Helpers shared by the tasks: free-joint objects, distances, grasp checks and the
 //! object-in-gripper-frame observations of robosuite's `_create_obj_sensors`.
 
+use crate::observations::ObsKey;
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, any_contact_between, body_id, geom_id, joint_id};
-use gym_core::{Error, Result};
+use gym_core::{DType, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 
 /// A free-floating object bound in a compiled model.
@@ -156,9 +157,7 @@ pub fn write_object_pose_obs(
 }
 
 /// The four observation keys of [`write_object_pose_obs`] for `name`.
-pub fn object_pose_keys(name: &str) -> Vec<crate::observations::ObsKey> {
-    use crate::observations::ObsKey;
-    use gym_core::DType;
+pub fn object_pose_keys(name: &str) -> Vec<ObsKey> {
     vec![
         ObsKey::new(format!("{name}_to_robot0_eef_pos"), &[3], DType::F64),
         ObsKey::new(format!("{name}_to_robot0_eef_quat"), &[4], DType::F64),
@@ -193,6 +192,54 @@ impl ObjectMode {
             Self::All => 0,
             Self::RandomSingle => 1,
             Self::Single(_) => 2,
+        }
+    }
+
+    /// The pose observation keys of the objects in play (14 per object). In
+    /// [`ObjectMode::RandomSingle`] robosuite renames them after each reset's object; a fixed
+    /// observation space cannot, so they are named `{single}_*` followed by `{single}_id`.
+    pub fn pose_keys(self, names: &[&str], single: &str) -> Vec<ObsKey> {
+        match self {
+            Self::All => names.iter().flat_map(|n| object_pose_keys(n)).collect(),
+            Self::Single(i) => object_pose_keys(names[i]),
+            Self::RandomSingle => {
+                let mut k = object_pose_keys(single);
+                k.push(ObsKey::new(format!("{single}_id"), &[], DType::I64));
+                k
+            }
+        }
+    }
+
+    /// Writes the pose observations of the objects in play, laid out as
+    /// [`ObjectMode::pose_keys`]: `write(i, out)` fills object `i`'s 14 values; `active` is the
+    /// object drawn for [`ObjectMode::RandomSingle`].
+    pub fn write_pose_obs(
+        self,
+        count: usize,
+        active: usize,
+        out: &mut [f64],
+        mut write: impl FnMut(usize, &mut [f64]),
+    ) {
+        match self {
+            Self::All => {
+                for i in 0..count {
+                    write(i, &mut out[14 * i..14 * (i + 1)]);
+                }
+            }
+            Self::Single(i) => write(i, &mut out[..14]),
+            Self::RandomSingle => {
+                write(active, &mut out[..14]);
+                out[14] = active as f64;
+            }
+        }
+    }
+
+    /// robosuite's success rule: every object placed in mode 0, at least one otherwise.
+    pub fn is_success(self, placed: &[bool]) -> bool {
+        let n = placed.iter().filter(|b| **b).count();
+        match self {
+            Self::All => n == placed.len(),
+            _ => n > 0,
         }
     }
 }

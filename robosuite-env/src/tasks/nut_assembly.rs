@@ -2,8 +2,7 @@
 //! on the round peg (`nut_assembly.py`).
 
 use super::common::{
-    FreeBody, ObjectMode, PARKED_POS, dist, eef_pos, is_grasped, object_pose_keys,
-    write_object_pose_obs,
+    FreeBody, ObjectMode, PARKED_POS, dist, eef_pos, is_grasped, write_object_pose_obs,
 };
 use super::placement::{Axis, PlacedObject, Pose, Rotation, UniformRandomSampler};
 use super::{ModelSource, RewardConfig, Task};
@@ -13,7 +12,7 @@ use crate::models::scene::SceneBuilder;
 use crate::observations::ObsKey;
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, body_id, site_id};
-use gym_core::{DType, EnvRng, Error, Result};
+use gym_core::{EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
 use std::f64::consts::FRAC_PI_4;
@@ -318,35 +317,15 @@ impl Task for NutAssembly {
     }
 
     fn observation_keys(&self) -> Vec<ObsKey> {
-        match self.mode {
-            ObjectMode::All => NUTS.iter().flat_map(|n| object_pose_keys(n)).collect(),
-            ObjectMode::Single(i) => object_pose_keys(NUTS[i]),
-            ObjectMode::RandomSingle => {
-                // robosuite renames these after each reset's nut; a fixed observation space
-                // cannot, so they are named `nut_*` (the nut is `nut_id`).
-                let mut k = object_pose_keys("nut");
-                k.push(ObsKey::new("nut_id", &[], DType::I64));
-                k
-            }
-        }
+        self.mode.pose_keys(&NUTS, "nut")
     }
 
     fn write_observations(&self, sim: &Sim, robots: &[Robot], out: &mut [f64]) {
-        let write = |i: usize, out: &mut [f64]| {
-            let o = &self.nuts[i];
-            write_object_pose_obs(sim, robots, o.pos(sim), o.quat(sim), out);
-        };
-        match self.mode {
-            ObjectMode::All => {
-                write(0, &mut out[..14]);
-                write(1, &mut out[14..28]);
-            }
-            ObjectMode::Single(i) => write(i, &mut out[..14]),
-            ObjectMode::RandomSingle => {
-                write(self.active, &mut out[..14]);
-                out[14] = self.active as f64;
-            }
-        }
+        self.mode
+            .write_pose_obs(NUTS.len(), self.active, out, |i, out| {
+                let o = &self.nuts[i];
+                write_object_pose_obs(sim, robots, o.pos(sim), o.quat(sim), out);
+            });
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
@@ -366,15 +345,7 @@ impl Task for NutAssembly {
     }
 
     fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool {
-        let n = self
-            .objects_on_pegs(sim, robots)
-            .iter()
-            .filter(|b| **b)
-            .count();
-        match self.mode {
-            ObjectMode::All => n == 2,
-            _ => n > 0,
-        }
+        self.mode.is_success(&self.objects_on_pegs(sim, robots))
     }
 
     fn save_state(&self) -> Vec<f64> {

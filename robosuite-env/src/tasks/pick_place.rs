@@ -2,8 +2,7 @@
 //! the other (`pick_place.py`).
 
 use super::common::{
-    FreeBody, ObjectMode, PARKED_POS, dist, eef_pos, is_grasped, object_pose_keys,
-    write_object_pose_obs,
+    FreeBody, ObjectMode, PARKED_POS, dist, eef_pos, is_grasped, write_object_pose_obs,
 };
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use super::{ModelSource, RewardConfig, Task};
@@ -12,7 +11,7 @@ use crate::models::scene::SceneBuilder;
 use crate::observations::ObsKey;
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, body_id};
-use gym_core::{DType, EnvRng, Error, Result};
+use gym_core::{EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
 
@@ -437,39 +436,15 @@ impl Task for PickPlace {
     }
 
     fn observation_keys(&self) -> Vec<ObsKey> {
-        match self.mode {
-            ObjectMode::All => PICK_PLACE_OBJECTS
-                .iter()
-                .flat_map(|n| object_pose_keys(n))
-                .collect(),
-            ObjectMode::Single(i) => object_pose_keys(PICK_PLACE_OBJECTS[i]),
-            ObjectMode::RandomSingle => {
-                // robosuite renames these after each reset's object; a fixed observation
-                // space cannot, so they are named `obj_*` (the object is `obj_id`).
-                let mut k = object_pose_keys("obj");
-                k.push(ObsKey::new("obj_id", &[], DType::I64));
-                k
-            }
-        }
+        self.mode.pose_keys(&PICK_PLACE_OBJECTS, "obj")
     }
 
     fn write_observations(&self, sim: &Sim, robots: &[Robot], out: &mut [f64]) {
-        let write = |i: usize, out: &mut [f64]| {
-            let o = &self.objects[i];
-            write_object_pose_obs(sim, robots, o.pos(sim), o.quat(sim), out);
-        };
-        match self.mode {
-            ObjectMode::All => {
-                for i in 0..4 {
-                    write(i, &mut out[14 * i..14 * (i + 1)]);
-                }
-            }
-            ObjectMode::Single(i) => write(i, &mut out[..14]),
-            ObjectMode::RandomSingle => {
-                write(self.active, &mut out[..14]);
-                out[14] = self.active as f64;
-            }
-        }
+        self.mode
+            .write_pose_obs(PICK_PLACE_OBJECTS.len(), self.active, out, |i, out| {
+                let o = &self.objects[i];
+                write_object_pose_obs(sim, robots, o.pos(sim), o.quat(sim), out);
+            });
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
@@ -489,15 +464,7 @@ impl Task for PickPlace {
     }
 
     fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool {
-        let n = self
-            .objects_in_bins(sim, robots)
-            .iter()
-            .filter(|b| **b)
-            .count();
-        match self.mode {
-            ObjectMode::All => n == 4,
-            _ => n > 0,
-        }
+        self.mode.is_success(&self.objects_in_bins(sim, robots))
     }
 
     fn save_state(&self) -> Vec<f64> {
