@@ -202,3 +202,58 @@ pub trait VectorEnv {
     /// Whether `close` has been called.
     fn is_closed(&self) -> bool;
 }
+
+/// The parts of [`VectorEnv`] that [`SyncVectorEnv`] and [`ThreadVectorEnv`] share: space
+/// and metadata accessors read from `self.core` (a `VectorCore`), and the resets that go
+/// through `self.run_reset`. Used inside both `impl VectorEnv` blocks.
+macro_rules! delegate_to_core {
+    ($obs:ty, $act:ty) => {
+        fn num_envs(&self) -> usize {
+            self.core.n
+        }
+
+        fn single_observation_space(&self) -> &$obs {
+            &self.core.single_obs
+        }
+
+        fn single_action_space(&self) -> &$act {
+            &self.core.single_act
+        }
+
+        fn observation_space(&self) -> &<$obs as BatchSpace>::Batched {
+            &self.core.batched_obs
+        }
+
+        fn action_space(&self) -> &<$act as BatchSpace>::Batched {
+            &self.core.batched_act
+        }
+
+        fn metadata(&self) -> &Metadata {
+            &self.core.metadata
+        }
+
+        fn autoreset_mode(&self) -> AutoresetMode {
+            self.core.mode
+        }
+
+        fn reset(
+            &mut self,
+            seed: impl Into<Seeds>,
+            options: Option<&ResetOptions>,
+        ) -> Result<(&BatchOf<$obs>, VectorInfo)> {
+            let infos = self.run_reset(seed.into(), options, None)?;
+            Ok((&self.core.observations, infos))
+        }
+
+        fn reset_masked(
+            &mut self,
+            mask: &[bool],
+            seed: impl Into<Seeds>,
+            options: Option<&ResetOptions>,
+        ) -> Result<(&BatchOf<$obs>, VectorInfo)> {
+            let infos = self.run_reset(seed.into(), options, Some(mask))?;
+            Ok((&self.core.observations, infos))
+        }
+    };
+}
+pub(crate) use delegate_to_core;

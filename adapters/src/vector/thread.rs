@@ -1,6 +1,7 @@
 //! [`ThreadVectorEnv`]: sub-environments stepped in parallel on persistent worker threads.
 
 use super::core::{Op, Outcome, VectorCore, run_op};
+use super::delegate_to_core;
 use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Metadata, ResetOptions, Result};
@@ -262,52 +263,7 @@ where
     type ObsSpace = E::ObsSpace;
     type ActSpace = E::ActSpace;
 
-    fn num_envs(&self) -> usize {
-        self.core.n
-    }
-
-    fn single_observation_space(&self) -> &E::ObsSpace {
-        &self.core.single_obs
-    }
-
-    fn single_action_space(&self) -> &E::ActSpace {
-        &self.core.single_act
-    }
-
-    fn observation_space(&self) -> &<E::ObsSpace as BatchSpace>::Batched {
-        &self.core.batched_obs
-    }
-
-    fn action_space(&self) -> &<E::ActSpace as BatchSpace>::Batched {
-        &self.core.batched_act
-    }
-
-    fn metadata(&self) -> &Metadata {
-        &self.core.metadata
-    }
-
-    fn autoreset_mode(&self) -> AutoresetMode {
-        self.core.mode
-    }
-
-    fn reset(
-        &mut self,
-        seed: impl Into<Seeds>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(&BatchOf<E::ObsSpace>, VectorInfo)> {
-        let infos = self.run_reset(seed.into(), options, None)?;
-        Ok((&self.core.observations, infos))
-    }
-
-    fn reset_masked(
-        &mut self,
-        mask: &[bool],
-        seed: impl Into<Seeds>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(&BatchOf<E::ObsSpace>, VectorInfo)> {
-        let infos = self.run_reset(seed.into(), options, Some(mask))?;
-        Ok((&self.core.observations, infos))
-    }
+    delegate_to_core!(E::ObsSpace, E::ActSpace);
 
     fn step(
         &mut self,
