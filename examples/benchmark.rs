@@ -2,14 +2,18 @@
 //! actions (raw env and through the flat GymWrapper), the physics-only cost of the same
 //! model (`mj_step` × substeps per env step, arm held by gravity compensation) and the ratio,
 //! reset time, resident memory per additional instance, and thread-vector-env throughput
-//! for 1, 2, 4, ... environments. Prints a table; `--json PATH` also writes JSON.
+//! for 1, 2, 4, ... environments beside the machine's parallel ceiling (the same number of
+//! envs stepped by independent threads, no vector env). Prints a table; `--json PATH` also
+//! writes JSON.
 //!
 //! ```text
 //! cargo run --release -p examples --example benchmark -- [--task Lift] [--seconds 3]
-//!     [--max-envs 4] [--json bench.json]
+//!     [--max-envs 4] [--rounds 5] [--vector-only] [--json bench.json]
 //! ```
 //!
-//! Figures are wall-clock rates: run it on an otherwise idle machine.
+//! Figures are wall-clock rates: run it on an otherwise idle machine. The vector figures are
+//! interleaved over `--rounds` rounds (medians of per-round ratios), because a shared VM's
+//! speed drifts between minutes.
 
 use adapters::{ThreadVectorEnv, VectorEnv, WrapperExt};
 use gym_core::{Env, Result, Space, rng_from_seed};
@@ -21,6 +25,8 @@ struct Args {
     tasks: Vec<String>,
     seconds: f64,
     max_envs: usize,
+    rounds: usize,
+    vector_only: bool,
     json: Option<String>,
 }
 
@@ -35,15 +41,22 @@ fn parse_args() -> Args {
             .map_or(2, |n| n.get())
             .max(2)
             * 2,
+        rounds: 5,
+        vector_only: false,
         json: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
+        if flag == "--vector-only" {
+            args.vector_only = true;
+            continue;
+        }
         let value = it.next().unwrap_or_default();
         match flag.as_str() {
             "--task" => args.tasks = vec![value],
             "--seconds" => args.seconds = value.parse().unwrap_or(args.seconds),
             "--max-envs" => args.max_envs = value.parse().unwrap_or(args.max_envs),
+            "--rounds" => args.rounds = value.parse().unwrap_or(args.rounds).max(1),
             "--json" => args.json = Some(value),
             other => eprintln!("benchmark: ignoring unknown argument {other}"),
         }
@@ -60,6 +73,108 @@ fn rate(budget: Duration, mut step: impl FnMut() -> Result<()>) -> Result<f64> {
         n += 1;
     }
     Ok(n as f64 / start.elapsed().as_secs_f64())
+}
+
+/// Steps/s of `n` flat-GymWrapper envs stepped by `n` independent threads (no vector env,
+/// no synchronisation): what the machine itself allows for `n` parallel envs.
+fn parallel_ceiling(task: &str, n: usize, budget: Duration) -> Result<f64> {
+    let envs = (0..n)
+        .map(|_| make(task)?.flat_gym_wrapper(None))
+        .collect::<Result<Vec<_>>>()?;
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = envs
+            .into_iter()
+            .enumerate()
+            .map(|(i, mut env)| {
+                scope.spawn(move || {
+                    let mut rng = rng_from_seed(100 + i as u64);
+                    env.reset(Some(i as u64), None)?;
+                    rate(budget, || {
+                        let a = env.action_space().sample(&mut rng);
+                        if env.step(&a)?.done() {
+                            env.reset(None, None)?;
+                        }
+                        Ok(())
+                    })
+                })
+            })
+            .collect();
+        handles.into_iter().try_fold(0.0, |sum, h| {
+            let r = h
+                .join()
+                .map_err(|_| gym_core::Error::Simulation("a benchmark thread panicked".into()))??;
+            Ok(sum + r)
+        })
+    })
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        (v[m - 1] + v[m]) / 2.0
+    }
+}
+
+/// ThreadVectorEnv throughput for 1, 2, 4, ... envs and the parallel ceiling of the same
+/// count. The machine's speed drifts between minutes, so the measurements are interleaved
+/// in `args.rounds` rounds and each ratio is the median of its per-round ratios.
+fn vector_scaling(
+    task: &str,
+    args: &Args,
+    rng: &mut gym_core::EnvRng,
+) -> Result<Vec<serde_json::Value>> {
+    let window = Duration::from_secs_f64(args.seconds / args.rounds as f64);
+    let counts: Vec<usize> = std::iter::successors(Some(1usize), |n| Some(n * 2))
+        .take_while(|n| *n <= args.max_envs)
+        .collect();
+    let mut venvs = counts
+        .iter()
+        .map(|&n| {
+            let envs = (0..n)
+                .map(|_| make(task)?.flat_gym_wrapper(None))
+                .collect::<Result<Vec<_>>>()?;
+            let mut venv = ThreadVectorEnv::new(envs)?;
+            venv.reset(0u64, None)?;
+            Ok(venv)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    // rates[i][round] for the vector env and the ceiling of counts[i].
+    let mut vector_rates = vec![Vec::new(); counts.len()];
+    let mut ceiling_rates = vec![Vec::new(); counts.len()];
+    for _ in 0..args.rounds {
+        for (i, (venv, &n)) in venvs.iter_mut().zip(&counts).enumerate() {
+            let r = rate(window, || {
+                let actions = venv.action_space().sample(rng);
+                venv.step(&actions).map(|_| ())
+            })? * n as f64;
+            vector_rates[i].push(r);
+            ceiling_rates[i].push(if n == 1 {
+                r
+            } else {
+                parallel_ceiling(task, n, window)?
+            });
+        }
+    }
+    let ratio = |a: &[f64], b: &[f64]| median(a.iter().zip(b).map(|(x, y)| x / y).collect());
+    Ok(counts
+        .iter()
+        .zip(&venvs)
+        .enumerate()
+        .map(|(i, (&n, venv))| {
+            json!({
+                "envs": n,
+                "threads": venv.num_threads(),
+                "steps_per_s": median(vector_rates[i].clone()),
+                "speedup": ratio(&vector_rates[i], &vector_rates[0]),
+                "ceiling_steps_per_s": median(ceiling_rates[i].clone()),
+                "ceiling_speedup": ratio(&ceiling_rates[i], &vector_rates[0]),
+                "efficiency": ratio(&vector_rates[i], &ceiling_rates[i]),
+            })
+        })
+        .collect())
 }
 
 /// Resident set size of this process in MiB.
@@ -79,14 +194,29 @@ fn make(task: &str) -> Result<RobosuiteEnv> {
 }
 
 fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
-    let budget = Duration::from_secs_f64(args.seconds);
     let mut rng = rng_from_seed(1);
+    let mut figures = if args.vector_only {
+        json!({"task": task})
+    } else {
+        single_env_figures(task, args, &mut rng)?
+    };
+    figures["vector"] = json!(vector_scaling(task, args, &mut rng)?);
+    Ok(figures)
+}
+
+/// One env: steps/s raw and through the GymWrapper, physics-only, reset, memory.
+fn single_env_figures(
+    task: &str,
+    args: &Args,
+    rng: &mut gym_core::EnvRng,
+) -> Result<serde_json::Value> {
+    let budget = Duration::from_secs_f64(args.seconds);
 
     // Raw env, random actions, resets at the horizon included.
     let mut env = make(task)?;
     env.reset(Some(0), None)?;
     let env_rate = rate(budget, || {
-        let a = env.action_space().sample(&mut rng);
+        let a = env.action_space().sample(rng);
         if env.step(&a)?.done() {
             env.reset(None, None)?;
         }
@@ -97,7 +227,7 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
     let mut gym = make(task)?.flat_gym_wrapper(None)?;
     gym.reset(Some(0), None)?;
     let gym_rate = rate(budget, || {
-        let a = gym.action_space().sample(&mut rng);
+        let a = gym.action_space().sample(rng);
         if gym.step(&a)?.done() {
             gym.reset(None, None)?;
         }
@@ -150,37 +280,13 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
         let mut e = make(task)?;
         e.reset(Some(i), None)?;
         for _ in 0..5 {
-            let a = e.action_space().sample(&mut rng);
+            let a = e.action_space().sample(rng);
             let _ = e.step(&a)?;
         }
         many.push(e);
     }
     let mib_per_env = (rss_mib() - before) / many.len() as f64;
     drop(many);
-
-    // Thread vector env scaling.
-    let mut vector = Vec::new();
-    let mut n_envs = 1;
-    let mut base = None;
-    while n_envs <= args.max_envs {
-        let envs = (0..n_envs)
-            .map(|_| make(task)?.flat_gym_wrapper(None))
-            .collect::<Result<Vec<_>>>()?;
-        let mut venv = ThreadVectorEnv::new(envs)?;
-        venv.reset(0u64, None)?;
-        let steps_rate = rate(budget, || {
-            let actions = venv.action_space().sample(&mut rng);
-            venv.step(&actions).map(|_| ())
-        })? * n_envs as f64;
-        let threads = venv.num_threads();
-        venv.close();
-        let base_rate = *base.get_or_insert(steps_rate);
-        vector.push(
-            json!({"envs": n_envs, "threads": threads, "steps_per_s": steps_rate,
-                           "speedup": steps_rate / base_rate}),
-        );
-        n_envs *= 2;
-    }
 
     Ok(json!({
         "task": task,
@@ -192,7 +298,6 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
         "reset_us": reset_us,
         "mib_per_env": mib_per_env,
         "arena_mib": env.sim().arena_bytes() as f64 / 1048576.0,
-        "vector": vector,
     }))
 }
 
@@ -206,38 +311,45 @@ fn main() -> Result<()> {
     let mut results = Vec::new();
     for task in &args.tasks {
         let r = bench_task(task, &args)?;
-        println!("\n{task} ({} substeps per env step)", r["substeps"]);
-        println!(
-            "  env steps/s, one thread             {:>10.0}",
-            r["steps_per_s"].as_f64().unwrap_or(0.0)
-        );
-        println!(
-            "  through GymWrapper (flat f32)        {:>10.0}",
-            r["gym_wrapper_steps_per_s"].as_f64().unwrap_or(0.0)
-        );
-        println!(
-            "  physics only (mj_step x substeps)    {:>10.0}",
-            r["physics_only_steps_per_s"].as_f64().unwrap_or(0.0)
-        );
-        println!(
-            "  env cost / physics-only cost         {:>10.2}x",
-            r["cost_ratio"].as_f64().unwrap_or(0.0)
-        );
-        println!(
-            "  reset                                {:>10.1} us",
-            r["reset_us"].as_f64().unwrap_or(0.0)
-        );
-        println!(
-            "  resident memory per extra instance   {:>10.2} MiB",
-            r["mib_per_env"].as_f64().unwrap_or(0.0)
-        );
+        println!("\n{task}");
+        if !args.vector_only {
+            println!("  {} substeps per env step", r["substeps"]);
+            println!(
+                "  env steps/s, one thread             {:>10.0}",
+                r["steps_per_s"].as_f64().unwrap_or(0.0)
+            );
+            println!(
+                "  through GymWrapper (flat f32)        {:>10.0}",
+                r["gym_wrapper_steps_per_s"].as_f64().unwrap_or(0.0)
+            );
+            println!(
+                "  physics only (mj_step x substeps)    {:>10.0}",
+                r["physics_only_steps_per_s"].as_f64().unwrap_or(0.0)
+            );
+            println!(
+                "  env cost / physics-only cost         {:>10.2}x",
+                r["cost_ratio"].as_f64().unwrap_or(0.0)
+            );
+            println!(
+                "  reset                                {:>10.1} us",
+                r["reset_us"].as_f64().unwrap_or(0.0)
+            );
+            println!(
+                "  resident memory per extra instance   {:>10.2} MiB",
+                r["mib_per_env"].as_f64().unwrap_or(0.0)
+            );
+        }
         for v in r["vector"].as_array().into_iter().flatten() {
             println!(
-                "  ThreadVectorEnv {:>2} envs / {} threads {:>10.0} steps/s ({:.2}x one env)",
+                "  ThreadVectorEnv {:>2} envs / {} threads {:>10.0} steps/s ({:.2}x one env; \
+                 {} independent threads: {:.2}x; efficiency {:.2})",
                 v["envs"],
                 v["threads"],
                 v["steps_per_s"].as_f64().unwrap_or(0.0),
-                v["speedup"].as_f64().unwrap_or(0.0)
+                v["speedup"].as_f64().unwrap_or(0.0),
+                v["envs"],
+                v["ceiling_speedup"].as_f64().unwrap_or(0.0),
+                v["efficiency"].as_f64().unwrap_or(0.0)
             );
         }
         results.push(r);

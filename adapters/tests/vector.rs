@@ -447,6 +447,27 @@ fn a_panicking_worker_env_is_an_error_not_a_hang() {
 }
 
 #[test]
+fn a_panicking_env_on_the_calling_thread_is_an_error() {
+    let mut bad = WalkEnv::new(10);
+    bad.panic_at = Some(1);
+    // Sub-environment 0 is in the calling thread's block.
+    let mut v = ThreadVectorEnv::with_threads(vec![bad, WalkEnv::new(10)], 2).unwrap();
+    assert_eq!(v.num_threads(), 2);
+    v.reset(0u64, None).unwrap();
+    let a = ArrayD::zeros(IxDyn(&[2, 2]));
+    match v.step(&a) {
+        Err(Error::Simulation(m)) => assert!(
+            m.contains("sub-environment 0") && m.contains("panicked"),
+            "{m}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(v.step(&a), Err(Error::Simulation(m)) if m.contains("earlier")));
+    v.close();
+    assert!(v.is_closed());
+}
+
+#[test]
 fn close_closes_sub_environments_and_drop_joins() {
     let mut v = SyncVectorEnv::new(vec![
         common::script_f32(&[&[0.0]], &[0.0]),

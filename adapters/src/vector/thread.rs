@@ -35,21 +35,26 @@ fn panic_message(payload: &(dyn Any + Send)) -> String {
         .unwrap_or_else(|| "unknown panic payload".to_owned())
 }
 
-/// The worker thread: runs commands on its environments until `Close` or until the vector
-/// environment is dropped. A panicking environment is reported and then refused.
-fn worker_loop<E: Env>(
-    mut envs: Vec<(usize, E)>,
-    rx: Receiver<Command<E::Act>>,
-    tx: Sender<Reply<E::Obs>>,
-) {
-    let mut poisoned = vec![false; envs.len()];
-    while let Ok(Command::Run(ops)) = rx.recv() {
-        let reply: Reply<E::Obs> = ops
-            .into_iter()
+/// Sub-environments (with their global indices) stepped by one thread, and which of them
+/// panicked: a panicking environment is reported and then refused.
+struct Block<E> {
+    envs: Vec<(usize, E)>,
+    poisoned: Vec<bool>,
+}
+
+impl<E: Env> Block<E> {
+    fn new(envs: Vec<(usize, E)>) -> Self {
+        let poisoned = vec![false; envs.len()];
+        Self { envs, poisoned }
+    }
+
+    /// Runs `ops` (by local index) and returns the outcomes by global index.
+    fn run(&mut self, ops: Vec<(usize, Op<E::Act>)>) -> Reply<E::Obs> {
+        ops.into_iter()
             .map(|(local, op)| {
-                let (global, env) = &mut envs[local];
+                let (global, env) = &mut self.envs[local];
                 let global = *global;
-                if poisoned[local] {
+                if self.poisoned[local] {
                     return (
                         global,
                         Err(Error::Simulation(format!(
@@ -60,7 +65,7 @@ fn worker_loop<E: Env>(
                 match catch_unwind(AssertUnwindSafe(|| run_op(env, op))) {
                     Ok(r) => (global, r),
                     Err(payload) => {
-                        poisoned[local] = true;
+                        self.poisoned[local] = true;
                         (
                             global,
                             Err(Error::Simulation(format!(
@@ -71,23 +76,40 @@ fn worker_loop<E: Env>(
                     }
                 }
             })
-            .collect();
-        if tx.send(reply).is_err() {
-            break;
-        }
+            .collect()
     }
-    for ((_, env), bad) in envs.iter_mut().zip(poisoned) {
-        if !bad {
-            let _ = catch_unwind(AssertUnwindSafe(|| env.close()));
+
+    /// Closes every environment that has not panicked.
+    fn close(&mut self) {
+        for ((_, env), bad) in self.envs.iter_mut().zip(&self.poisoned) {
+            if !bad {
+                let _ = catch_unwind(AssertUnwindSafe(|| env.close()));
+            }
         }
     }
 }
 
-/// Gymnasium's `AsyncVectorEnv` with threads: each sub-environment lives on one of
-/// `num_threads` persistent worker threads (contiguous blocks of sub-environments per
-/// thread), which run the `step` / `reset` of their sub-environments in parallel. The
-/// semantics are those of [`SyncVectorEnv`](super::SyncVectorEnv) (same code), so both give
-/// identical trajectories.
+/// A worker thread: runs commands on its block until `Close` or until the vector
+/// environment is dropped.
+fn worker_loop<E: Env>(
+    mut block: Block<E>,
+    rx: Receiver<Command<E::Act>>,
+    tx: Sender<Reply<E::Obs>>,
+) {
+    while let Ok(Command::Run(ops)) = rx.recv() {
+        if tx.send(block.run(ops)).is_err() {
+            break;
+        }
+    }
+    block.close();
+}
+
+/// Gymnasium's `AsyncVectorEnv` with threads: the sub-environments are split into
+/// `num_threads` contiguous blocks; the calling thread steps the first block itself while
+/// persistent worker threads step the others in parallel (so one env needs no thread
+/// hand-off at all, and with one block per core no core sits idle waiting). The semantics
+/// are those of [`SyncVectorEnv`](super::SyncVectorEnv) (same code), so both give identical
+/// trajectories.
 ///
 /// The default thread count is `min(num_envs, available_parallelism)`. A panic inside a
 /// sub-environment is caught on its thread and returned as [`Error::Simulation`] (that
@@ -100,8 +122,11 @@ where
     E::ActSpace: BatchSpace,
 {
     core: VectorCore<E::ObsSpace, E::ActSpace>,
+    /// The block the calling thread steps.
+    local: Block<E>,
+    /// The other blocks' threads; block `b` (from 1) is `workers[b - 1]`.
     workers: Vec<Worker<E>>,
-    /// For each sub-environment: its worker and its index there.
+    /// For each sub-environment: its block and its index there.
     placement: Vec<(usize, usize)>,
 }
 
@@ -137,12 +162,15 @@ where
             placement.push((w, blocks[w].len()));
             blocks[w].push((i, env));
         }
-        let mut workers = Vec::with_capacity(threads);
-        for (w, block) in blocks.into_iter().enumerate() {
+        let mut blocks = blocks.into_iter();
+        let local = Block::new(blocks.next().unwrap_or_default());
+        let mut workers = Vec::with_capacity(threads - 1);
+        for (w, block) in blocks.enumerate() {
             let (cmd_tx, cmd_rx) = channel();
             let (rep_tx, rep_rx) = channel();
+            let block = Block::new(block);
             let handle = std::thread::Builder::new()
-                .name(format!("vector-env-{w}"))
+                .name(format!("vector-env-{}", w + 1))
                 .spawn(move || worker_loop(block, cmd_rx, rep_tx))
                 .map_err(|e| Error::Unsupported(format!("cannot spawn a worker thread: {e}")))?;
             workers.push(Worker {
@@ -153,6 +181,7 @@ where
         }
         Ok(Self {
             core,
+            local,
             workers,
             placement,
         })
@@ -173,27 +202,30 @@ where
         self
     }
 
-    /// The number of worker threads.
+    /// The number of threads stepping sub-environments, the calling thread included.
     pub fn num_threads(&self) -> usize {
-        self.workers.len()
+        self.workers.len() + 1
     }
 
-    /// Sends each operation to its worker and gathers the outcomes in sub-environment order.
+    /// Sends each operation to its block's worker, runs the calling thread's block, and
+    /// gathers the outcomes in sub-environment order.
     fn dispatch(&mut self, ops: Vec<Option<Op<E::Act>>>) -> Vec<Option<Result<Outcome<E::Obs>>>> {
-        let mut per_worker: Vec<WorkerBatch<E::Act>> = (0..self.workers.len())
+        let mut per_block: Vec<WorkerBatch<E::Act>> = (0..self.num_threads())
             .map(|_| (Vec::new(), Vec::new()))
             .collect();
         for (i, op) in ops.into_iter().enumerate() {
             if let Some(op) = op {
-                let (w, local) = self.placement[i];
-                per_worker[w].0.push((local, op));
-                per_worker[w].1.push(i);
+                let (b, local) = self.placement[i];
+                per_block[b].0.push((local, op));
+                per_block[b].1.push(i);
             }
         }
         let mut results: Vec<Option<Result<Outcome<E::Obs>>>> =
             (0..self.core.n).map(|_| None).collect();
+        let mut per_block = per_block.into_iter();
+        let (own, _) = per_block.next().unwrap_or_default();
         let mut waiting = Vec::new();
-        for (w, (batch, globals)) in per_worker.into_iter().enumerate() {
+        for (w, (batch, globals)) in per_block.enumerate() {
             if batch.is_empty() {
                 continue;
             }
@@ -209,6 +241,11 @@ where
                         "the worker thread of sub-environment {g} has exited"
                     ))));
                 }
+            }
+        }
+        if !own.is_empty() {
+            for (g, r) in self.local.run(own) {
+                results[g] = Some(r);
             }
         }
         for (w, globals) in waiting {
@@ -242,6 +279,7 @@ where
     }
 
     fn shutdown(&mut self) {
+        self.local.close();
         for w in &mut self.workers {
             if let Some(tx) = w.tx.take() {
                 let _ = tx.send(Command::Close);
@@ -320,7 +358,7 @@ where
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("ThreadVectorEnv")
             .field("num_envs", &self.core.n)
-            .field("num_threads", &self.workers.len())
+            .field("num_threads", &self.num_threads())
             .field("autoreset_mode", &self.core.mode)
             .field("closed", &self.core.closed)
             .finish_non_exhaustive()

@@ -1,0 +1,88 @@
+//! A fixed number of env steps of one task through one layer, for instruction-count
+//! profiling: wall-clock rates on a shared 2-vCPU VM drift by ±30 % between minutes, while
+//! `valgrind --tool=callgrind` counts the same instructions for the same binary and input.
+//!
+//! ```text
+//! cargo build --release -p examples --example step_count
+//! valgrind --tool=callgrind target/release/examples/step_count Lift gym 200
+//! ```
+//!
+//! Layers: `raw` (the robosuite env, dict observations), `gym` (the flat f32 GymWrapper),
+//! `physics` (the same model, `mj_step` × substeps, arm held by gravity compensation).
+//! Actions are drawn from a seeded generator before the loop, so runs are identical. The
+//! per-step cost is the difference of two runs with different step counts divided by the
+//! difference of the counts (`scripts/instructions_per_step.sh` does this).
+
+use adapters::WrapperExt;
+use gym_core::{Env, Error, Result, Space, rng_from_seed};
+use robosuite_env::{EnvConfig, sim::Sim};
+use std::hint::black_box;
+
+fn main() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let task = args.first().map_or("Lift", String::as_str);
+    let layer = args.get(1).map_or("gym", String::as_str);
+    let steps: usize = match args.get(2) {
+        None => 200,
+        Some(s) => s
+            .parse()
+            .map_err(|_| Error::invalid_argument("steps", format!("not a count: {s}")))?,
+    };
+    let mut rng = rng_from_seed(7);
+    let mut env = robosuite_env::make_with(task, EnvConfig::default())?;
+    let actions: Vec<_> = (0..steps)
+        .map(|_| env.action_space().sample(&mut rng))
+        .collect();
+    match layer {
+        "raw" => {
+            env.reset(Some(0), None)?;
+            for a in &actions {
+                let step = env.step(a)?;
+                if step.done() {
+                    env.reset(None, None)?;
+                }
+                let _ = black_box(step);
+            }
+        }
+        "gym" => {
+            let mut gym = env.flat_gym_wrapper(None)?;
+            gym.reset(Some(0), None)?;
+            for a in &actions {
+                let step = gym.step(&a.mapv(|v| v as f32))?;
+                if step.done() {
+                    gym.reset(None, None)?;
+                }
+                let _ = black_box(step);
+            }
+        }
+        "physics" => {
+            env.reset(Some(0), None)?;
+            let dofs: Vec<usize> = env
+                .robots()
+                .iter()
+                .flat_map(|r| r.controller().binding().dofs.to_vec())
+                .collect();
+            let substeps = env.substeps();
+            let mut sim = Sim::new(env.sim().model().clone())?;
+            sim.set_state(&env.get_state())?;
+            for _ in &actions {
+                for _ in 0..substeps {
+                    for (col, &d) in dofs.iter().enumerate() {
+                        let bias = sim.data().qfrc_bias()[d];
+                        sim.data_mut().ctrl_mut()[col] = bias;
+                    }
+                    sim.step();
+                }
+            }
+            let _ = black_box(sim.state());
+        }
+        other => {
+            return Err(Error::invalid_argument(
+                "layer",
+                format!("expected raw, gym or physics, got {other}"),
+            ));
+        }
+    }
+    println!("{task} {layer}: {steps} steps");
+    Ok(())
+}
