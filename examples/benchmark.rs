@@ -8,7 +8,7 @@
 //!
 //! ```text
 //! cargo run --release -p examples --example benchmark -- [--task Lift] [--seconds 3]
-//!     [--max-envs 4] [--rounds 5] [--vector-only] [--json bench.json]
+//!     [--max-envs 4] [--rounds 5] [--only steps|vector] [--json bench.json]
 //! ```
 //!
 //! Figures are wall-clock rates: run it on an otherwise idle machine. The vector figures are
@@ -21,12 +21,21 @@ use robosuite_env::{EnvConfig, RobosuiteEnv, sim::Sim};
 use serde_json::json;
 use std::time::{Duration, Instant};
 
+/// A part of the figures to measure alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Only {
+    /// One env's steps/s, raw and through the GymWrapper.
+    Steps,
+    /// Vector-env scaling.
+    Vector,
+}
+
 struct Args {
     tasks: Vec<String>,
     seconds: f64,
     max_envs: usize,
     rounds: usize,
-    vector_only: bool,
+    only: Option<Only>,
     json: Option<String>,
 }
 
@@ -42,15 +51,11 @@ fn parse_args() -> Args {
             .max(2)
             * 2,
         rounds: 5,
-        vector_only: false,
+        only: None,
         json: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
-        if flag == "--vector-only" {
-            args.vector_only = true;
-            continue;
-        }
         let value = it.next().unwrap_or_default();
         match flag.as_str() {
             "--task" => args.tasks = vec![value],
@@ -58,6 +63,11 @@ fn parse_args() -> Args {
             "--max-envs" => args.max_envs = value.parse().unwrap_or(args.max_envs),
             "--rounds" => args.rounds = value.parse().unwrap_or(args.rounds).max(1),
             "--json" => args.json = Some(value),
+            "--only" => match value.as_str() {
+                "steps" => args.only = Some(Only::Steps),
+                "vector" => args.only = Some(Only::Vector),
+                other => eprintln!("benchmark: --only takes steps or vector, not {other}"),
+            },
             other => eprintln!("benchmark: ignoring unknown argument {other}"),
         }
     }
@@ -195,21 +205,27 @@ fn make(task: &str) -> Result<RobosuiteEnv> {
 
 fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
     let mut rng = rng_from_seed(1);
-    let mut figures = if args.vector_only {
-        json!({"task": task})
-    } else {
-        single_env_figures(task, args, &mut rng)?
-    };
-    figures["vector"] = json!(vector_scaling(task, args, &mut rng)?);
+    let mut figures = json!({"task": task});
+    if args.only != Some(Only::Vector) {
+        step_rates(task, args, &mut rng, &mut figures)?;
+    }
+    if args.only.is_none() {
+        cost_figures(task, args, &mut rng, &mut figures)?;
+    }
+    if args.only != Some(Only::Steps) {
+        figures["vector"] = json!(vector_scaling(task, args, &mut rng)?);
+    }
     Ok(figures)
 }
 
-/// One env: steps/s raw and through the GymWrapper, physics-only, reset, memory.
-fn single_env_figures(
+/// One env's steps/s with random actions (resets at the horizon included): raw and through
+/// the flat GymWrapper.
+fn step_rates(
     task: &str,
     args: &Args,
     rng: &mut gym_core::EnvRng,
-) -> Result<serde_json::Value> {
+    figures: &mut serde_json::Value,
+) -> Result<()> {
     let budget = Duration::from_secs_f64(args.seconds);
 
     // Raw env, random actions, resets at the horizon included.
@@ -234,6 +250,20 @@ fn single_env_figures(
         Ok(())
     })?;
 
+    figures["steps_per_s"] = json!(env_rate);
+    figures["gym_wrapper_steps_per_s"] = json!(gym_rate);
+    Ok(())
+}
+
+/// The physics-only rate of the same model and the ratio, reset time, memory per instance.
+fn cost_figures(
+    task: &str,
+    args: &Args,
+    rng: &mut gym_core::EnvRng,
+    figures: &mut serde_json::Value,
+) -> Result<()> {
+    let budget = Duration::from_secs_f64(args.seconds);
+    let mut env = make(task)?;
     // Physics only: the env's model, mj_step × substeps, gravity-compensated arm.
     let substeps = env.substeps();
     env.reset(Some(0), None)?;
@@ -288,17 +318,14 @@ fn single_env_figures(
     let mib_per_env = (rss_mib() - before) / many.len() as f64;
     drop(many);
 
-    Ok(json!({
-        "task": task,
-        "substeps": substeps,
-        "steps_per_s": env_rate,
-        "gym_wrapper_steps_per_s": gym_rate,
-        "physics_only_steps_per_s": physics_rate,
-        "cost_ratio": physics_rate / env_rate,
-        "reset_us": reset_us,
-        "mib_per_env": mib_per_env,
-        "arena_mib": env.sim().arena_bytes() as f64 / 1048576.0,
-    }))
+    let env_rate = figures["steps_per_s"].as_f64().unwrap_or(f64::NAN);
+    figures["substeps"] = json!(substeps);
+    figures["physics_only_steps_per_s"] = json!(physics_rate);
+    figures["cost_ratio"] = json!(physics_rate / env_rate);
+    figures["reset_us"] = json!(reset_us);
+    figures["mib_per_env"] = json!(mib_per_env);
+    figures["arena_mib"] = json!(env.sim().arena_bytes() as f64 / 1048576.0);
+    Ok(())
 }
 
 fn main() -> Result<()> {
@@ -312,32 +339,28 @@ fn main() -> Result<()> {
     for task in &args.tasks {
         let r = bench_task(task, &args)?;
         println!("\n{task}");
-        if !args.vector_only {
-            println!("  {} substeps per env step", r["substeps"]);
-            println!(
-                "  env steps/s, one thread             {:>10.0}",
-                r["steps_per_s"].as_f64().unwrap_or(0.0)
-            );
-            println!(
-                "  through GymWrapper (flat f32)        {:>10.0}",
-                r["gym_wrapper_steps_per_s"].as_f64().unwrap_or(0.0)
-            );
-            println!(
-                "  physics only (mj_step x substeps)    {:>10.0}",
-                r["physics_only_steps_per_s"].as_f64().unwrap_or(0.0)
-            );
-            println!(
-                "  env cost / physics-only cost         {:>10.2}x",
-                r["cost_ratio"].as_f64().unwrap_or(0.0)
-            );
-            println!(
-                "  reset                                {:>10.1} us",
-                r["reset_us"].as_f64().unwrap_or(0.0)
-            );
-            println!(
-                "  resident memory per extra instance   {:>10.2} MiB",
-                r["mib_per_env"].as_f64().unwrap_or(0.0)
-            );
+        let rows = [
+            ("substeps", "substeps per env step", ""),
+            ("steps_per_s", "env steps/s, one thread", ""),
+            (
+                "gym_wrapper_steps_per_s",
+                "through GymWrapper (flat f32)",
+                "",
+            ),
+            (
+                "physics_only_steps_per_s",
+                "physics only (mj_step x substeps)",
+                "",
+            ),
+            ("cost_ratio", "env cost / physics-only cost", "x"),
+            ("reset_us", "reset", " us"),
+            ("mib_per_env", "resident memory per extra instance", " MiB"),
+        ];
+        for (key, label, unit) in rows {
+            if let Some(v) = r[key].as_f64() {
+                let digits = if unit.is_empty() { 0 } else { 2 };
+                println!("  {label:<36} {v:>10.digits$}{unit}");
+            }
         }
         for v in r["vector"].as_array().into_iter().flatten() {
             println!(

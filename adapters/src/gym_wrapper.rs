@@ -23,13 +23,14 @@
 //! selected keys otherwise), and [`FlatGymWrapper`] yields typed `ArrayD<f32>` observations
 //! in a [`BoxSpace<f32>`], for code that wants the flat vector without matching on a
 //! `Value`. Both precompute each key's position in the observation dict (a lookup by name is
-//! only the fallback when an observation's keys are not in the space's order) and allocate
-//! one array per flat observation.
+//! only the fallback when an observation's keys are not in the space's order); `step`
+//! allocates one array per flat observation and [`FlatGymWrapper`]'s `step_into` none.
 
 use crate::numeric::NumericSpace;
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace};
 use gym_core::{
-    DictValue, Env, Error, Info, ResetOptions, Result, Scalar, Space, SpaceError, Step, Value,
+    DictValue, Env, Error, Info, ResetOptions, Result, Scalar, Space, SpaceError, Step, Transition,
+    Value,
 };
 use ndarray::{ArrayD, IxDyn};
 
@@ -44,6 +45,12 @@ pub trait DictObservationSpace: Space {
     /// # Errors
     /// When a dynamic element is not a dict.
     fn into_dict(x: Self::Element) -> Result<DictValue>;
+
+    /// The element as a borrowed dict.
+    ///
+    /// # Errors
+    /// When a dynamic element is not a dict.
+    fn as_dict(x: &Self::Element) -> Result<&DictValue>;
 }
 
 impl DictObservationSpace for DictSpace {
@@ -52,6 +59,10 @@ impl DictObservationSpace for DictSpace {
     }
 
     fn into_dict(x: DictValue) -> Result<DictValue> {
+        Ok(x)
+    }
+
+    fn as_dict(x: &DictValue) -> Result<&DictValue> {
         Ok(x)
     }
 }
@@ -64,13 +75,24 @@ impl DictObservationSpace for AnySpace {
     fn into_dict(x: Value) -> Result<DictValue> {
         match x {
             Value::Dict(d) => Ok(d),
-            other => Err(SpaceError::WrongKind {
-                expected: "dict",
-                got: other.kind(),
-            }
-            .into()),
+            other => Err(not_a_dict(&other)),
         }
     }
+
+    fn as_dict(x: &Value) -> Result<&DictValue> {
+        match x {
+            Value::Dict(d) => Ok(d),
+            other => Err(not_a_dict(other)),
+        }
+    }
+}
+
+fn not_a_dict(x: &Value) -> Error {
+    SpaceError::WrongKind {
+        expected: "dict",
+        got: x.kind(),
+    }
+    .into()
 }
 
 fn dict_space_of<S: DictObservationSpace>(space: &S) -> Result<&DictSpace> {
@@ -189,14 +211,38 @@ impl KeyPlan {
 
     /// The selected keys concatenated (each flattened, row-major) as `f32`.
     fn flatten(&self, obs: &DictValue) -> Result<ArrayD<f32>> {
-        let mut out: Vec<f32> = Vec::with_capacity(self.total);
+        let mut out = ArrayD::zeros(IxDyn(&[self.total]));
+        self.flatten_into(obs, &mut out)?;
+        Ok(out)
+    }
+
+    /// Flattens into `out`, reusing its storage when it is a standard-layout vector of the
+    /// flat length.
+    fn flatten_into(&self, obs: &DictValue, out: &mut ArrayD<f32>) -> Result<()> {
+        if out.shape() != [self.total] || !out.is_standard_layout() {
+            *out = ArrayD::zeros(IxDyn(&[self.total]));
+        }
+        let flat = out.as_slice_mut().expect("a standard-layout vector");
+        let mut at = 0;
         for j in 0..self.keys.len() {
-            let before = out.len();
-            match self.value(obs, j)? {
+            let n = match self.value(obs, j)? {
                 Value::Array(a) => {
-                    gym_core::for_each_array!(a, arr => out.extend(arr.iter().map(|v| v.to_f64() as f32)))
+                    let n = a.len();
+                    if n == self.sizes[j] {
+                        let dst = &mut flat[at..at + n];
+                        gym_core::for_each_array!(a, arr => dst
+                            .iter_mut()
+                            .zip(arr.iter())
+                            .for_each(|(d, v)| *d = v.to_f64() as f32));
+                    }
+                    n
                 }
-                Value::Discrete(d) => out.push(*d as f32),
+                Value::Discrete(d) => {
+                    if self.sizes[j] == 1 {
+                        flat[at] = *d as f32;
+                    }
+                    1
+                }
                 other => {
                     return Err(SpaceError::WrongKind {
                         expected: "array",
@@ -204,20 +250,19 @@ impl KeyPlan {
                     }
                     .into());
                 }
-            }
-            if out.len() - before != self.sizes[j] {
+            };
+            if n != self.sizes[j] {
                 return Err(Error::Contract {
                     check: "GymWrapper".into(),
                     message: format!(
-                        "observation `{}` has {} elements, its space {}",
-                        self.keys[j],
-                        out.len() - before,
-                        self.sizes[j]
+                        "observation `{}` has {n} elements, its space {}",
+                        self.keys[j], self.sizes[j]
                     ),
                 });
             }
+            at += n;
         }
-        Ok(ArrayD::from_shape_vec(IxDyn(&[out.len()]), out).expect("1-D"))
+        Ok(())
     }
 
     /// The selected entries moved out of `obs`, in key order.
@@ -379,12 +424,19 @@ impl_wrapper!(GymWrapper);
 
 /// [`GymWrapper`] with `flatten_obs = true` and typed observations: `ArrayD<f32>` in
 /// `Box(-inf, inf, (n,), float32)`.
+///
+/// [`Env::step_into`] reuses the caller's buffers and keeps the inner environment's
+/// observation and action between steps, so a loop of `step_into` over a robosuite env does
+/// not allocate.
 #[derive(Debug, Clone)]
-pub struct FlatGymWrapper<E> {
+pub struct FlatGymWrapper<E: Env> {
     env: E,
     plan: KeyPlan,
     observation_space: BoxSpace<f32>,
     action_space: BoxSpace<f32>,
+    /// The inner environment's last observation and action, reused by `step_into`.
+    inner_obs: Option<E::Obs>,
+    inner_action: Option<E::Act>,
 }
 
 impl<E> FlatGymWrapper<E>
@@ -406,6 +458,8 @@ where
             plan,
             observation_space,
             action_space,
+            inner_obs: None,
+            inner_action: None,
         })
     }
 
@@ -459,9 +513,50 @@ where
     }
 
     fn step(&mut self, action: &ArrayD<f32>) -> Result<Step<ArrayD<f32>>> {
-        let action = convert_action(self.env.action_space(), action)?;
-        let step = self.env.step(&action)?;
-        step.try_map_observation(|o| self.plan.flatten(&E::ObsSpace::into_dict(o)?))
+        let mut observation = ArrayD::zeros(IxDyn(&[self.plan.total]));
+        let mut info = Info::new();
+        let t = self.step_into(action, &mut observation, &mut info)?;
+        Ok(Step {
+            observation,
+            reward: t.reward,
+            terminated: t.terminated,
+            truncated: t.truncated,
+            info,
+        })
+    }
+
+    fn step_into(
+        &mut self,
+        action: &ArrayD<f32>,
+        observation: &mut ArrayD<f32>,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let space = self.env.action_space();
+        match &mut self.inner_action {
+            Some(a) => space.element_from_array_into(action, a),
+            None => space
+                .element_from_array(action)
+                .map(|a| self.inner_action = Some(a)),
+        }
+        .map_err(|e| Error::InvalidAction(e.to_string()))?;
+        let inner_action = self.inner_action.as_ref().expect("set above");
+        let transition = match &mut self.inner_obs {
+            Some(obs) => self.env.step_into(inner_action, obs, info)?,
+            None => {
+                let step = self.env.step(inner_action)?;
+                *info = step.info;
+                self.inner_obs = Some(step.observation);
+                Transition {
+                    reward: step.reward,
+                    terminated: step.terminated,
+                    truncated: step.truncated,
+                }
+            }
+        };
+        let inner_obs = self.inner_obs.as_ref().expect("set above");
+        self.plan
+            .flatten_into(E::ObsSpace::as_dict(inner_obs)?, observation)?;
+        Ok(transition)
     }
 
     gym_core::forward_env!();

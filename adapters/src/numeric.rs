@@ -52,6 +52,20 @@ pub trait NumericSpace: Space {
     /// [`Error::Unsupported`] for non-Box spaces; a shape mismatch.
     fn element_from_array<U: ArrayElement>(&self, x: &ArrayD<U>) -> Result<Self::Element>;
 
+    /// [`NumericSpace::element_from_array`] into `out`, reusing its storage when it has
+    /// the right shape.
+    ///
+    /// # Errors
+    /// As [`NumericSpace::element_from_array`]; `out` is then unchanged.
+    fn element_from_array_into<U: ArrayElement>(
+        &self,
+        x: &ArrayD<U>,
+        out: &mut Self::Element,
+    ) -> Result<()> {
+        *out = self.element_from_array(x)?;
+        Ok(())
+    }
+
     /// The same Box (shape, dtype) with other bounds.
     ///
     /// # Errors
@@ -117,6 +131,20 @@ impl<T: ArrayElement> NumericSpace for BoxSpace<T> {
     fn element_from_array<U: ArrayElement>(&self, x: &ArrayD<U>) -> Result<ArrayD<T>> {
         check_shape(self.low().shape(), x.shape())?;
         Ok(cast_array_ref(x))
+    }
+
+    fn element_from_array_into<U: ArrayElement>(
+        &self,
+        x: &ArrayD<U>,
+        out: &mut ArrayD<T>,
+    ) -> Result<()> {
+        check_shape(self.low().shape(), x.shape())?;
+        if out.shape() == x.shape() {
+            out.zip_mut_with(x, |o, v| *o = T::from_f64(v.to_f64()));
+        } else {
+            *out = cast_array_ref(x);
+        }
+        Ok(())
     }
 
     fn with_bounds(&self, low: ArrayD<f64>, high: ArrayD<f64>) -> Result<Self> {

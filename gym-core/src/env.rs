@@ -58,6 +58,26 @@ impl<O> Step<O> {
     }
 }
 
+/// The reward and end flags of one step: what [`Env::step_into`] returns besides the
+/// observation and info it writes into the caller's buffers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[must_use]
+pub struct Transition {
+    /// The reward for the transition.
+    pub reward: f64,
+    /// The episode reached a terminal state of the MDP (do not bootstrap).
+    pub terminated: bool,
+    /// The episode was cut short outside the MDP, usually by a time limit (bootstrap).
+    pub truncated: bool,
+}
+
+impl Transition {
+    /// Whether the episode is over (`terminated || truncated`).
+    pub fn done(&self) -> bool {
+        self.terminated || self.truncated
+    }
+}
+
 /// How an environment can be rendered (Gymnasium's `render_mode` strings).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum RenderMode {
@@ -163,6 +183,33 @@ pub trait Env: Send + 'static {
     /// space; [`Error::ResetNeeded`](crate::Error::ResetNeeded) /
     /// [`Error::EpisodeEnded`](crate::Error::EpisodeEnded) when called out of order.
     fn step(&mut self, action: &Self::Act) -> Result<Step<Self::Obs>>;
+
+    /// [`Env::step`] into buffers the caller keeps: the observation is written into
+    /// `observation` and the diagnostics into `info` (both replaced), the reward and end
+    /// flags are returned. The semantics are `step`'s; after an error the buffers hold
+    /// unspecified values.
+    ///
+    /// The default moves the result of `step` into the buffers. Environments that can reuse
+    /// the buffers' storage override it so that stepping in a loop does not allocate
+    /// (robosuite-env's tasks, and adapters' `FlatGymWrapper` over them).
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step_into(
+        &mut self,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let step = self.step(action)?;
+        *observation = step.observation;
+        *info = step.info;
+        Ok(Transition {
+            reward: step.reward,
+            terminated: step.terminated,
+            truncated: step.truncated,
+        })
+    }
 
     /// Render modes and frame rate.
     fn metadata(&self) -> &Metadata {

@@ -82,6 +82,17 @@ impl Info {
         self.0.insert(key.into(), value.into())
     }
 
+    /// Sets `key` to `value`: in place when the key is present (no allocation), else
+    /// inserted at the end.
+    pub fn set(&mut self, key: &str, value: impl Into<InfoValue>) {
+        match self.0.get_mut(key) {
+            Some(slot) => *slot = value.into(),
+            None => {
+                self.0.insert(key.to_owned(), value.into());
+            }
+        }
+    }
+
     /// Builder form of [`Info::insert`].
     #[must_use]
     pub fn with(mut self, key: impl Into<String>, value: impl Into<InfoValue>) -> Self {
@@ -189,6 +200,16 @@ impl IntoIterator for Info {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn set_replaces_in_place_and_appends_new_keys() {
+        let mut info = Info::new().with("a", 1i64).with("b", true);
+        info.set("a", 2.5);
+        info.set("c", false);
+        assert_eq!(info.keys().collect::<Vec<_>>(), ["a", "b", "c"]);
+        assert_eq!(info.get_f64("a"), Some(2.5));
+        assert_eq!(info.get_bool("c"), Some(false));
+    }
 
     #[test]
     fn typed_getters() {

@@ -38,7 +38,7 @@ pub mod wrapper;
 
 pub use dtype::{DType, Scalar};
 pub use dynamic::{BoxedEnv, DynAdapter, DynEnv, IntoBoxedEnv};
-pub use env::{Env, EnvExt, Frame, Metadata, RenderMode, Step};
+pub use env::{Env, EnvExt, Frame, Metadata, RenderMode, Step, Transition};
 pub use error::{Error, Result, SpaceError};
 pub use info::{Info, InfoValue, ResetOptions};
 pub use rng::{EnvRng, entropy_seed, rng_from_seed};

@@ -245,3 +245,29 @@ fn step_result_helpers() {
             .contains(&ArrayD::zeros(IxDyn(&[2])))
     );
 }
+
+#[test]
+fn default_step_into_writes_what_step_returns() {
+    let (mut a, mut b) = (Walk::new(), Walk::new());
+    let (mut obs, mut info) = a.reset(Some(3), None).unwrap();
+    b.reset(Some(3), None).unwrap();
+    for action in [1, 1, 0, 1, 1, 1, 1] {
+        let t = a.step_into(&action, &mut obs, &mut info).unwrap();
+        let s = b.step(&action).unwrap();
+        assert_eq!((&obs, &info), (&s.observation, &s.info));
+        assert_eq!(
+            (t.reward, t.terminated, t.truncated),
+            (s.reward, s.terminated, s.truncated)
+        );
+        assert_eq!(t.done(), s.done());
+        if t.done() {
+            break;
+        }
+    }
+    assert!(a.pos.abs() >= 3, "the walk ended");
+    // Errors are step's.
+    assert!(matches!(
+        a.step_into(&7, &mut obs, &mut info),
+        Err(Error::InvalidAction(_))
+    ));
+}

@@ -9,7 +9,7 @@ use crate::sim::{Sim, check_mujoco_version};
 use crate::tasks::{ModelSource, RewardConfig, Task};
 use gym_core::{
     BoxSpace, DictSpace, DictValue, EnvRng, Error, Info, Metadata, ResetOptions, Result, Step,
-    entropy_seed, rng_from_seed,
+    Transition, entropy_seed, rng_from_seed,
 };
 use mujoco_rs::wrappers::mj_model::MjModel;
 use ndarray::ArrayD;
@@ -416,6 +416,40 @@ impl RobosuiteEnv {
         Ok(())
     }
 
+    /// One env step without its observation: checks the order and the action, simulates,
+    /// then rewards, task updates and end flags. Returns the transition and `success`.
+    fn advance(&mut self, action: &ArrayD<f64>) -> Result<(Transition, bool)> {
+        match self.phase {
+            Phase::Closed => return Err(Error::Closed),
+            Phase::NeedsReset => return Err(Error::ResetNeeded),
+            Phase::Ended => return Err(Error::EpisodeEnded),
+            Phase::Running => {}
+        }
+        self.check_action(action)?;
+        let mut flat = std::mem::take(&mut self.action_buf);
+        flat.clear();
+        flat.extend(action.iter().copied());
+        self.timestep += 1;
+        self.simulate(&flat);
+        self.action_buf = flat;
+        let reward = self.reward();
+        let reward_config = self.reward_config();
+        self.task
+            .after_reward(&mut self.sim, &self.robots, &reward_config);
+        let success = self.check_success();
+        let terminated = self.task.check_terminated(&self.sim, &self.robots);
+        let truncated = self.timestep >= self.config.horizon && !self.config.ignore_done;
+        if terminated || truncated {
+            self.phase = Phase::Ended;
+        }
+        let transition = Transition {
+            reward,
+            terminated,
+            truncated,
+        };
+        Ok((transition, success))
+    }
+
     /// Runs one env step's physics for a checked action.
     fn simulate(&mut self, action: &[f64]) {
         for sub in 0..self.substeps {
@@ -429,7 +463,13 @@ impl RobosuiteEnv {
             if sub == 0 {
                 self.task.on_policy_step(&self.sim, &self.robots);
             }
-            self.sim.step2();
+            // Sensors are read only after an env step (and at its first substep, before
+            // `mj_step2`), so only the last substep computes them.
+            if sub + 1 == self.substeps {
+                self.sim.step2();
+            } else {
+                self.sim.step2_without_sensors();
+            }
         }
     }
 }
@@ -529,37 +569,32 @@ impl gym_core::Env for RobosuiteEnv {
     }
 
     fn step(&mut self, action: &ArrayD<f64>) -> Result<Step<DictValue>> {
-        match self.phase {
-            Phase::Closed => return Err(Error::Closed),
-            Phase::NeedsReset => return Err(Error::ResetNeeded),
-            Phase::Ended => return Err(Error::EpisodeEnded),
-            Phase::Running => {}
-        }
-        self.check_action(action)?;
-        let mut flat = std::mem::take(&mut self.action_buf);
-        flat.clear();
-        flat.extend(action.iter().copied());
-        self.timestep += 1;
-        self.simulate(&flat);
-        self.action_buf = flat;
-        let reward = self.reward();
-        let reward_config = self.reward_config();
-        self.task
-            .after_reward(&mut self.sim, &self.robots, &reward_config);
-        let success = self.check_success();
-        let terminated = self.task.check_terminated(&self.sim, &self.robots);
-        let truncated = self.timestep >= self.config.horizon && !self.config.ignore_done;
-        if terminated || truncated {
-            self.phase = Phase::Ended;
-        }
-        let info = Info::new().with("success", success);
+        let (transition, success) = self.advance(action)?;
         Ok(Step {
             observation: self.observation(),
-            reward,
-            terminated,
-            truncated,
-            info,
+            reward: transition.reward,
+            terminated: transition.terminated,
+            truncated: transition.truncated,
+            info: Info::new().with("success", success),
         })
+    }
+
+    /// [`Env::step`] writing into `observation` and `info` in place when they hold the
+    /// previous step's keys, shapes and dtypes: a loop of steps does not allocate.
+    fn step_into(
+        &mut self,
+        action: &ArrayD<f64>,
+        observation: &mut DictValue,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let (transition, success) = self.advance(action)?;
+        self.fill_observation();
+        self.layout.write_dict(&self.buf, observation);
+        if info.len() != 1 || info.get("success").is_none() {
+            info.clear();
+        }
+        info.set("success", success);
+        Ok(transition)
     }
 
     fn metadata(&self) -> &Metadata {

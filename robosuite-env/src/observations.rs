@@ -1,7 +1,9 @@
 //! Observation layouts: robosuite's ordered observation dict (each sensor key, then the
 //! `robotN_proprio-state` and `object-state` concatenations), filled from one flat buffer.
 
-use gym_core::{AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, Result, Value};
+use gym_core::{
+    AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, Result, Scalar, Value,
+};
 use ndarray::{ArrayD, IxDyn};
 use std::ops::Range;
 
@@ -146,6 +148,49 @@ impl ObsLayout {
             );
         }
         out
+    }
+}
+
+impl ObsLayout {
+    /// Writes a filled buffer into `out` in place when `out` has this layout's keys (in
+    /// order), shapes and dtypes, as the previous observation does; otherwise replaces it
+    /// with [`ObsLayout::to_dict`].
+    pub fn write_dict(&self, buf: &[f64], out: &mut DictValue) {
+        if !self.matches(out) {
+            *out = self.to_dict(buf);
+            return;
+        }
+        let ranges = self
+            .keys
+            .iter()
+            .map(|(_, r)| r)
+            .chain(self.groups.iter().map(|(_, r)| r));
+        for (value, r) in out.values_mut().zip(ranges) {
+            if let Value::Array(a) = value {
+                let src = &buf[r.clone()];
+                gym_core::for_each_array!(a, arr => arr
+                    .iter_mut()
+                    .zip(src)
+                    .for_each(|(d, s)| *d = Scalar::from_f64(*s)));
+            }
+        }
+    }
+
+    /// Whether `dict` has this layout's keys in order with the same shapes and dtypes.
+    fn matches(&self, dict: &DictValue) -> bool {
+        if dict.len() != self.keys.len() + self.groups.len() {
+            return false;
+        }
+        let mut entries = dict.iter();
+        let keys_match = self.keys.iter().all(|(k, _)| {
+            matches!(entries.next(), Some((name, Value::Array(a)))
+                if *name == k.name && a.dtype() == k.dtype && a.shape() == k.shape.as_slice())
+        });
+        keys_match
+            && self.groups.iter().all(|(g, r)| {
+                matches!(entries.next(), Some((name, Value::Array(a)))
+                    if name == g && a.dtype() == DType::F64 && a.shape() == [r.len()])
+            })
     }
 }
 

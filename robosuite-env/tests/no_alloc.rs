@@ -1,19 +1,37 @@
-//! The substep loop (`mj_step1` → controllers → `mj_step2`) does not touch the heap.
+//! The hot paths do not touch the heap: the substep loop (`mj_step1` → controllers →
+//! `mj_step2`), a robosuite env's `step_into`, and `step_into` through the flat GymWrapper.
+//! Allocations are counted per thread, so tests running in parallel do not disturb each
+//! other.
 
-use gym_core::Env;
+use adapters::WrapperExt;
+use gym_core::{DictValue, Env, Info, Space, rng_from_seed};
+use ndarray::ArrayD;
 use robosuite_env::sim::Sim;
 use robosuite_env::{EnvConfig, make_with};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() {
+    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+}
+
+/// How many allocations `f` makes on this thread.
+fn allocations(f: impl FnOnce()) -> usize {
+    let before = ALLOCATIONS.with(Cell::get);
+    f();
+    ALLOCATIONS.with(Cell::get) - before
+}
 
 // SAFETY: forwards to the system allocator, only counting calls.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        count();
         // SAFETY: same contract as the caller's.
         unsafe { System.alloc(layout) }
     }
@@ -22,7 +40,7 @@ unsafe impl GlobalAlloc for Counting {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        count();
         // SAFETY: same contract as the caller's.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -44,24 +62,97 @@ fn substeps_do_not_allocate() {
     robot.set_goal(&sim, &action);
     robot.apply_control(&mut sim);
     sim.step2();
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
-    for _ in 0..10 {
-        for sub in 0..25 {
-            sim.step1();
-            if sub == 0 {
-                robot.set_goal(&sim, &action);
+    let n = allocations(|| {
+        for _ in 0..10 {
+            for sub in 0..25 {
+                sim.step1();
+                if sub == 0 {
+                    robot.set_goal(&sim, &action);
+                }
+                robot.apply_control(&mut sim);
+                if sub == 24 {
+                    sim.step2();
+                } else {
+                    sim.step2_without_sensors();
+                }
             }
-            robot.apply_control(&mut sim);
-            sim.step2();
         }
-    }
-    let after = ALLOCATIONS.load(Ordering::Relaxed);
-    assert_eq!(
-        after - before,
-        0,
-        "the substep loop allocated {} times",
-        after - before
-    );
+    });
+    assert_eq!(n, 0, "the substep loop allocated {n} times");
     // The arm moved, so the loop did real work.
     assert!(env.get_state() != sim.state());
+}
+
+#[test]
+fn env_step_into_does_not_allocate_and_equals_step_for_every_task() {
+    for task in robosuite_env::ENV_NAMES {
+        let mut a = make_with(task, EnvConfig::default()).unwrap();
+        let mut b = make_with(task, EnvConfig::default()).unwrap();
+        let (mut obs, mut info) = a.reset(Some(5), None).unwrap();
+        b.reset(Some(5), None).unwrap();
+        let mut rng = rng_from_seed(9);
+        let actions: Vec<ArrayD<f64>> =
+            (0..30).map(|_| a.action_space().sample(&mut rng)).collect();
+        for (i, action) in actions.iter().enumerate() {
+            let mut t = None;
+            let n = allocations(|| t = Some(a.step_into(action, &mut obs, &mut info).unwrap()));
+            let t = t.unwrap();
+            let step = b.step(action).unwrap();
+            assert_eq!(obs, step.observation, "{task}: step {i}");
+            assert_eq!(info, step.info, "{task}: step {i}");
+            assert_eq!(
+                (t.reward.to_bits(), t.terminated, t.truncated),
+                (step.reward.to_bits(), step.terminated, step.truncated),
+                "{task}: step {i}"
+            );
+            assert_eq!(n, 0, "{task}: step_into {i} allocated {n} times");
+            if t.done() {
+                break;
+            }
+        }
+    }
+}
+
+#[test]
+fn step_into_replaces_buffers_of_another_layout() {
+    let mut env = make_with("Lift", EnvConfig::default()).unwrap();
+    env.reset(Some(1), None).unwrap();
+    let mut obs = DictValue::new();
+    let mut info = Info::new().with("stale", 3i64);
+    let action = ArrayD::zeros(ndarray::IxDyn(&[7]));
+    let _ = env.step_into(&action, &mut obs, &mut info).unwrap();
+    assert!(env.observation_space().contains(&obs));
+    assert_eq!(info, Info::new().with("success", false));
+}
+
+#[test]
+fn flat_gym_wrapper_step_into_does_not_allocate_and_equals_step() {
+    let make = || {
+        make_with("Lift", EnvConfig::default())
+            .unwrap()
+            .flat_gym_wrapper(None)
+            .unwrap()
+    };
+    let (mut a, mut b) = (make(), make());
+    let (mut obs, mut info) = a.reset(Some(2), None).unwrap();
+    b.reset(Some(2), None).unwrap();
+    let mut rng = rng_from_seed(4);
+    let actions: Vec<ArrayD<f32>> = (0..30).map(|_| a.action_space().sample(&mut rng)).collect();
+    // The first step fills the wrapper's inner buffers.
+    let _ = a.step_into(&actions[0], &mut obs, &mut info).unwrap();
+    let _ = b.step(&actions[0]).unwrap();
+    for (i, action) in actions.iter().enumerate().skip(1) {
+        let mut t = None;
+        let n = allocations(|| t = Some(a.step_into(action, &mut obs, &mut info).unwrap()));
+        let t = t.unwrap();
+        let step = b.step(action).unwrap();
+        assert_eq!(obs, step.observation, "step {i}");
+        assert_eq!(info, step.info, "step {i}");
+        assert_eq!(t.reward.to_bits(), step.reward.to_bits(), "step {i}");
+        assert_eq!(n, 0, "step_into {i} allocated {n} times");
+    }
+    // A wrong-length action is still refused, and the env stays usable.
+    let bad = ArrayD::zeros(ndarray::IxDyn(&[3]));
+    assert!(a.step_into(&bad, &mut obs, &mut info).is_err());
+    assert!(a.step_into(&actions[1], &mut obs, &mut info).is_ok());
 }

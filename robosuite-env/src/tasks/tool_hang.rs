@@ -281,11 +281,7 @@ impl ToolHang {
         let end = d.site_xpos()[self.frame_mount_site];
         let hook = sub(d.site_xpos()[self.frame_intersection_site], end);
         let hook = hook.map(|v| v / norm(hook));
-        let w: Vec<[f64; 3]> = self
-            .stand_walls
-            .iter()
-            .map(|&g| sub(d.geom_xpos()[g], end))
-            .collect();
+        let w = self.stand_walls.map(|g| sub(d.geom_xpos()[g], end));
         let between = dot(cross(w[0], hook), cross(w[2], hook)) < 0.0
             && dot(cross(w[1], hook), cross(w[3], hook)) < 0.0;
         vertical && close && between

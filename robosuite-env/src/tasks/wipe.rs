@@ -124,6 +124,8 @@ pub struct Wipe {
     /// `recent_ee_forcetorques.current[:3]`: the force sensor at the step's first substep.
     step_force: [f64; 3],
     force_bias: [f64; 3],
+    /// Scratch for `after_reward`: which markers the step wiped (capacity kept).
+    newly_wiped: Vec<bool>,
 }
 
 impl Wipe {
@@ -163,6 +165,7 @@ impl Wipe {
             force_adr: 0,
             step_force: [0.0; 3],
             force_bias: [0.0; 3],
+            newly_wiped: Vec::with_capacity(config.num_markers),
             config,
         })
     }
@@ -215,11 +218,20 @@ impl Wipe {
 
     /// The markers under the tool now (robosuite's `_get_active_markers`).
     pub fn active_markers(&self, sim: &Sim) -> Vec<usize> {
+        match self.active_test(sim) {
+            Some(active) => (0..self.markers.len()).filter(|&i| active(i)).collect(),
+            None => Vec::new(),
+        }
+    }
+
+    /// Whether marker `i` is under the tool now (the tool's plane is computed once), or
+    /// `None` when there are no contacts at all (then no marker is).
+    fn active_test<'a>(&'a self, sim: &'a Sim) -> Option<impl Fn(usize) -> bool + 'a> {
         let d = sim.data();
         if d.contact().is_empty() {
-            return Vec::new();
+            return None;
         }
-        let c: Vec<[f64; 3]> = self.corners.iter().map(|&g| d.geom_xpos()[g]).collect();
+        let c: [[f64; 3]; 4] = self.corners.map(|g| d.geom_xpos()[g]);
         let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let unit = |a: [f64; 3]| {
@@ -228,7 +240,7 @@ impl Wipe {
         };
         let v1 = unit(sub(c[0], c[1]));
         let v2 = unit(sub(c[3], c[1]));
-        let plane = |p: [f64; 3]| [dot(sub(p, c[1]), v1), dot(sub(p, c[1]), v2)];
+        let plane = move |p: [f64; 3]| [dot(sub(p, c[1]), v1), dot(sub(p, c[1]), v2)];
         let (t1, t2, t3, t4) = (plane(c[0]), plane(c[1]), plane(c[2]), plane(c[3]));
         let pp = [t1, t2, t4, t3];
         let n = unit([
@@ -239,69 +251,63 @@ impl Wipe {
         let is_left = |p0: [f64; 2], p1: [f64; 2], p2: [f64; 2]| {
             (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])
         };
-        let inside = |p: [f64; 2]| {
+        let inside = move |p: [f64; 2]| {
             is_left(pp[0], pp[1], p) < 0.0
                 && is_left(pp[1], pp[2], p) < 0.0
                 && is_left(pp[2], pp[3], p) < 0.0
                 && is_left(pp[3], pp[0], p) < 0.0
         };
-        let mut out = Vec::new();
-        for (i, &b) in self.markers.iter().enumerate() {
-            let m = d.xpos()[b];
+        Some(move |i: usize| {
+            let m = d.xpos()[self.markers[i]];
             let dist = dot(sub(m, c[1]), n);
-            if dist > 0.0 && dist < 0.02 {
+            dist > 0.0 && dist < 0.02 && {
                 let proj = [m[0] - dist * n[0], m[1] - dist * n[1], m[2] - dist * n[2]];
-                if inside(plane(proj)) {
-                    out.push(i);
-                }
+                inside(plane(proj))
             }
-        }
-        out
+        })
     }
 
-    /// robosuite's `_get_wipe_information` over the markers not in `wiped`:
+    /// robosuite's `_get_wipe_information` over the markers `i` with `!wiped(i)`:
     /// `(radius, centroid, centroid − eef)`.
     fn wipe_information(
         &self,
         sim: &Sim,
         robots: &[Robot],
-        wiped: &[bool],
+        wiped: impl Fn(usize) -> bool,
     ) -> (f64, [f64; 3], [f64; 3]) {
         let d = sim.data();
-        let remaining: Vec<[f64; 3]> = self
-            .markers
-            .iter()
-            .zip(wiped)
-            .filter(|(_, w)| !**w)
-            .map(|(&b, _)| d.xpos()[b])
-            .collect();
-        if remaining.is_empty() {
+        let remaining = || {
+            self.markers
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| !wiped(i))
+                .map(|(_, &b)| d.xpos()[b])
+        };
+        let len = remaining().count();
+        if len == 0 {
             return (0.0, [0.0; 3], [0.0; 3]);
         }
         let mut c = [0.0; 3];
-        for p in &remaining {
+        for p in remaining() {
             for k in 0..3 {
-                c[k] += p[k] / remaining.len() as f64;
+                c[k] += p[k] / len as f64;
             }
         }
         let eef = eef_pos(sim, robots);
-        let radius = remaining
-            .iter()
+        let radius = remaining()
             .map(|p| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt())
             .fold(0.0, f64::max);
         (radius, c, [c[0] - eef[0], c[1] - eef[1], c[2] - eef[2]])
     }
 
-    /// The markers this step newly wipes (active and not yet wiped), unless the arm is
-    /// colliding or at a joint limit.
-    fn newly_wiped(&self, sim: &Sim) -> Vec<usize> {
+    /// Whether marker `i` is newly wiped by this step (active and not yet wiped), or `None`
+    /// when none is: the arm is colliding or at a joint limit, or nothing touches.
+    fn newly_wiped_test<'a>(&'a self, sim: &'a Sim) -> Option<impl Fn(usize) -> bool + 'a> {
         if self.arm_in_contact(sim) || self.joint_near_limit(sim) {
-            return Vec::new();
+            return None;
         }
-        self.active_markers(sim)
-            .into_iter()
-            .filter(|&i| !self.wiped[i])
-            .collect()
+        let active = self.active_test(sim)?;
+        Some(move |i: usize| !self.wiped[i] && active(i))
     }
 
     fn place_marker(&mut self, sim: &mut Sim, i: usize, p: [f64; 3]) {
@@ -463,7 +469,7 @@ impl Task for Wipe {
     }
 
     fn write_observations(&self, sim: &Sim, robots: &[Robot], out: &mut [f64]) {
-        let (radius, centroid, _) = self.wipe_information(sim, robots, &self.wiped);
+        let (radius, centroid, _) = self.wipe_information(sim, robots, |i| self.wiped[i]);
         let eef = eef_pos(sim, robots);
         out[0] = self.wiped_count() as f64 / self.config.num_markers as f64;
         out[1] = radius;
@@ -484,16 +490,15 @@ impl Task for Wipe {
                 reward = c.arm_limit_collision_penalty;
             }
         } else {
-            let new = self.newly_wiped(sim);
-            let mut wiped = self.wiped.clone();
-            for &i in &new {
-                wiped[i] = true;
-            }
-            let count = wiped.iter().filter(|w| **w).count();
+            let newly = self.newly_wiped_test(sim);
+            let is_new = |i: usize| newly.as_ref().is_some_and(|t| t(i));
+            let wiped = |i: usize| self.wiped[i] || is_new(i);
+            let new_count = (0..self.markers.len()).filter(|&i| is_new(i)).count();
+            let count = (0..self.markers.len()).filter(|&i| wiped(i)).count();
             if shaping {
-                reward += c.unit_wiped_reward * new.len() as f64;
+                reward += c.unit_wiped_reward * new_count as f64;
                 if count < c.num_markers {
-                    let (_, _, to) = self.wipe_information(sim, robots, &wiped);
+                    let (_, _, to) = self.wipe_information(sim, robots, wiped);
                     let d = to.iter().map(|v| v * v).sum::<f64>().sqrt();
                     reward += c.distance_multiplier * (1.0 - (c.distance_th_multiplier * d).tanh());
                 }
@@ -535,10 +540,17 @@ impl Task for Wipe {
     }
 
     fn after_reward(&mut self, sim: &mut Sim, _robots: &[Robot], _config: &RewardConfig) {
-        for i in self.newly_wiped(sim) {
+        let mut new = std::mem::take(&mut self.newly_wiped);
+        new.clear();
+        match self.newly_wiped_test(sim) {
+            Some(test) => new.extend((0..self.markers.len()).map(test)),
+            None => new.resize(self.markers.len(), false),
+        }
+        for (i, _) in new.iter().enumerate().filter(|(_, n)| **n) {
             self.wiped[i] = true;
             sim.model_mut().geom_rgba_mut()[self.marker_geoms[i]][3] = 0.0;
         }
+        self.newly_wiped = new;
         if self.force_bias.iter().all(|v| *v == 0.0) {
             self.force_bias = self.ee_force(sim);
         }
