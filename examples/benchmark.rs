@@ -11,9 +11,10 @@
 //!     [--max-envs 4] [--rounds 5] [--only steps|vector] [--json bench.json]
 //! ```
 //!
-//! Figures are wall-clock rates: run it on an otherwise idle machine. The vector figures are
-//! interleaved over `--rounds` rounds (medians of per-round ratios), because a shared VM's
-//! speed drifts between minutes.
+//! Figures are wall-clock rates: run it on an otherwise idle machine. The step rates
+//! (env, GymWrapper, physics only) and the vector figures are each interleaved over
+//! `--rounds` rounds (medians; ratios are medians of per-round ratios), because a shared VM's
+//! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
 use adapters::{ThreadVectorEnv, VectorEnv, WrapperExt};
 use gym_core::{Env, Result, Space, rng_from_seed};
@@ -210,7 +211,7 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
         step_rates(task, args, &mut rng, &mut figures)?;
     }
     if args.only.is_none() {
-        cost_figures(task, args, &mut rng, &mut figures)?;
+        reset_and_memory(task, &mut rng, &mut figures)?;
     }
     if args.only != Some(Only::Steps) {
         figures["vector"] = json!(vector_scaling(task, args, &mut rng)?);
@@ -218,84 +219,110 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
     Ok(figures)
 }
 
-/// One env's steps/s with random actions (resets at the horizon included): raw and through
-/// the flat GymWrapper.
+/// The physics of an env's model alone: `mj_step` × substeps with the arm held by gravity
+/// compensation (no controller, observations or reward), restarted every 200 env steps.
+struct PhysicsOnly {
+    sim: Sim,
+    start: Vec<f64>,
+    dofs: Vec<usize>,
+    substeps: usize,
+    steps: u64,
+}
+
+impl PhysicsOnly {
+    fn new(env: &RobosuiteEnv) -> Result<Self> {
+        let start = env.get_state();
+        let mut sim = Sim::new(env.sim().model().clone())?;
+        sim.set_state(&start)?;
+        let dofs = env
+            .robots()
+            .iter()
+            .flat_map(|r| r.controller().binding().dofs.to_vec())
+            .collect();
+        Ok(Self {
+            sim,
+            start,
+            dofs,
+            substeps: env.substeps(),
+            steps: 0,
+        })
+    }
+
+    /// One env step's worth of physics.
+    fn step(&mut self) -> Result<()> {
+        for _ in 0..self.substeps {
+            for (col, &d) in self.dofs.iter().enumerate() {
+                let bias = self.sim.data().qfrc_bias()[d];
+                self.sim.data_mut().ctrl_mut()[col] = bias;
+            }
+            self.sim.step();
+        }
+        self.steps += 1;
+        if self.steps.is_multiple_of(200) {
+            self.sim.set_state(&self.start)?;
+        }
+        Ok(())
+    }
+}
+
+/// One env's steps/s with random actions (resets at the horizon included), raw and through
+/// the flat GymWrapper, and (without `--only`) the physics-only rate of the same model.
+/// The three are interleaved in `args.rounds` rounds: rates are medians, the cost ratio is
+/// the median of the per-round ratios.
 fn step_rates(
     task: &str,
     args: &Args,
     rng: &mut gym_core::EnvRng,
     figures: &mut serde_json::Value,
 ) -> Result<()> {
-    let budget = Duration::from_secs_f64(args.seconds);
-
-    // Raw env, random actions, resets at the horizon included.
+    let window = Duration::from_secs_f64(args.seconds / args.rounds as f64);
     let mut env = make(task)?;
     env.reset(Some(0), None)?;
-    let env_rate = rate(budget, || {
-        let a = env.action_space().sample(rng);
-        if env.step(&a)?.done() {
-            env.reset(None, None)?;
-        }
-        Ok(())
-    })?;
-
-    // The same through robosuite's (corrected) GymWrapper: f32 flat observations.
+    let mut physics = match args.only {
+        None => Some(PhysicsOnly::new(&env)?),
+        Some(_) => None,
+    };
     let mut gym = make(task)?.flat_gym_wrapper(None)?;
     gym.reset(Some(0), None)?;
-    let gym_rate = rate(budget, || {
-        let a = gym.action_space().sample(rng);
-        if gym.step(&a)?.done() {
-            gym.reset(None, None)?;
+    let (mut env_rates, mut gym_rates, mut physics_rates) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..args.rounds {
+        env_rates.push(rate(window, || {
+            let a = env.action_space().sample(rng);
+            if env.step(&a)?.done() {
+                env.reset(None, None)?;
+            }
+            Ok(())
+        })?);
+        gym_rates.push(rate(window, || {
+            let a = gym.action_space().sample(rng);
+            if gym.step(&a)?.done() {
+                gym.reset(None, None)?;
+            }
+            Ok(())
+        })?);
+        if let Some(p) = &mut physics {
+            physics_rates.push(rate(window, || p.step())?);
         }
-        Ok(())
-    })?;
-
-    figures["steps_per_s"] = json!(env_rate);
-    figures["gym_wrapper_steps_per_s"] = json!(gym_rate);
+    }
+    figures["substeps"] = json!(env.substeps());
+    figures["steps_per_s"] = json!(median(env_rates.clone()));
+    figures["gym_wrapper_steps_per_s"] = json!(median(gym_rates));
+    if !physics_rates.is_empty() {
+        let ratios = physics_rates.iter().zip(&env_rates).map(|(p, e)| p / e);
+        figures["cost_ratio"] = json!(median(ratios.collect()));
+        figures["physics_only_steps_per_s"] = json!(median(physics_rates));
+    }
     Ok(())
 }
 
-/// The physics-only rate of the same model and the ratio, reset time, memory per instance.
-fn cost_figures(
+/// Reset time and resident memory per additional instance.
+fn reset_and_memory(
     task: &str,
-    args: &Args,
     rng: &mut gym_core::EnvRng,
     figures: &mut serde_json::Value,
 ) -> Result<()> {
-    let budget = Duration::from_secs_f64(args.seconds);
     let mut env = make(task)?;
-    // Physics only: the env's model, mj_step × substeps, gravity-compensated arm.
-    let substeps = env.substeps();
     env.reset(Some(0), None)?;
-    let start = env.get_state();
-    let mut sim = Sim::new(env.sim().model().clone())?;
-    sim.set_state(&start)?;
-    let dofs: Vec<Vec<usize>> = env
-        .robots()
-        .iter()
-        .map(|r| r.controller().binding().dofs.to_vec())
-        .collect();
-    let mut n = 0u64;
-    let physics_rate = rate(budget, || {
-        for _ in 0..substeps {
-            let mut col = 0;
-            for arm in &dofs {
-                for &d in arm {
-                    let bias = sim.data().qfrc_bias()[d];
-                    sim.data_mut().ctrl_mut()[col] = bias;
-                    col += 1;
-                }
-            }
-            sim.step();
-        }
-        n += 1;
-        if n.is_multiple_of(200) {
-            sim.set_state(&start)?;
-        }
-        Ok(())
-    })?;
-
-    // Reset cost.
     let resets = 500;
     let t = Instant::now();
     for _ in 0..resets {
@@ -303,7 +330,6 @@ fn cost_figures(
     }
     let reset_us = t.elapsed().as_secs_f64() / f64::from(resets) * 1e6;
 
-    // Resident memory per additional instance.
     let before = rss_mib();
     let mut many = Vec::new();
     for i in 0..16 {
@@ -318,10 +344,6 @@ fn cost_figures(
     let mib_per_env = (rss_mib() - before) / many.len() as f64;
     drop(many);
 
-    let env_rate = figures["steps_per_s"].as_f64().unwrap_or(f64::NAN);
-    figures["substeps"] = json!(substeps);
-    figures["physics_only_steps_per_s"] = json!(physics_rate);
-    figures["cost_ratio"] = json!(physics_rate / env_rate);
     figures["reset_us"] = json!(reset_us);
     figures["mib_per_env"] = json!(mib_per_env);
     figures["arena_mib"] = json!(env.sim().arena_bytes() as f64 / 1048576.0);
@@ -352,7 +374,7 @@ fn main() -> Result<()> {
                 "physics only (mj_step x substeps)",
                 "",
             ),
-            ("cost_ratio", "env cost / physics-only cost", "x"),
+            ("cost_ratio", "physics-only / env speed", "x"),
             ("reset_us", "reset", " us"),
             ("mib_per_env", "resident memory per extra instance", " MiB"),
         ];

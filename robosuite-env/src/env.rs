@@ -43,7 +43,12 @@ enum Phase {
 ///   be finite (else [`Error::InvalidAction`], nothing is simulated); values outside
 ///   `[-1, 1]` are clipped by the controllers, as in robosuite. Each env step runs
 ///   `substeps` (25 at 20 Hz) × {`mj_step1`; controllers (goal set on the first substep
-///   only); `mj_step2`}.
+///   only); `mj_step2`}. Sensors are computed only in the last substep's `mj_step2`, the
+///   only one whose sensor values anybody reads (bit-identical trajectories, 4 % fewer
+///   instructions; see [`Sim::step2_without_sensors`]).
+/// * **Allocation**: [`Env::step_into`](gym_core::Env::step_into) writes the observation and
+///   info into the caller's buffers and allocates nothing; `step` allocates the returned
+///   observation dict.
 /// * **One-substep lag**: observations, reward and success are read right after the last
 ///   `mj_step2` without another `mj_forward`, as robosuite does, so positions and contacts
 ///   derived from kinematics (`eef_pos`, `cube_pos`, quaternions, grasp contacts) describe
