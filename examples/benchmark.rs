@@ -3,8 +3,8 @@
 //! model (`mj_step` × substeps per env step, arm held by gravity compensation) and the ratio,
 //! reset time, resident memory per additional instance, and thread-vector-env throughput
 //! for 1, 2, 4, ... environments beside the machine's parallel ceiling (the same number of
-//! envs stepped by independent threads, no vector env). Prints a table; `--json PATH` also
-//! writes JSON.
+//! envs stepped by independent threads, no vector env) and EnvPool's asynchronous mode
+//! (`ThreadEnvPool`, two envs per thread). Prints a table; `--json PATH` also writes JSON.
 //!
 //! ```text
 //! cargo run --release -p examples --example benchmark -- [--task Lift] [--seconds 3]
@@ -16,7 +16,7 @@
 //! `--rounds` rounds (medians; ratios are medians of per-round ratios), because a shared VM's
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
-use adapters::{ThreadVectorEnv, VectorEnv, WrapperExt};
+use adapters::{BatchSpace, ThreadEnvPool, ThreadVectorEnv, VectorEnv, WrapperExt};
 use gym_core::{Env, Result, Space, rng_from_seed};
 use robosuite_env::{EnvConfig, RobosuiteEnv, sim::Sim};
 use serde_json::json;
@@ -136,7 +136,7 @@ fn vector_scaling(
     task: &str,
     args: &Args,
     rng: &mut gym_core::EnvRng,
-) -> Result<Vec<serde_json::Value>> {
+) -> Result<(Vec<serde_json::Value>, serde_json::Value)> {
     let window = Duration::from_secs_f64(args.seconds / args.rounds as f64);
     let counts: Vec<usize> = std::iter::successors(Some(1usize), |n| Some(n * 2))
         .take_while(|n| *n <= args.max_envs)
@@ -152,10 +152,28 @@ fn vector_scaling(
             Ok(venv)
         })
         .collect::<Result<Vec<_>>>()?;
+    // EnvPool's asynchronous mode: 2 envs per thread, recv returns one per thread.
+    let threads = std::thread::available_parallelism().map_or(2, usize::from);
+    let pool_envs = (0..2 * threads)
+        .map(|_| make(task)?.flat_gym_wrapper(None))
+        .collect::<Result<Vec<_>>>()?;
+    let mut pool = ThreadEnvPool::new(pool_envs, threads)?;
+    let pool_actions = pool.single_action_space().batch_space(threads)?;
+    pool.reset(0u64)?;
+    let mut ids = pool.recv()?.env_ids.to_vec();
     // rates[i][round] for the vector env and the ceiling of counts[i].
     let mut vector_rates = vec![Vec::new(); counts.len()];
     let mut ceiling_rates = vec![Vec::new(); counts.len()];
+    let mut pool_rates = Vec::new();
     for _ in 0..args.rounds {
+        pool_rates.push(
+            rate(window, || {
+                let actions = pool_actions.sample(rng);
+                let next = pool.step(&actions, &ids)?.env_ids.to_vec();
+                ids = next;
+                Ok(())
+            })? * threads as f64,
+        );
         for (i, (venv, &n)) in venvs.iter_mut().zip(&counts).enumerate() {
             let r = rate(window, || {
                 let actions = venv.action_space().sample(rng);
@@ -170,7 +188,14 @@ fn vector_scaling(
         }
     }
     let ratio = |a: &[f64], b: &[f64]| median(a.iter().zip(b).map(|(x, y)| x / y).collect());
-    Ok(counts
+    let pool = json!({
+        "envs": pool.num_envs(),
+        "batch_size": pool.batch_size(),
+        "threads": pool.num_threads(),
+        "steps_per_s": median(pool_rates.clone()),
+        "speedup": ratio(&pool_rates, &vector_rates[0]),
+    });
+    let vector = counts
         .iter()
         .zip(&venvs)
         .enumerate()
@@ -185,7 +210,8 @@ fn vector_scaling(
                 "efficiency": ratio(&vector_rates[i], &ceiling_rates[i]),
             })
         })
-        .collect())
+        .collect::<Vec<_>>();
+    Ok((vector, pool))
 }
 
 /// Resident set size of this process in MiB.
@@ -214,7 +240,9 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
         reset_and_memory(task, &mut rng, &mut figures)?;
     }
     if args.only != Some(Only::Steps) {
-        figures["vector"] = json!(vector_scaling(task, args, &mut rng)?);
+        let (vector, pool) = vector_scaling(task, args, &mut rng)?;
+        figures["vector"] = json!(vector);
+        figures["pool"] = pool;
     }
     Ok(figures)
 }
@@ -395,6 +423,15 @@ fn main() -> Result<()> {
                 v["envs"],
                 v["ceiling_speedup"].as_f64().unwrap_or(0.0),
                 v["efficiency"].as_f64().unwrap_or(0.0)
+            );
+        }
+        if let Some(p) = r.get("pool") {
+            println!(
+                "  ThreadEnvPool {} envs, batches of {} {:>10.0} steps/s ({:.2}x one env)",
+                p["envs"],
+                p["batch_size"],
+                p["steps_per_s"].as_f64().unwrap_or(0.0),
+                p["speedup"].as_f64().unwrap_or(0.0)
             );
         }
         results.push(r);

@@ -32,7 +32,8 @@
 //! * Action: [`ClipAction`], [`RescaleAction`], [`TransformAction`], [`StickyAction`],
 //!   [`RepeatAction`].
 //! * Reward: [`NormalizeReward`], [`TransformReward`], [`ClipReward`].
-//! * Vector environments: [`vector`] ([`SyncVectorEnv`], [`ThreadVectorEnv`]).
+//! * Vector environments: [`vector`] ([`SyncVectorEnv`], [`ThreadVectorEnv`], and
+//!   EnvPool's asynchronous mode, [`ThreadEnvPool`]).
 //! * Space helpers the wrappers are generic over: [`NumericSpace`], [`BatchSpace`],
 //!   [`FilterableSpace`], [`DictObservationSpace`].
 
@@ -139,5 +140,6 @@ pub use transform_action::TransformAction;
 pub use transform_observation::TransformObservation;
 pub use transform_reward::TransformReward;
 pub use vector::{
-    AutoresetMode, Seeds, SyncVectorEnv, ThreadVectorEnv, VectorEnv, VectorInfo, VectorStep,
+    AutoresetMode, PoolStep, Seeds, SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv,
+    VectorInfo, VectorStep,
 };

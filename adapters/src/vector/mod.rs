@@ -6,7 +6,11 @@
 //! * [`ThreadVectorEnv`] steps them on persistent worker threads (Gymnasium's
 //!   `AsyncVectorEnv`, with threads instead of processes since Rust environments are `Send`).
 //!
-//! Both implement [`VectorEnv`] with the same semantics:
+//! * [`ThreadEnvPool`] is EnvPool's asynchronous mode: `recv` returns the first
+//!   `batch_size` environments to finish and `send` steps exactly those, so threads do not
+//!   wait for the slowest environment (not a [`VectorEnv`]: batches hold changing ids).
+//!
+//! The two vector envs implement [`VectorEnv`] with the same semantics:
 //!
 //! * `reset(seed)`: an integer seed gives sub-environment `i` the seed `seed + i`
 //!   ([`Seeds`]); a reset mask (typed, or `options["reset_mask"]`) resets only some of them;
@@ -25,10 +29,12 @@
 
 mod core;
 pub mod info;
+mod pool;
 mod sync;
 mod thread;
 
 pub use info::{VectorInfo, VectorInfoValue};
+pub use pool::{PoolStep, ThreadEnvPool};
 pub use sync::SyncVectorEnv;
 pub use thread::ThreadVectorEnv;
 
