@@ -71,6 +71,27 @@ pub struct PoolStep<'a, O> {
 /// environment is returned as [`Error::Simulation`] and that environment refuses further
 /// operations; a sent id that is unknown, repeated or still pending is an
 /// [`Error::InvalidArgument`], and nothing is queued.
+///
+/// ```
+/// use adapters::{BatchSpace, ThreadEnvPool, WrapperExt};
+/// use gym_core::{Space, rng_from_seed};
+///
+/// let envs = (0..4)
+///     .map(|_| robosuite_env::make("Lift")?.flat_gym_wrapper(None))
+///     .collect::<gym_core::Result<Vec<_>>>()?;
+/// let mut pool = ThreadEnvPool::new(envs, 2)?;
+/// let actions = pool.single_action_space().batch_space(2)?;
+/// let mut rng = rng_from_seed(0);
+/// pool.reset(7u64)?;
+/// let mut ids = pool.recv()?.env_ids.to_vec();
+/// for _ in 0..10 {
+///     // A policy would map the batch's observations to actions here.
+///     let batch = pool.step(&actions.sample(&mut rng), &ids)?;
+///     assert_eq!(batch.observations.shape(), [2, 60]);
+///     ids = batch.env_ids.to_vec();
+/// }
+/// # Ok::<(), gym_core::Error>(())
+/// ```
 pub struct ThreadEnvPool<E: Env>
 where
     E::ObsSpace: BatchSpace,
