@@ -20,6 +20,19 @@ struct Expected {
     info: Info,
 }
 
+impl Expected {
+    /// A reset's row: its observation, reward 0, no flags.
+    fn reset((obs, info): (ArrayD<f32>, Info)) -> Self {
+        Self {
+            obs: obs.iter().copied().collect(),
+            reward: 0.0,
+            terminated: false,
+            truncated: false,
+            info,
+        }
+    }
+}
+
 fn action_for(id: usize, count: usize) -> [f32; 2] {
     let x = ((id * 7 + count * 3) % 11) as f32 / 5.0 - 1.0;
     let y = ((id * 5 + count) % 9) as f32 / 4.0 - 1.0;
@@ -38,16 +51,7 @@ fn check_trajectories(num_envs: usize, batch_size: usize, threads: usize, rounds
     let mut expected: Vec<Expected> = reference
         .iter_mut()
         .enumerate()
-        .map(|(i, e)| {
-            let (obs, info) = e.reset(Some(40 + i as u64), None).unwrap();
-            Expected {
-                obs: obs.iter().copied().collect(),
-                reward: 0.0,
-                terminated: false,
-                truncated: false,
-                info,
-            }
-        })
+        .map(|(i, e)| Expected::reset(e.reset(Some(40 + i as u64), None).unwrap()))
         .collect();
     let mut ended = vec![false; num_envs];
     let mut sent = vec![0usize; num_envs];
@@ -89,14 +93,7 @@ fn check_trajectories(num_envs: usize, batch_size: usize, threads: usize, rounds
             actions.index_axis_mut(Axis(0), k).assign(&a32(&a));
             expected[id] = if ended[id] {
                 autoresets += 1;
-                let (obs, info) = reference[id].reset(None, None).unwrap();
-                Expected {
-                    obs: obs.iter().copied().collect(),
-                    reward: 0.0,
-                    terminated: false,
-                    truncated: false,
-                    info,
-                }
+                Expected::reset(reference[id].reset(None, None).unwrap())
             } else {
                 let s = reference[id].step(&a32(&a)).unwrap();
                 Expected {

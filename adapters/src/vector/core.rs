@@ -8,6 +8,8 @@ use super::info::VectorInfo;
 use super::{AutoresetMode, Seeds};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Info, InfoValue, Metadata, ResetOptions, Result, Step};
+use std::any::Any;
+use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// What one sub-environment does.
 #[derive(Debug)]
@@ -66,6 +68,36 @@ pub(crate) fn run_op<E: Env>(env: &mut E, op: Op<E::Act>) -> Result<Outcome<E::O
             }
         }
     }
+}
+
+/// [`run_op`] for sub-environment `id`, refusing it when `poisoned` (it panicked before);
+/// a panic sets `poisoned` and becomes an [`Error::Simulation`].
+pub(crate) fn run_op_guarded<E: Env>(
+    env: &mut E,
+    op: Op<E::Act>,
+    id: usize,
+    poisoned: &mut bool,
+) -> Result<Outcome<E::Obs>> {
+    if *poisoned {
+        return Err(Error::Simulation(format!(
+            "sub-environment {id} panicked earlier and is unusable"
+        )));
+    }
+    catch_unwind(AssertUnwindSafe(|| run_op(env, op))).unwrap_or_else(|payload| {
+        *poisoned = true;
+        Err(Error::Simulation(format!(
+            "panicked: {}",
+            panic_message(payload.as_ref())
+        )))
+    })
+}
+
+fn panic_message(payload: &(dyn Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| (*s).to_owned())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic payload".to_owned())
 }
 
 /// Prefixes the message of a sub-environment's error with its index, where the variant

@@ -2,11 +2,10 @@
 //! `batch_size` environments to finish, `send` gives exactly those their next actions, so
 //! no thread waits for the slowest environment of a batch.
 
-use super::core::{Op, Outcome, VectorCore, in_env, run_op};
+use super::core::{Op, Outcome, VectorCore, in_env, run_op_guarded};
 use super::{Seeds, VectorInfo};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Result};
-use std::any::Any;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
@@ -114,14 +113,6 @@ where
     closed: bool,
 }
 
-fn panic_message(payload: &(dyn Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| (*s).to_owned())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown panic payload".to_owned())
-}
-
 /// A worker: takes the next job, runs it on its environment, reports the outcome; exits
 /// when the pool drops its job sender.
 fn worker_loop<E: Env>(
@@ -133,23 +124,12 @@ fn worker_loop<E: Env>(
         let job = jobs.lock().unwrap_or_else(PoisonError::into_inner).recv();
         let Ok((id, op)) = job else { break };
         let slot = &slots[id];
-        let result = if slot.poisoned.load(Ordering::Acquire) {
-            Err(Error::Simulation(format!(
-                "sub-environment {id} panicked earlier and is unusable"
-            )))
-        } else {
+        let mut poisoned = slot.poisoned.load(Ordering::Acquire);
+        let result = {
             let mut env = slot.env.lock().unwrap_or_else(PoisonError::into_inner);
-            match catch_unwind(AssertUnwindSafe(|| run_op(&mut *env, op))) {
-                Ok(r) => r,
-                Err(payload) => {
-                    slot.poisoned.store(true, Ordering::Release);
-                    Err(Error::Simulation(format!(
-                        "panicked: {}",
-                        panic_message(payload.as_ref())
-                    )))
-                }
-            }
+            run_op_guarded(&mut *env, op, id, &mut poisoned)
         };
+        slot.poisoned.store(poisoned, Ordering::Release);
         if done.send((id, result)).is_err() {
             break;
         }

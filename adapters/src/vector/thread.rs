@@ -1,11 +1,10 @@
 //! [`ThreadVectorEnv`]: sub-environments stepped in parallel on persistent worker threads.
 
-use super::core::{Op, Outcome, VectorCore, run_op};
+use super::core::{Op, Outcome, VectorCore, run_op_guarded};
 use super::delegate_to_core;
 use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Metadata, ResetOptions, Result};
-use std::any::Any;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread::JoinHandle;
@@ -27,14 +26,6 @@ struct Worker<E: Env> {
     handle: Option<JoinHandle<()>>,
 }
 
-fn panic_message(payload: &(dyn Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| (*s).to_owned())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown panic payload".to_owned())
-}
-
 /// Sub-environments (with their global indices) stepped by one thread, and which of them
 /// panicked: a panicking environment is reported and then refused.
 struct Block<E> {
@@ -53,28 +44,8 @@ impl<E: Env> Block<E> {
         ops.into_iter()
             .map(|(local, op)| {
                 let (global, env) = &mut self.envs[local];
-                let global = *global;
-                if self.poisoned[local] {
-                    return (
-                        global,
-                        Err(Error::Simulation(format!(
-                            "sub-environment {global} panicked earlier and is unusable"
-                        ))),
-                    );
-                }
-                match catch_unwind(AssertUnwindSafe(|| run_op(env, op))) {
-                    Ok(r) => (global, r),
-                    Err(payload) => {
-                        self.poisoned[local] = true;
-                        (
-                            global,
-                            Err(Error::Simulation(format!(
-                                "panicked: {}",
-                                panic_message(payload.as_ref())
-                            ))),
-                        )
-                    }
-                }
+                let r = run_op_guarded(env, op, *global, &mut self.poisoned[local]);
+                (*global, r)
             })
             .collect()
     }
