@@ -30,6 +30,7 @@ from . import _native
 __all__ = [
     "make",
     "make_vec",
+    "make_pool",
     "scene_xml",
     "RobosuiteEnv",
     "ALL_ENVIRONMENTS",
@@ -414,7 +415,49 @@ def make_vec(
     return RustVectorEnv(native)
 
 
+def make_pool(
+    env_name: str,
+    num_envs: int,
+    batch_size: int,
+    robots: str | list[str] = "Panda",
+    *,
+    keys: list[str] | None = None,
+    flatten_obs: bool = True,
+    model_xml: str | PathLike[str] | None = None,
+    threads: int | None = None,
+    **kwargs: Any,
+) -> "EnvPool":
+    """``num_envs`` GymWrapper'd envs in an asynchronous :class:`~robosuite_rs.pool.EnvPool`
+    (EnvPool's ``send`` / ``recv`` mode) whose ``recv`` returns ``batch_size`` of them.
+
+    Takes :func:`make_vec`'s arguments; ``batch_size`` must be in ``1..num_envs``
+    (EnvPool's advice: ``num_envs`` about 2-3 x ``batch_size``).
+
+    Raises:
+        ValueError: as :func:`make`, and for ``num_envs < 1`` or a bad ``batch_size``.
+    """
+    from .pool import EnvPool
+
+    if int(num_envs) < 1:
+        raise ValueError(f"num_envs must be at least 1, got {num_envs}")
+    if not 1 <= int(batch_size) <= int(num_envs):
+        raise ValueError(f"batch_size must be in 1..{num_envs}, got {batch_size}")
+    config = _config_kwargs(env_name, robots, kwargs)
+    native = _native.make_robosuite_pool(
+        env_name,
+        int(num_envs),
+        int(batch_size),
+        config,
+        None if keys is None else list(keys),
+        bool(flatten_obs),
+        None if model_xml is None else str(model_xml),
+        threads,
+    )
+    return EnvPool(native)
+
+
 from .vector import RustVectorEnv  # noqa: E402
+from .pool import EnvPool  # noqa: E402
 from .registration import register_envs as _register_envs  # noqa: E402
 
 _register_envs()

@@ -1,4 +1,5 @@
-"""Steps per second of robosuite_rs from Python (GymWrapper, robosuite-style env, make_vec).
+"""Steps per second of robosuite_rs from Python (GymWrapper, robosuite-style env, make_vec,
+make_pool).
 
     .venv/bin/python python/scripts/bench.py [--task Lift] [--seconds 3] [--only gym] [--json]
 
@@ -82,6 +83,24 @@ def bench_vec(task: str, num_envs: int, seconds: float) -> float:
     return rate
 
 
+def bench_pool(task: str, seconds: float) -> float:
+    """make_pool env steps per second: 2 envs per CPU, batches of one per CPU."""
+    cpus = os.cpu_count() or 1
+    pool = suite.make_pool(task, 2 * cpus, cpus, horizon=1000, **QUIET)
+    pool.reset(seed=0)
+    pool.action_space.seed(0)
+    actions = [pool.action_space.sample() for _ in range(100)]
+
+    def step() -> int:
+        for a in actions:
+            pool.step(a)
+        return len(actions) * cpus
+
+    rate = timed(seconds, step)
+    pool.close()
+    return rate
+
+
 def main() -> None:
     """Prints the figures (or JSON with ``--json``)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -95,6 +114,7 @@ def main() -> None:
         figures["robosuite_api_steps_per_s"] = bench_robosuite_api(args.task, args.seconds)
         for n in (1, 2, 4):
             figures[f"make_vec_{n}_steps_per_s"] = bench_vec(args.task, n, args.seconds)
+        figures["make_pool_steps_per_s"] = bench_pool(args.task, args.seconds)
     if args.json:
         print(json.dumps(figures))
         return

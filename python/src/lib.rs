@@ -32,11 +32,15 @@ mod errors;
 #[cfg(feature = "module")]
 mod module;
 #[cfg(feature = "python")]
+mod pool;
+#[cfg(feature = "python")]
 mod pyenv;
 #[cfg(feature = "python")]
 pub mod robosuite;
 
 #[cfg(feature = "python")]
 pub use errors::to_pyerr;
+#[cfg(feature = "python")]
+pub use pool::PyEnvPool;
 #[cfg(feature = "python")]
 pub use pyenv::{PyEnv, PyVecEnv, export_env, export_native_env};

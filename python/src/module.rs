@@ -2,6 +2,7 @@
 
 use crate::convert::py_to_info;
 use crate::errors::to_pyerr;
+use crate::pool::PyEnvPool;
 use crate::pyenv::{PyEnv, PyVecEnv};
 use crate::robosuite::PyRobosuiteEnv;
 use gym_core::{BoxedEnv, IntoBoxedEnv};
@@ -60,18 +61,50 @@ fn make_robosuite_vec(
     model_xml: Option<PathBuf>,
     threads: Option<usize>,
 ) -> PyResult<PyVecEnv> {
-    let config = config(kwargs)?;
-    let envs = py
-        .detach(|| {
-            (0..num_envs)
-                .map(|_| {
-                    let env = build(env_name, config.clone(), model_xml.as_ref())?;
-                    Ok(adapters::GymWrapper::new(env, keys.clone(), flatten_obs)?.boxed())
-                })
-                .collect::<gym_core::Result<Vec<BoxedEnv>>>()
-        })
-        .map_err(to_pyerr)?;
+    let envs = gym_wrapped(py, env_name, num_envs, kwargs, keys, flatten_obs, model_xml)?;
     PyVecEnv::new(envs, threads)
+}
+
+/// `num_envs` GymWrapper'd robosuite envs in an asynchronous pool whose `recv` returns
+/// `batch_size` of them.
+#[pyfunction]
+#[pyo3(signature = (env_name, num_envs, batch_size, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn make_robosuite_pool(
+    py: Python<'_>,
+    env_name: &str,
+    num_envs: usize,
+    batch_size: usize,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    keys: Option<Vec<String>>,
+    flatten_obs: bool,
+    model_xml: Option<PathBuf>,
+    threads: Option<usize>,
+) -> PyResult<PyEnvPool> {
+    let envs = gym_wrapped(py, env_name, num_envs, kwargs, keys, flatten_obs, model_xml)?;
+    PyEnvPool::new(envs, batch_size, threads)
+}
+
+/// `num_envs` robosuite envs behind a GymWrapper, boxed.
+fn gym_wrapped(
+    py: Python<'_>,
+    env_name: &str,
+    num_envs: usize,
+    kwargs: Option<&Bound<'_, PyDict>>,
+    keys: Option<Vec<String>>,
+    flatten_obs: bool,
+    model_xml: Option<PathBuf>,
+) -> PyResult<Vec<BoxedEnv>> {
+    let config = config(kwargs)?;
+    py.detach(|| {
+        (0..num_envs)
+            .map(|_| {
+                let env = build(env_name, config.clone(), model_xml.as_ref())?;
+                Ok(adapters::GymWrapper::new(env, keys.clone(), flatten_obs)?.boxed())
+            })
+            .collect::<gym_core::Result<Vec<BoxedEnv>>>()
+    })
+    .map_err(to_pyerr)
 }
 
 /// Makes any env registered in `gym_core::registry` by id, as a [`PyEnv`].
@@ -133,9 +166,11 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     robosuite_env::register_envs();
     m.add_class::<PyEnv>()?;
     m.add_class::<PyVecEnv>()?;
+    m.add_class::<PyEnvPool>()?;
     m.add_class::<PyRobosuiteEnv>()?;
     m.add_function(wrap_pyfunction!(make_robosuite, m)?)?;
     m.add_function(wrap_pyfunction!(make_robosuite_vec, m)?)?;
+    m.add_function(wrap_pyfunction!(make_robosuite_pool, m)?)?;
     m.add_function(wrap_pyfunction!(make_registered, m)?)?;
     m.add_function(wrap_pyfunction!(registered_ids, m)?)?;
     m.add_function(wrap_pyfunction!(scene_xml, m)?)?;

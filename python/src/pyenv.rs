@@ -28,7 +28,7 @@ pub(crate) fn extract_seed(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u
 }
 
 /// `metadata` as a Python dict: `{"render_modes": [...], "render_fps": fps or None}`.
-fn metadata_into_py<'py>(py: Python<'py>, m: &Metadata) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn metadata_into_py<'py>(py: Python<'py>, m: &Metadata) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let modes: Vec<&str> = m.render_modes.iter().map(|r| r.as_str()).collect();
     d.set_item("render_modes", PyList::new(py, modes)?)?;
@@ -174,7 +174,10 @@ impl PyVecEnv {
 }
 
 /// A batched info as Gymnasium's dict: one array per key (length `n`) and a `_key` mask.
-fn vector_info_into_py<'py>(py: Python<'py>, info: &VectorInfo) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn vector_info_into_py<'py>(
+    py: Python<'py>,
+    info: &VectorInfo,
+) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     for (k, v) in info.iter() {
         let value = match v {

@@ -1,0 +1,155 @@
+//! [`PyEnvPool`]: adapters' `ThreadEnvPool` (EnvPool's asynchronous mode) as a Python
+//! object; the Python class `robosuite_rs.pool.EnvPool` delegates to it.
+
+use crate::convert::{py_to_value, space_spec, value_into_py};
+use crate::errors::to_pyerr;
+use crate::pyenv::{extract_seed, metadata_into_py, vector_info_into_py};
+use adapters::{BatchSpace, ThreadEnvPool};
+use gym_core::{AnySpace, BoxedEnv, Metadata};
+use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+/// A pool of environments stepped asynchronously on Rust threads with the GIL released:
+/// `recv` returns the first `batch_size` to finish (their ids in `info["env_id"]`), `send`
+/// gives those their next actions.
+#[pyclass(name = "NativeEnvPool", module = "robosuite_rs._native")]
+pub struct PyEnvPool {
+    pool: Mutex<ThreadEnvPool<BoxedEnv>>,
+    observation_space: AnySpace,
+    action_space: AnySpace,
+    batched_action_space: AnySpace,
+    metadata: Metadata,
+}
+
+impl PyEnvPool {
+    /// Pools `envs`, returning `batch_size` per `recv`, on up to `threads` threads
+    /// (`None`: the available parallelism).
+    ///
+    /// # Errors
+    /// `ValueError` for an empty list, differing spaces or a batch size outside
+    /// `1..=len(envs)`.
+    pub fn new(envs: Vec<BoxedEnv>, batch_size: usize, threads: Option<usize>) -> PyResult<Self> {
+        let metadata = envs
+            .first()
+            .map(|e| e.metadata().clone())
+            .unwrap_or_default();
+        let pool = match threads {
+            Some(t) => ThreadEnvPool::with_threads(envs, batch_size, t),
+            None => ThreadEnvPool::new(envs, batch_size),
+        }
+        .map_err(to_pyerr)?;
+        let observation_space = pool.single_observation_space().clone();
+        let action_space = pool.single_action_space().clone();
+        let batched_action_space = action_space.batch_space(batch_size).map_err(to_pyerr)?;
+        Ok(Self {
+            pool: Mutex::new(pool),
+            observation_space,
+            action_space,
+            batched_action_space,
+            metadata,
+        })
+    }
+
+    fn lock(&self) -> MutexGuard<'_, ThreadEnvPool<BoxedEnv>> {
+        self.pool.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// What `recv` returns to Python.
+type RecvPy<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyDict>,
+);
+
+#[pymethods]
+impl PyEnvPool {
+    /// The number of environments.
+    #[getter]
+    fn num_envs(&self) -> usize {
+        self.lock().num_envs()
+    }
+
+    /// How many environments each `recv` returns.
+    #[getter]
+    fn batch_size(&self) -> usize {
+        self.lock().batch_size()
+    }
+
+    /// Queues a reset of every environment (env `i` gets `seed + i`); `recv` returns them.
+    #[pyo3(signature = (seed=None))]
+    fn async_reset(&self, py: Python<'_>, seed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        let seed = extract_seed(seed)?;
+        py.detach(|| self.lock().reset(seed)).map_err(to_pyerr)
+    }
+
+    /// `recv() -> (obs, rewards, terminations, truncations, info)` for the first
+    /// `batch_size` environments to finish; `info["env_id"]` holds their ids.
+    fn recv<'py>(&self, py: Python<'py>) -> PyResult<RecvPy<'py>> {
+        let (obs, rewards, terms, truncs, ids, info) = py
+            .detach(|| {
+                let mut pool = self.lock();
+                pool.recv().map(|s| {
+                    (
+                        s.observations.clone(),
+                        s.rewards.to_vec(),
+                        s.terminations.to_vec(),
+                        s.truncations.to_vec(),
+                        s.env_ids.iter().map(|&i| i as i64).collect::<Vec<_>>(),
+                        s.infos,
+                    )
+                })
+            })
+            .map_err(to_pyerr)?;
+        let info_py = vector_info_into_py(py, &info)?;
+        info_py.set_item("env_id", PyArray1::from_vec(py, ids))?;
+        Ok((
+            value_into_py(py, obs, false)?,
+            PyArray1::from_vec(py, rewards),
+            PyArray1::from_vec(py, terms),
+            PyArray1::from_vec(py, truncs),
+            info_py,
+        ))
+    }
+
+    /// Gives the environments `env_ids` (those of the last `recv`, one per row of
+    /// `actions`) their next actions.
+    fn send(&self, py: Python<'_>, actions: &Bound<'_, PyAny>, env_ids: Vec<i64>) -> PyResult<()> {
+        let actions = py_to_value(actions, &self.batched_action_space)?;
+        let ids = env_ids
+            .iter()
+            .map(|&i| {
+                usize::try_from(i)
+                    .map_err(|_| PyValueError::new_err(format!("env_id {i} is negative")))
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        py.detach(|| self.lock().send(&actions, &ids))
+            .map_err(to_pyerr)
+    }
+
+    /// The description of one environment's observation space.
+    fn observation_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        space_spec(py, &self.observation_space)
+    }
+
+    /// The description of one environment's action space.
+    fn action_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        space_spec(py, &self.action_space)
+    }
+
+    /// The metadata of environment 0.
+    fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        metadata_into_py(py, &self.metadata)
+    }
+
+    /// Closes every environment and joins the worker threads; calling it again does
+    /// nothing.
+    fn close(&self, py: Python<'_>) {
+        py.detach(|| self.lock().close());
+    }
+}
