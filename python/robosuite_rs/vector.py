@@ -17,7 +17,8 @@ class RustVectorEnv(VectorEnv):  # type: ignore[type-arg]
     """A vector of Rust environments (a ``_native.NativeVecEnv``: adapters'
     ``ThreadVectorEnv``) stepped in parallel on Rust worker threads with the GIL released.
 
-    * ``reset(seed=s)`` seeds env ``i`` with ``s + i`` (as ``SyncVectorEnv``).
+    * ``reset(seed=s)`` seeds env ``i`` with ``s + i`` (as ``SyncVectorEnv``); a list seeds
+      each env; ``options={"reset_mask": mask}`` resets only some envs.
     * Autoreset is Gymnasium's ``NEXT_STEP``: an env whose episode ended is reset on the
       next ``step`` (its action is ignored; reward 0, flags False).
     * Observations are batched in Rust into fresh arrays; infos come with Gymnasium's
@@ -40,19 +41,32 @@ class RustVectorEnv(VectorEnv):  # type: ignore[type-arg]
         self.render_mode = None
 
     def reset(
-        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+        self,
+        *,
+        seed: int | list[int | None] | None = None,
+        options: dict[str, Any] | None = None,
     ) -> tuple[Any, dict[str, Any]]:
-        """Resets every env; env ``i`` gets ``seed + i``.
+        """Resets the envs, as Gymnasium's vector envs do.
+
+        * ``seed``: an integer (env ``i`` gets ``seed + i``), a list with one optional
+          seed per env, or ``None`` (each env continues its own stream).
+        * ``options["reset_mask"]``: a bool array of shape ``(num_envs,)``; only those envs
+          are reset, the others keep their observation and state. Other options go to
+          every env that is reset.
 
         Raises:
-            ValueError: for a list of seeds or for options (not supported).
+            ValueError: for a seed list of the wrong length, a negative seed, a malformed
+                mask or an option the envs do not know.
         """
-        if seed is not None and not isinstance(seed, (int, np.integer)):
-            raise ValueError("RustVectorEnv.reset takes one integer seed (env i gets seed + i) or None")
-        if options:
-            raise ValueError(f"RustVectorEnv.reset does not support options, got {sorted(options)}")
-        super().reset(seed=seed)
-        return self._native.reset(None if seed is None else int(seed))
+        if isinstance(seed, (int, np.integer)):
+            super().reset(seed=int(seed))
+            native_seed: Any = int(seed)
+        elif seed is None:
+            super().reset(seed=None)
+            native_seed = None
+        else:
+            native_seed = [None if s is None else int(s) for s in seed]
+        return self._native.reset(native_seed, dict(options) if options else None)
 
     def step(self, actions: Any) -> tuple[Any, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
         """Steps every env with its row of ``actions`` (batched as ``action_space``).

@@ -6,7 +6,7 @@ use crate::convert::{
     array_into_py, info_into_py, py_to_info, py_to_value, space_spec, value_into_py,
 };
 use crate::errors::to_pyerr;
-use adapters::vector::{ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
+use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
 use gym_core::{AnySpace, BoxedEnv, Info, Metadata};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -24,6 +24,23 @@ pub(crate) fn extract_seed(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u
                 "seed must be a non-negative integer below 2**64, got {s}"
             ))
         }),
+    }
+}
+
+/// Vector seeds from Python: `None`, an integer (env `i` gets `seed + i`), or a sequence
+/// of optional integers, one per env.
+fn extract_seeds(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Seeds> {
+    let list = seed
+        .filter(|s| !s.is_instance_of::<pyo3::types::PyString>())
+        .and_then(|s| s.extract::<Vec<Bound<'_, PyAny>>>().ok());
+    match list {
+        Some(items) => Ok(Seeds::PerEnv(
+            items
+                .iter()
+                .map(|item| extract_seed(Some(item)))
+                .collect::<PyResult<Vec<_>>>()?,
+        )),
+        None => Ok(extract_seed(seed)?.into()),
     }
 }
 
@@ -246,18 +263,23 @@ impl PyVecEnv {
         self.num_envs
     }
 
-    /// `reset(seed=None) -> (batched obs, infos)`; env `i` gets `seed + i`.
-    #[pyo3(signature = (seed=None))]
+    /// `reset(seed=None, options=None) -> (batched obs, infos)`. `seed`: an integer (env
+    /// `i` gets `seed + i`) or one optional seed per env; `options["reset_mask"]` (a bool
+    /// array) resets only some envs, the other options go to every env.
+    #[pyo3(signature = (seed=None, options=None))]
     fn reset<'py>(
         &self,
         py: Python<'py>,
         seed: Option<&Bound<'py, PyAny>>,
+        options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
-        let seed = extract_seed(seed)?;
+        let seeds = extract_seeds(seed)?;
+        let options = options.map(py_to_info).transpose()?;
         let (obs, info) = py
             .detach(|| {
                 let mut vec = self.lock();
-                vec.reset(seed, None).map(|(o, i)| (o.clone(), i))
+                vec.reset(seeds, options.as_ref())
+                    .map(|(o, i)| (o.clone(), i))
             })
             .map_err(to_pyerr)?;
         Ok((

@@ -68,3 +68,29 @@ def test_gymnasium_make_vec_uses_rust_threads() -> None:
     assert obs.shape == (2, 60)
     vec.step(vec.action_space.sample())
     vec.close()
+
+
+def test_vector_reset_takes_seed_lists_and_a_reset_mask() -> None:
+    n = 3
+    vec = suite.make_vec("Lift", n, horizon=10, **QUIET)
+    singles = [GymWrapper(suite.make("Lift", horizon=10, **QUIET)) for _ in range(n)]
+    seeds = [7, None, 9]
+    obs, _ = vec.reset(seed=seeds)
+    for i in (0, 2):
+        np.testing.assert_array_equal(obs[i], singles[i].reset(seed=seeds[i])[0])
+    # Step once, then reset only env 1 with a mask: envs 0 and 2 keep their observations.
+    stepped, *_ = vec.step(np.zeros((n, 7), dtype=np.float32))
+    mask = np.array([False, True, False])
+    again, info = vec.reset(seed=[None, 5, None], options={"reset_mask": mask})
+    np.testing.assert_array_equal(again[[0, 2]], stepped[[0, 2]])
+    np.testing.assert_array_equal(again[1], singles[1].reset(seed=5)[0])
+    assert info["_success"].tolist() == [False, True, False]
+    with pytest.raises(ValueError):
+        vec.reset(seed=[1, 2])
+    with pytest.raises(gym.error.Error, match="greater or equal to zero"):  # Gymnasium's own check
+        vec.reset(seed=-1)
+    with pytest.raises(ValueError, match="non-negative"):
+        vec.reset(seed=[0, -1, 2])
+    with pytest.raises(ValueError):
+        vec.reset(options={"reset_mask": np.array([True, False])})
+    vec.close()
