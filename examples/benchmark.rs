@@ -17,8 +17,9 @@
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
 use adapters::{BatchSpace, ThreadEnvPool, ThreadVectorEnv, VectorEnv, WrapperExt};
+use examples::physics_only::PhysicsOnly;
 use gym_core::{Env, Result, Space, rng_from_seed};
-use robosuite_env::{EnvConfig, RobosuiteEnv, sim::Sim};
+use robosuite_env::{EnvConfig, RobosuiteEnv};
 use serde_json::json;
 use std::time::{Duration, Instant};
 
@@ -245,52 +246,6 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
         figures["pool"] = pool;
     }
     Ok(figures)
-}
-
-/// The physics of an env's model alone: `mj_step` × substeps with the arm held by gravity
-/// compensation (no controller, observations or reward), restarted every 200 env steps.
-struct PhysicsOnly {
-    sim: Sim,
-    start: Vec<f64>,
-    dofs: Vec<usize>,
-    substeps: usize,
-    steps: u64,
-}
-
-impl PhysicsOnly {
-    fn new(env: &RobosuiteEnv) -> Result<Self> {
-        let start = env.get_state();
-        let mut sim = Sim::new(env.sim().model().clone())?;
-        sim.set_state(&start)?;
-        let dofs = env
-            .robots()
-            .iter()
-            .flat_map(|r| r.controller().binding().dofs.to_vec())
-            .collect();
-        Ok(Self {
-            sim,
-            start,
-            dofs,
-            substeps: env.substeps(),
-            steps: 0,
-        })
-    }
-
-    /// One env step's worth of physics.
-    fn step(&mut self) -> Result<()> {
-        for _ in 0..self.substeps {
-            for (col, &d) in self.dofs.iter().enumerate() {
-                let bias = self.sim.data().qfrc_bias()[d];
-                self.sim.data_mut().ctrl_mut()[col] = bias;
-            }
-            self.sim.step();
-        }
-        self.steps += 1;
-        if self.steps.is_multiple_of(200) {
-            self.sim.set_state(&self.start)?;
-        }
-        Ok(())
-    }
 }
 
 /// One env's steps/s with random actions (resets at the horizon included), raw and through

@@ -1,5 +1,7 @@
 //! Helpers shared by the example programs in this folder.
 
+pub mod physics_only;
+
 use gym_core::Info;
 
 /// Formats an [`Info`] on one line, `key=value` pairs in order.

@@ -14,8 +14,9 @@
 //! difference of the counts (`scripts/instructions_per_step.sh` does this).
 
 use adapters::WrapperExt;
+use examples::physics_only::PhysicsOnly;
 use gym_core::{Env, Error, Result, Space, rng_from_seed};
-use robosuite_env::{EnvConfig, sim::Sim};
+use robosuite_env::EnvConfig;
 use std::hint::black_box;
 
 fn main() -> Result<()> {
@@ -57,24 +58,11 @@ fn main() -> Result<()> {
         }
         "physics" => {
             env.reset(Some(0), None)?;
-            let dofs: Vec<usize> = env
-                .robots()
-                .iter()
-                .flat_map(|r| r.controller().binding().dofs.to_vec())
-                .collect();
-            let substeps = env.substeps();
-            let mut sim = Sim::new(env.sim().model().clone())?;
-            sim.set_state(&env.get_state())?;
+            let mut physics = PhysicsOnly::new(&env)?;
             for _ in &actions {
-                for _ in 0..substeps {
-                    for (col, &d) in dofs.iter().enumerate() {
-                        let bias = sim.data().qfrc_bias()[d];
-                        sim.data_mut().ctrl_mut()[col] = bias;
-                    }
-                    sim.step();
-                }
+                physics.step()?;
             }
-            let _ = black_box(sim.state());
+            let _ = black_box(physics.state());
         }
         other => {
             return Err(Error::invalid_argument(
