@@ -48,9 +48,17 @@ class EnvPool:
         self._last_ids: np.ndarray | None = None
         self.closed = False
 
-    def async_reset(self, seed: int | None = None) -> None:
-        """Queues a reset of every env; env ``i`` gets ``seed + i``."""
-        self._native.async_reset(None if seed is None else int(seed))
+    def async_reset(self, seed: int | list[int | None] | None = None) -> None:
+        """Queues a reset of every env: an integer gives env ``i`` ``seed + i``, a list one
+        optional seed per env.
+
+        Raises:
+            ValueError: for a negative seed or a list of the wrong length.
+        """
+        if seed is None or isinstance(seed, (int, np.integer)):
+            self._native.async_reset(None if seed is None else int(seed))
+        else:
+            self._native.async_reset([None if s is None else int(s) for s in seed])
 
     def recv(self) -> tuple[Any, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
         """The first ``batch_size`` envs to finish.
@@ -71,7 +79,7 @@ class EnvPool:
         """
         self._native.send(actions, [int(i) for i in np.asarray(env_id).reshape(-1)])
 
-    def reset(self, *, seed: int | None = None) -> tuple[Any, dict[str, Any]]:
+    def reset(self, *, seed: int | list[int | None] | None = None) -> tuple[Any, dict[str, Any]]:
         """``async_reset`` then ``recv``: the first ``batch_size`` reset observations."""
         self.async_reset(seed)
         obs, _, _, _, info = self.recv()

@@ -3,7 +3,7 @@
 
 use crate::convert::{py_to_value, space_spec, value_into_py};
 use crate::errors::to_pyerr;
-use crate::pyenv::{extract_seed, metadata_into_py, vector_info_into_py};
+use crate::pyenv::{extract_seeds, metadata_into_py, vector_info_into_py};
 use adapters::{BatchSpace, ThreadEnvPool};
 use gym_core::{AnySpace, BoxedEnv, Metadata};
 use numpy::PyArray1;
@@ -81,11 +81,12 @@ impl PyEnvPool {
         self.lock().batch_size()
     }
 
-    /// Queues a reset of every environment (env `i` gets `seed + i`); `recv` returns them.
+    /// Queues a reset of every environment (an integer seed gives env `i` `seed + i`; a
+    /// list gives one optional seed per env); `recv` returns them.
     #[pyo3(signature = (seed=None))]
     fn async_reset(&self, py: Python<'_>, seed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
-        let seed = extract_seed(seed)?;
-        py.detach(|| self.lock().reset(seed)).map_err(to_pyerr)
+        let seeds = extract_seeds(seed)?;
+        py.detach(|| self.lock().reset(seeds)).map_err(to_pyerr)
     }
 
     /// `recv() -> (obs, rewards, terminations, truncations, info)` for the first

@@ -29,7 +29,7 @@ pub(crate) fn extract_seed(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u
 
 /// Vector seeds from Python: `None`, an integer (env `i` gets `seed + i`), or a sequence
 /// of optional integers, one per env.
-fn extract_seeds(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Seeds> {
+pub(crate) fn extract_seeds(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Seeds> {
     let list = seed
         .filter(|s| !s.is_instance_of::<pyo3::types::PyString>())
         .and_then(|s| s.extract::<Vec<Bound<'_, PyAny>>>().ok());

@@ -46,6 +46,17 @@ def test_pool_envs_follow_their_own_trajectories() -> None:
         assert autoresets > 0
 
 
+def test_pool_reset_takes_a_seed_per_env() -> None:
+    seeds = [11, 3]
+    with suite.make_pool("Lift", 2, 2, horizon=5, **QUIET) as pool:
+        obs, info = pool.reset(seed=seeds)
+        for k, i in enumerate(info["env_id"]):
+            single = GymWrapper(suite.make("Lift", horizon=5, **QUIET))
+            np.testing.assert_array_equal(obs[k], single.reset(seed=seeds[i])[0])
+        with pytest.raises(ValueError):
+            pool.async_reset([1, 2, 3])
+
+
 def test_pool_misuse_raises_and_sends_nothing() -> None:
     with pytest.raises(ValueError):
         suite.make_pool("Lift", 2, 3, **QUIET)
@@ -58,8 +69,10 @@ def test_pool_misuse_raises_and_sends_nothing() -> None:
         pool.send(zeros, [ids[0], pending])
     with pytest.raises(ValueError):
         pool.send(zeros, [ids[0], ids[0]])
+    # Both sent envs get a NaN action: of the three pending results (the third env's reset
+    # and two errors) any two include an error.
     nan = zeros.copy()
-    nan[0, 0] = np.nan
+    nan[:, 0] = np.nan
     pool.send(nan, ids)
     with pytest.raises(ValueError, match="not finite"):
         pool.recv()
