@@ -1,6 +1,7 @@
 //! Helpers shared by the tasks: free-joint objects, distances, grasp checks and the
 //! object-in-gripper-frame observations of robosuite's `_create_obj_sensors`.
 
+use super::RewardConfig;
 use crate::observations::ObsKey;
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, any_contact_between, body_id, geom_id, joint_id};
@@ -232,6 +233,28 @@ impl ObjectMode {
                 out[14] = active as f64;
             }
         }
+    }
+
+    /// robosuite's reward for these tasks: one per placed object, plus (when shaping) the
+    /// largest staged reward that `staged` computes; `reward_scale` divided by the number
+    /// of objects in mode 0.
+    pub fn reward(
+        self,
+        placed: &[bool],
+        staged: impl FnOnce() -> [f64; 4],
+        config: &RewardConfig,
+    ) -> f64 {
+        let mut r = placed.iter().filter(|b| **b).count() as f64;
+        if config.reward_shaping {
+            r += staged().iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        }
+        if let Some(scale) = config.reward_scale {
+            r *= scale;
+            if self == Self::All {
+                r /= placed.len() as f64;
+            }
+        }
+        r
     }
 
     /// robosuite's success rule: every object placed in mode 0, at least one otherwise.

@@ -330,18 +330,8 @@ impl Task for NutAssembly {
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
         let on = self.objects_on_pegs(sim, robots);
-        let mut r = on.iter().filter(|b| **b).count() as f64;
-        if config.reward_shaping {
-            let s = self.staged_rewards(sim, robots, &on);
-            r += s.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        }
-        if let Some(scale) = config.reward_scale {
-            r *= scale;
-            if self.mode == ObjectMode::All {
-                r /= 2.0;
-            }
-        }
-        r
+        self.mode
+            .reward(&on, || self.staged_rewards(sim, robots, &on), config)
     }
 
     fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool {

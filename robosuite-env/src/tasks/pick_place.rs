@@ -449,18 +449,11 @@ impl Task for PickPlace {
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
         let in_bins = self.objects_in_bins(sim, robots);
-        let mut r = in_bins.iter().filter(|b| **b).count() as f64;
-        if config.reward_shaping {
-            let s = self.staged_rewards(sim, robots, &in_bins);
-            r += s.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        }
-        if let Some(scale) = config.reward_scale {
-            r *= scale;
-            if self.mode == ObjectMode::All {
-                r /= 4.0;
-            }
-        }
-        r
+        self.mode.reward(
+            &in_bins,
+            || self.staged_rewards(sim, robots, &in_bins),
+            config,
+        )
     }
 
     fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool {
