@@ -5,7 +5,7 @@
 //! identical.
 
 use super::info::VectorInfo;
-use super::{AutoresetMode, Seeds};
+use super::{AutoresetMode, Seeds, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Info, InfoValue, Metadata, ResetOptions, Result, Step};
 use std::any::Any;
@@ -264,6 +264,17 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
         match first_err {
             Some(e) => Err(e),
             None => Ok(infos),
+        }
+    }
+
+    /// The step's view of the buffers, with `infos`.
+    pub(crate) fn view(&self, infos: VectorInfo) -> VectorStep<'_, BatchOf<OS>> {
+        VectorStep {
+            observations: &self.observations,
+            rewards: &self.rewards,
+            terminations: &self.terminations,
+            truncations: &self.truncations,
+            infos,
         }
     }
 

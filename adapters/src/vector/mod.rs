@@ -260,6 +260,14 @@ macro_rules! delegate_to_core {
             let infos = self.run_reset(seed.into(), options, Some(mask))?;
             Ok((&self.core.observations, infos))
         }
+
+        fn observations(&self) -> &BatchOf<$obs> {
+            &self.core.observations
+        }
+
+        fn is_closed(&self) -> bool {
+            self.core.closed
+        }
     };
 }
 pub(crate) use delegate_to_core;

@@ -94,18 +94,7 @@ where
             .map(|(op, env)| run_op(env, op))
             .collect();
         let infos = self.core.finish_step(outcomes)?;
-        let c = &self.core;
-        Ok(VectorStep {
-            observations: &c.observations,
-            rewards: &c.rewards,
-            terminations: &c.terminations,
-            truncations: &c.truncations,
-            infos,
-        })
-    }
-
-    fn observations(&self) -> &BatchOf<E::ObsSpace> {
-        &self.core.observations
+        Ok(self.core.view(infos))
     }
 
     fn close(&mut self) {
@@ -115,9 +104,5 @@ where
                 e.close();
             }
         }
-    }
-
-    fn is_closed(&self) -> bool {
-        self.core.closed
     }
 }

@@ -285,18 +285,7 @@ where
             .map(|o| o.unwrap_or_else(|| Err(Error::Simulation("a worker did not answer".into()))))
             .collect();
         let infos = self.core.finish_step(outcomes)?;
-        let c = &self.core;
-        Ok(VectorStep {
-            observations: &c.observations,
-            rewards: &c.rewards,
-            terminations: &c.terminations,
-            truncations: &c.truncations,
-            infos,
-        })
-    }
-
-    fn observations(&self) -> &BatchOf<E::ObsSpace> {
-        &self.core.observations
+        Ok(self.core.view(infos))
     }
 
     fn close(&mut self) {
@@ -304,10 +293,6 @@ where
             self.core.closed = true;
             self.shutdown();
         }
-    }
-
-    fn is_closed(&self) -> bool {
-        self.core.closed
     }
 }
 
