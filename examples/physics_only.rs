@@ -9,7 +9,8 @@ use robosuite_env::{RobosuiteEnv, sim::Sim};
 pub struct PhysicsOnly {
     sim: Sim,
     start: Vec<f64>,
-    dofs: Vec<usize>,
+    /// Each arm motor with the dof it drives.
+    motors: Vec<(usize, usize)>,
     substeps: usize,
     steps: u64,
 }
@@ -23,15 +24,20 @@ impl PhysicsOnly {
         let start = env.get_state();
         let mut sim = Sim::new(env.sim().model().clone())?;
         sim.set_state(&start)?;
-        let dofs = env
+        let motors = env
             .robots()
             .iter()
-            .flat_map(|r| r.controller().binding().dofs.to_vec())
+            .flat_map(|r| {
+                r.arms().iter().flat_map(move |arm| {
+                    let dofs = &r.joint_dofs()[arm.joints()];
+                    arm.actuators().iter().copied().zip(dofs.iter().copied())
+                })
+            })
             .collect();
         Ok(Self {
             sim,
             start,
-            dofs,
+            motors,
             substeps: env.substeps(),
             steps: 0,
         })
@@ -43,9 +49,9 @@ impl PhysicsOnly {
     /// When restoring the start state fails.
     pub fn step(&mut self) -> Result<()> {
         for _ in 0..self.substeps {
-            for (col, &d) in self.dofs.iter().enumerate() {
-                let bias = self.sim.data().qfrc_bias()[d];
-                self.sim.data_mut().ctrl_mut()[col] = bias;
+            for &(actuator, dof) in &self.motors {
+                let bias = self.sim.data().qfrc_bias()[dof];
+                self.sim.data_mut().ctrl_mut()[actuator] = bias;
             }
             self.sim.step();
         }

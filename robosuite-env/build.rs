@@ -1,10 +1,16 @@
-//! Provides the MuJoCo 3.17.0 shared library that mujoco-rs links against.
+//! Provides the MuJoCo 3.17.0 shared library that mujoco-rs links against, and robosuite
+//! 1.5.2's model files.
 //!
 //! By default the library is fetched once from the PyPI wheel `mujoco==3.17.0` into
 //! `<target>/<profile>/mujoco-3.17.0/lib` (inside the target folder, so `cargo run` and
 //! `cargo test` put it on the loader path, and the rpath in `.cargo/config.toml` finds it
 //! for binaries run directly). Set `MUJOCO_DYNAMIC_LINK_DIR` to use an existing MuJoCo
 //! 3.17.0 instead.
+//!
+//! It also fetches robosuite 1.5.2's model files (the PyPI wheel `robosuite==1.5.2`,
+//! unpacked by `build-support/fetch_robosuite.py` into the user cache that
+//! `src/assets.rs` reads at run time) unless `ROBOSUITE_ASSETS` points at an
+//! existing robosuite install.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -15,9 +21,14 @@ fn main() {
     println!("cargo::rerun-if-changed=build.rs");
     println!("cargo::rerun-if-changed=../build-support/fetch_mujoco.py");
     println!("cargo::rerun-if-env-changed=MUJOCO_DYNAMIC_LINK_DIR");
+    println!("cargo::rerun-if-changed=../build-support/fetch_robosuite.py");
+    println!("cargo::rerun-if-env-changed=ROBOSUITE_ASSETS");
+    println!("cargo::rerun-if-env-changed=ROBOSUITE_RS_CACHE");
+    println!("cargo::rerun-if-env-changed=XDG_CACHE_HOME");
     if std::env::var_os("DOCS_RS").is_some() {
         return;
     }
+    fetch_robosuite_assets();
     let lib_dir = match std::env::var_os("MUJOCO_DYNAMIC_LINK_DIR") {
         Some(dir) => user_library(PathBuf::from(dir)),
         None => fetched_library(),
@@ -70,6 +81,31 @@ fn fetched_library() -> PathBuf {
         Err(e) => fail(&format!(
             "cannot run `{python}` to fetch MuJoCo {VERSION} ({e}); install python3 with pip, \
              or set MUJOCO_DYNAMIC_LINK_DIR to the lib/ folder of MuJoCo {VERSION}"
+        )),
+    }
+}
+
+/// Fetches robosuite's model files into the user cache unless `ROBOSUITE_ASSETS` is set
+/// (the run-time lookup then uses that install; a wrong path is reported when an env is made).
+fn fetch_robosuite_assets() {
+    if std::env::var_os("ROBOSUITE_ASSETS").is_some() {
+        return;
+    }
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../build-support/fetch_robosuite.py");
+    let python = std::env::var("PYTHON").unwrap_or_else(|_| "python3".to_owned());
+    match Command::new(&python).arg(&script).output() {
+        Ok(out) if out.status.success() => {
+            let dest = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+            println!("cargo::rerun-if-changed={dest}/.robosuite-rs-complete");
+            println!("cargo::rustc-env=ROBOSUITE_RS_BUILD_ASSETS={dest}");
+        }
+        Ok(out) => fail(&format!(
+            "fetching robosuite's model files failed: {}",
+            String::from_utf8_lossy(&out.stderr).trim()
+        )),
+        Err(e) => fail(&format!(
+            "cannot run `{python}` to fetch robosuite 1.5.2's model files ({e}); install python3 \
+             with pip, or set ROBOSUITE_ASSETS to an existing robosuite 1.5.2 install"
         )),
     }
 }

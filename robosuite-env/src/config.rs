@@ -1,7 +1,9 @@
 //! Environment configuration (robosuite's constructor arguments) with validation.
 
 use crate::controllers::OscConfig;
-use crate::robots::{InitNoise, NoiseKind, ROBOT_NAMES};
+use crate::models::grippers::gripper_info;
+use crate::models::robots::{GripperChoice, robot_info};
+use crate::robots::{InitNoise, NoiseKind};
 use gym_core::{Error, Info, InfoValue, Result};
 
 /// robosuite's environment arguments that this crate supports.
@@ -18,6 +20,9 @@ use gym_core::{Error, Info, InfoValue, Result};
 pub struct EnvConfig {
     /// Robot names, one per robot the task needs (default `["Panda"]`).
     pub robots: Vec<String>,
+    /// Grippers, one choice per robot applied to each of its arms (robosuite's
+    /// `gripper_types`); empty: every robot's default gripper.
+    pub gripper_types: Vec<GripperChoice>,
     /// The arm controller (`OSC_POSE` defaults).
     pub controller: OscConfig,
     /// Episode length in env steps (default 1000); reaching it truncates the episode.
@@ -26,8 +31,8 @@ pub struct EnvConfig {
     pub control_freq: f64,
     /// Scale of the maximal reward, `None` for unnormalised rewards (default `Some(1.0)`).
     pub reward_scale: Option<f64>,
-    /// Dense staged rewards (default false).
-    pub reward_shaping: bool,
+    /// Dense staged rewards; `None` takes the task's default (robosuite: false, Wipe: true).
+    pub reward_shaping: Option<bool>,
     /// Never end the episode at the horizon (default false).
     pub ignore_done: bool,
     /// Noise added to the arm's initial joint positions on each reset (default Gaussian 0.02).
@@ -42,11 +47,12 @@ impl Default for EnvConfig {
     fn default() -> Self {
         Self {
             robots: vec!["Panda".to_owned()],
+            gripper_types: Vec::new(),
             controller: OscConfig::default(),
             horizon: 1000,
             control_freq: 20.0,
             reward_scale: Some(1.0),
-            reward_shaping: false,
+            reward_shaping: None,
             ignore_done: false,
             initialization_noise: InitNoise::default(),
             use_object_obs: true,
@@ -58,6 +64,7 @@ impl Default for EnvConfig {
 /// The keyword arguments [`EnvConfig::from_kwargs`] accepts.
 pub const CONFIG_KEYS: &[&str] = &[
     "robots",
+    "gripper_types",
     "horizon",
     "control_freq",
     "reward_scale",
@@ -79,6 +86,18 @@ impl EnvConfig {
     pub fn with_robots<S: Into<String>>(mut self, robots: impl IntoIterator<Item = S>) -> Self {
         self.robots = robots.into_iter().map(Into::into).collect();
         self
+    }
+
+    /// Sets the grippers, one choice per robot.
+    #[must_use]
+    pub fn with_gripper_types(mut self, grippers: impl IntoIterator<Item = GripperChoice>) -> Self {
+        self.gripper_types = grippers.into_iter().collect();
+        self
+    }
+
+    /// The gripper choice for arm `arm` of robot `robot`.
+    pub fn gripper_choice(&self, robot: usize, _arm: usize) -> GripperChoice {
+        self.gripper_types.get(robot).cloned().unwrap_or_default()
     }
 
     /// Sets the arm controller configuration.
@@ -112,7 +131,7 @@ impl EnvConfig {
     /// Turns reward shaping on or off.
     #[must_use]
     pub fn with_reward_shaping(mut self, on: bool) -> Self {
-        self.reward_shaping = on;
+        self.reward_shaping = Some(on);
         self
     }
 
@@ -158,15 +177,28 @@ impl EnvConfig {
         if self.robots.is_empty() {
             return Err(Error::invalid_argument(
                 "robots",
-                format!("give at least one robot; valid: {}", ROBOT_NAMES.join(", ")),
+                format!(
+                    "give at least one robot; valid: {}",
+                    crate::models::robots::robot_names().join(", ")
+                ),
             ));
         }
         for r in &self.robots {
-            if !ROBOT_NAMES.contains(&r.as_str()) {
-                return Err(Error::invalid_argument(
-                    "robots",
-                    format!("unknown robot `{r}`; valid: {}", ROBOT_NAMES.join(", ")),
-                ));
+            robot_info(r)?;
+        }
+        if !self.gripper_types.is_empty() && self.gripper_types.len() != self.robots.len() {
+            return Err(Error::invalid_argument(
+                "gripper_types",
+                format!(
+                    "give one gripper choice per robot ({}), got {}",
+                    self.robots.len(),
+                    self.gripper_types.len()
+                ),
+            ));
+        }
+        for g in &self.gripper_types {
+            if let GripperChoice::Named(name) = g {
+                gripper_info(name)?;
             }
         }
         if self.horizon == 0 {
@@ -190,13 +222,7 @@ impl EnvConfig {
                 format!("must be finite or None, got {s}"),
             ));
         }
-        let m = self.initialization_noise.magnitude;
-        if !(m.is_finite() && m >= 0.0) {
-            return Err(Error::invalid_argument(
-                "initialization_noise",
-                format!("magnitude must be finite and >= 0, got {m}"),
-            ));
-        }
+        self.initialization_noise.validate()?;
         self.controller.validate()
     }
 
@@ -239,6 +265,25 @@ impl EnvConfig {
                         return Err(kind(key, "a robot name (or comma-separated names)", other));
                     }
                 },
+                "gripper_types" => match v {
+                    InfoValue::Str(s) => {
+                        c.gripper_types = s
+                            .split(',')
+                            .map(|g| match g.trim() {
+                                "default" => GripperChoice::Default,
+                                "None" | "none" => GripperChoice::None,
+                                name => GripperChoice::Named(name.to_owned()),
+                            })
+                            .collect()
+                    }
+                    other => {
+                        return Err(kind(
+                            key,
+                            "a gripper name, \"default\" or \"None\" (or comma-separated, one per robot)",
+                            other,
+                        ));
+                    }
+                },
                 "horizon" => c.horizon = unsigned(key, v)?,
                 "control_freq" => c.control_freq = float(key, v)?,
                 "reward_scale" => {
@@ -247,7 +292,7 @@ impl EnvConfig {
                         other => Some(float(key, other)?),
                     }
                 }
-                "reward_shaping" => c.reward_shaping = boolean(key, v)?,
+                "reward_shaping" => c.reward_shaping = Some(boolean(key, v)?),
                 "ignore_done" => c.ignore_done = boolean(key, v)?,
                 "use_object_obs" => c.use_object_obs = boolean(key, v)?,
                 "seed" => c.seed = Some(unsigned(key, v)?),

@@ -1,12 +1,14 @@
 //! [`RobosuiteEnv`]: robosuite's environment mechanics (`MujocoEnv` / `RobotEnv` /
-//! `ManipulationEnv`) around any [`Task`], implementing [`gym_core::Env`].
+//! `ManipulationEnv`) around any task, implementing [`gym_core::Env`].
 
+use crate::assets::Assets;
 use crate::config::EnvConfig;
-use crate::models::scene::SceneBuilder;
-use crate::observations::{ObsKey, ObsLayout};
-use crate::robots::{Robot, RobotState, robot_spec};
-use crate::sim::{Sim, check_mujoco_version};
-use crate::tasks::{ModelSource, RewardConfig, Task};
+use crate::models::robots::{RobotModel, robot_info};
+use crate::models::scene::{Scene, compile_cached};
+use crate::observables::{ObsLayout, ObsSpec, total_len};
+use crate::robots::{Robot, RobotState};
+use crate::sim::Sim;
+use crate::tasks::{RewardConfig, Task, TaskScene, TaskSpec};
 use gym_core::{
     BoxSpace, DictSpace, DictValue, EnvRng, Error, Info, Metadata, ResetOptions, Result, Step,
     Transition, entropy_seed, rng_from_seed,
@@ -16,14 +18,26 @@ use ndarray::ArrayD;
 use std::ops::Range;
 use std::path::Path;
 
+/// Where the compiled model came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModelSource {
+    /// Composed by this crate from robosuite's model files.
+    Composed,
+    /// A scene MJCF supplied by the caller (for instance saved by robosuite); object sizes
+    /// stay as the file says (robosuite's soft reset).
+    Supplied,
+}
+
 /// Everything needed to continue an episode bit-identically: the full simulator state
-/// (`mjSTATE_INTEGRATION`), the controllers' goals and integrators, the task's randomised
-/// parameters and the episode counter. Made by [`RobosuiteEnv::snapshot`].
+/// (`mjSTATE_INTEGRATION`), the controllers' goals and gripper commands, the task's
+/// randomised parameters and observation cache, the last observation and the episode
+/// counter. Made by [`RobosuiteEnv::snapshot`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnvSnapshot {
     physics: Vec<f64>,
     robots: Vec<RobotState>,
     task: Vec<f64>,
+    observation: Vec<f64>,
     timestep: u64,
     phase: Phase,
 }
@@ -39,20 +53,22 @@ enum Phase {
 /// A robosuite manipulation environment: robots with their controllers, a task, and the
 /// simulator, stepped exactly as robosuite 1.5.2 steps them.
 ///
-/// * **Step**: the action (`[6 OSC, 1 gripper]` per robot) must have the right length and
-///   be finite (else [`Error::InvalidAction`], nothing is simulated); values outside
-///   `[-1, 1]` are clipped by the controllers, as in robosuite. Each env step runs
-///   `substeps` (25 at 20 Hz) × {`mj_step1`; controllers (goal set on the first substep
-///   only); `mj_step2`}. Sensors are computed only in the last substep's `mj_step2`, the
-///   only one whose sensor values anybody reads (bit-identical trajectories, 4 % fewer
-///   instructions; see [`Sim::step2_without_sensors`]).
+/// * **Scene**: composed from robosuite's own model files as robosuite composes it (see
+///   [`models`](crate::models)), so names, element order and counts are robosuite's.
+/// * **Step**: the action (per robot: each arm's controller input, then each arm's gripper
+///   input) must have the right length and be finite (else [`Error::InvalidAction`],
+///   nothing is simulated); values outside `[-1, 1]` are clipped by the controllers, as in
+///   robosuite. Each env step runs `substeps` (25 at 20 Hz) × {`mj_step1`; controllers
+///   (goal set on the first substep only); `mj_step2`}. Sensors are computed only in the
+///   last substep's `mj_step2`, the only one whose sensor values anybody reads
+///   (bit-identical trajectories; see [`Sim::step2_without_sensors`]).
 /// * **Allocation**: [`Env::step_into`](gym_core::Env::step_into) writes the observation and
 ///   info into the caller's buffers and allocates nothing; `step` allocates the returned
 ///   observation dict.
 /// * **One-substep lag**: observations, reward and success are read right after the last
 ///   `mj_step2` without another `mj_forward`, as robosuite does, so positions and contacts
-///   derived from kinematics (`eef_pos`, `cube_pos`, quaternions, grasp contacts) describe
-///   the state one substep (2 ms) before `qpos` / `qvel`.
+///   derived from kinematics (`eef_pos`, object poses, grasp contacts) describe the state one
+///   substep (2 ms) before `qpos` / `qvel`.
 /// * **Episode end**: reaching `horizon` gives `truncated = true` (unless `ignore_done`);
 ///   only tasks with early termination set `terminated`. Stepping again gives
 ///   [`Error::EpisodeEnded`]; stepping before the first reset [`Error::ResetNeeded`].
@@ -68,8 +84,7 @@ pub struct RobosuiteEnv {
     source: ModelSource,
     layout: ObsLayout,
     robot_ranges: Vec<Range<usize>>,
-    robot_obs_len: Vec<usize>,
-    object_range: Option<Range<usize>>,
+    task_range: Range<usize>,
     obs_space: DictSpace,
     act_space: BoxSpace<f64>,
     action_splits: Vec<Range<usize>>,
@@ -83,66 +98,110 @@ pub struct RobosuiteEnv {
     phase: Phase,
 }
 
+/// The robots and task scene composed for a configuration, before compiling.
+struct Composed {
+    robots: Vec<RobotModel>,
+    task_scene: TaskScene,
+    scene: Scene,
+}
+
+/// The scene `spec` composes for `config` (robots, arena, objects), before compiling.
+///
+/// # Errors
+/// As [`RobosuiteEnv::new`].
+pub fn compose_scene(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Scene> {
+    Ok(compose(spec, config, assets)?.scene)
+}
+
+fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Composed> {
+    config.validate()?;
+    let need = spec.num_robots();
+    if config.robots.len() != need {
+        return Err(Error::invalid_argument(
+            "robots",
+            format!(
+                "{} needs {need} robot(s), got {} ({:?})",
+                spec.name(),
+                config.robots.len(),
+                config.robots
+            ),
+        ));
+    }
+    let mut robots = Vec::with_capacity(need);
+    for (i, name) in config.robots.iter().enumerate() {
+        let info = robot_info(name)?;
+        let grippers = (0..info.arms.len())
+            .map(|arm| spec.gripper(i, arm, &config.gripper_choice(i, arm)))
+            .collect::<Result<Vec<_>>>()?;
+        robots.push(RobotModel::build(assets, info, i, &grippers)?);
+    }
+    let task_scene = spec.build(assets, &mut robots)?;
+    let scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
+    Ok(Composed {
+        robots,
+        task_scene,
+        scene,
+    })
+}
+
 impl RobosuiteEnv {
-    /// Builds `task` on a scene composed from this crate's models.
+    /// Builds the task `spec` on the scene composed from robosuite's model files.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for an invalid configuration (the message lists valid
-    /// values); [`Error::Model`] when MuJoCo is not 3.17.0 or the scene does not compile.
-    pub fn new(task: Box<dyn Task>, config: EnvConfig) -> Result<Self> {
-        let model = compose_scene(task.as_ref(), &config)?.compile()?;
-        Self::from_model(task, model, config, ModelSource::Generated)
+    /// values); [`Error::Model`] when robosuite's model files are missing or MuJoCo rejects
+    /// the scene.
+    pub fn new(spec: &dyn TaskSpec, config: EnvConfig) -> Result<Self> {
+        let assets = Assets::locate()?;
+        let composed = compose(spec, &config, &assets)?;
+        let model = composed.scene.compile(spec.memory())?;
+        Self::from_model(spec, composed, model, config, ModelSource::Composed)
     }
 
-    /// Builds `task` on a caller-supplied scene MJCF that follows robosuite's names (for
-    /// example one exported with robosuite's `env.sim.model.get_xml()`). Object sizes stay
-    /// as the file gives them; everything else (robots, controllers, reset noise,
-    /// placement, reward) is as in [`RobosuiteEnv::new`].
+    /// Builds the task `spec` on a caller-supplied scene MJCF that follows robosuite's names
+    /// (for example one saved with robosuite's `env.sim.model.get_xml()`, even on another
+    /// machine: asset paths through a `robosuite/` folder are redirected to the local model
+    /// files, as robosuite's `edit_model_xml` does). Object sizes stay as the file gives
+    /// them; everything else (robots, controllers, reset noise, placement, reward) is as in
+    /// [`RobosuiteEnv::new`].
     ///
     /// # Errors
     /// [`Error::Model`] when the XML does not load or lacks a name the task needs;
     /// [`Error::InvalidArgument`] for an invalid configuration.
-    pub fn from_scene_xml(task: Box<dyn Task>, xml: &str, config: EnvConfig) -> Result<Self> {
-        config.validate()?;
-        check_robot_count(task.as_ref(), &config)?;
-        check_mujoco_version()?;
-        let model = MjModel::from_xml_string(xml)
-            .map_err(|e| Error::Model(format!("cannot load the scene XML: {e:?}")))?;
-        Self::from_model(task, model, config, ModelSource::Supplied)
+    pub fn from_scene_xml(spec: &dyn TaskSpec, xml: &str, config: EnvConfig) -> Result<Self> {
+        let assets = Assets::locate()?;
+        let composed = compose(spec, &config, &assets)?;
+        if xml.contains('\0') {
+            return Err(Error::Model("the scene XML contains a NUL byte".into()));
+        }
+        let xml = redirect_asset_paths(xml, &assets);
+        let model = compile_cached(&xml)?;
+        Self::from_model(spec, composed, model, config, ModelSource::Supplied)
     }
 
-    /// As [`RobosuiteEnv::from_scene_xml`], reading the MJCF from a file (relative asset
-    /// paths resolve against its folder).
+    /// As [`RobosuiteEnv::from_scene_xml`], reading the MJCF from a file.
     ///
     /// # Errors
     /// As [`RobosuiteEnv::from_scene_xml`]; [`Error::Model`] when the file cannot be read.
-    pub fn from_scene_file(
-        task: Box<dyn Task>,
-        path: impl AsRef<Path>,
-        config: EnvConfig,
-    ) -> Result<Self> {
-        config.validate()?;
-        check_robot_count(task.as_ref(), &config)?;
-        check_mujoco_version()?;
+    pub fn from_scene_file(spec: &dyn TaskSpec, path: impl AsRef<Path>, config: EnvConfig) -> Result<Self> {
         let path = path.as_ref();
-        if !path.is_file() {
-            return Err(Error::Model(format!("no scene file at {}", path.display())));
-        }
-        let model = MjModel::from_xml(path).map_err(|e| {
-            Error::Model(format!(
-                "cannot load the scene file {}: {e:?}",
-                path.display()
-            ))
-        })?;
-        Self::from_model(task, model, config, ModelSource::Supplied)
+        let xml = std::fs::read_to_string(path)
+            .map_err(|e| Error::Model(format!("cannot read the scene file {}: {e}", path.display())))?;
+        Self::from_scene_xml(spec, &xml, config)
     }
 
     fn from_model(
-        mut task: Box<dyn Task>,
+        spec: &dyn TaskSpec,
+        composed: Composed,
         model: MjModel,
-        config: EnvConfig,
+        mut config: EnvConfig,
         source: ModelSource,
     ) -> Result<Self> {
+        config.reward_shaping = Some(
+            config
+                .reward_shaping
+                .unwrap_or_else(|| spec.default_reward_shaping()),
+        );
         let timestep = model.opt().timestep;
         if !(timestep.is_finite() && timestep > 0.0) {
             return Err(Error::Model(format!(
@@ -159,61 +218,45 @@ impl RobosuiteEnv {
                 ),
             ));
         }
-        let mut robots = Vec::with_capacity(config.robots.len());
-        for (i, name) in config.robots.iter().enumerate() {
-            robots.push(Robot::bind(
-                &model,
-                i,
-                task.robot_spec(i, robot_spec(name)?)?,
-                config.controller.clone(),
-                config.initialization_noise,
-            )?);
-        }
-        task.bind(&model, &robots, source)?;
+        let robots = composed
+            .robots
+            .iter()
+            .map(|r| Robot::bind(&model, r, &config.controller, config.initialization_noise))
+            .collect::<Result<Vec<_>>>()?;
+        let task = spec.bind(&composed.task_scene, &model, &robots)?;
 
-        let mut layout = ObsLayout::new();
-        let robot_keys: Vec<_> = robots
-            .iter()
-            .map(|r| {
-                let mut keys = r.observation_keys();
-                keys.extend(task.robot_observation_keys(r.index()));
-                keys
-            })
-            .collect();
-        let robot_obs_len: Vec<usize> = robots
-            .iter()
-            .map(|r| r.observation_keys().iter().map(ObsKey::len).sum())
-            .collect();
-        let object_keys = if config.use_object_obs {
-            Some(task.observation_keys())
-        } else {
-            None
-        };
-        // robosuite's order: every sensor key (robots, then objects), then the modality
-        // concatenations (robot proprio-states, then object-state).
-        let mut robot_ranges = Vec::new();
-        let mut deferred = Vec::new();
-        for (r, keys) in robots.iter().zip(robot_keys) {
-            let range = layout.push_group(None, keys);
-            deferred.push((format!("robot{}_proprio-state", r.index()), range.clone()));
-            robot_ranges.push(range);
+        // robosuite's order: every robot's observables, then the task's; `use_object_obs =
+        // false` makes the task's object observables inactive.
+        let mut obs_specs: Vec<ObsSpec> = Vec::new();
+        let mut robot_ranges = Vec::with_capacity(robots.len());
+        for r in &robots {
+            let specs = r.observation_specs();
+            let start = total_len(&obs_specs);
+            robot_ranges.push(start..start + total_len(&specs));
+            obs_specs.extend(specs);
         }
-        let object_range = object_keys.map(|keys| layout.push_group(None, keys));
-        for (name, range) in deferred {
-            layout.add_group(&name, range);
-        }
-        if let Some(r) = &object_range {
-            layout.add_group("object-state", r.clone());
-        }
+        let task_start = total_len(&obs_specs);
+        let task_specs = task.observation_specs();
+        let task_range = task_start..task_start + total_len(&task_specs);
+        obs_specs.extend(task_specs);
+        let use_object_obs = config.use_object_obs;
+        let layout = ObsLayout::new(obs_specs, |s| use_object_obs || s.modality != "object");
         let obs_space = layout.space()?;
 
         let mut action_splits = Vec::new();
-        let mut dim = 0;
+        let (mut low, mut high) = (Vec::new(), Vec::new());
         for r in &robots {
-            action_splits.push(dim..dim + r.action_dim());
-            dim += r.action_dim();
+            let start = low.len();
+            let (l, h) = r.action_limits();
+            low.extend(l);
+            high.extend(h);
+            action_splits.push(start..low.len());
         }
-        let act_space = BoxSpace::<f64>::uniform(-1.0, 1.0, &[dim])?;
+        let dim = low.len();
+        let act_space = BoxSpace::<f64>::new(
+            ndarray::Array1::from(low).into_dyn(),
+            ndarray::Array1::from(high).into_dyn(),
+        )?;
         let metadata = Metadata {
             render_modes: Vec::new(),
             render_fps: Some(config.control_freq),
@@ -222,7 +265,7 @@ impl RobosuiteEnv {
             Some(s) => (rng_from_seed(s), true),
             None => (rng_from_seed(0), false),
         };
-        let buf = vec![0.0; layout.len()];
+        let buf = vec![0.0; task_range.end];
         Ok(Self {
             sim: Sim::new(model)?,
             robots,
@@ -231,8 +274,7 @@ impl RobosuiteEnv {
             source,
             layout,
             robot_ranges,
-            robot_obs_len,
-            object_range,
+            task_range,
             obs_space,
             act_space,
             action_splits,
@@ -246,7 +288,33 @@ impl RobosuiteEnv {
             phase: Phase::NeedsReset,
         })
     }
+}
 
+/// Points asset paths that run through a `robosuite/` folder (a scene saved by robosuite on
+/// any machine) at the local robosuite package, as robosuite's `edit_model_xml` does.
+fn redirect_asset_paths(xml: &str, assets: &Assets) -> String {
+    let local = assets.package().to_string_lossy().into_owned();
+    let mut out = String::with_capacity(xml.len());
+    let mut rest = xml;
+    while let Some(at) = rest.find("file=\"") {
+        let (head, tail) = rest.split_at(at + 6);
+        out.push_str(head);
+        let end = tail.find('"').unwrap_or(tail.len());
+        let path = &tail[..end];
+        match path.rfind("/robosuite/") {
+            Some(i) if path.starts_with('/') => {
+                out.push_str(&local);
+                out.push_str(&path[i + "/robosuite".len()..]);
+            }
+            _ => out.push_str(path),
+        }
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+impl RobosuiteEnv {
     /// The configuration.
     pub fn config(&self) -> &EnvConfig {
         &self.config
@@ -267,7 +335,7 @@ impl RobosuiteEnv {
         self.task.as_ref()
     }
 
-    /// Whether the model was built by this crate or supplied by the caller.
+    /// Whether the model was composed by this crate or supplied by the caller.
     pub fn model_source(&self) -> ModelSource {
         self.source
     }
@@ -298,8 +366,10 @@ impl RobosuiteEnv {
         self.sim.state()
     }
 
-    /// Sets the flattened simulator state `[time, qpos, qvel]` and runs `mj_forward`.
-    /// Controllers, the gripper integrator and the episode counter are kept.
+    /// Sets the flattened simulator state `[time, qpos, qvel]`, runs `mj_forward` and takes
+    /// a fresh observation (robosuite's `set_state_from_flattened`, `forward` and
+    /// `_get_observations(force_update=True)`). Controllers, gripper commands and the
+    /// episode counter are kept.
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a wrong length or a non-finite value (nothing is
@@ -308,18 +378,57 @@ impl RobosuiteEnv {
         if self.phase == Phase::Closed {
             return Err(Error::Closed);
         }
-        self.sim.set_state(state)
+        self.sim.set_state(state)?;
+        self.observe();
+        Ok(())
+    }
+
+    /// Starts an episode at a given state instead of a sampled one (robosuite's
+    /// deterministic reset, robomimic's `reset_to`): the task's parameters from
+    /// `task_state` ([`Task::save_state`]'s layout; Lift: the cube half-extents), the
+    /// simulator state `[time, qpos, qvel]` from `state`; controllers re-based on it, gripper
+    /// commands zeroed, observation cache cleared, episode counter 0. Draws nothing from the
+    /// RNG.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a task state or state of the wrong length or with
+    /// non-finite values (nothing is changed then); [`Error::Closed`] after `close`.
+    pub fn reset_to_state(&mut self, task_state: &[f64], state: &[f64]) -> Result<(DictValue, Info)> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        if state.len() != self.sim.state_len() || state.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid_argument(
+                "state",
+                format!(
+                    "expected {} finite values [time, qpos, qvel], got {}",
+                    self.sim.state_len(),
+                    state.len()
+                ),
+            ));
+        }
+        self.task.load_state(&mut self.sim, task_state)?;
+        self.phase = Phase::NeedsReset;
+        self.sim.reset_data();
+        self.task.clear_observation_cache();
+        self.sim.set_state(state)?;
+        for robot in &mut self.robots {
+            robot.zero_gripper_commands();
+            robot.rebase(&self.sim);
+        }
+        self.begin_episode()
     }
 
     /// A snapshot of the whole episode state (see [`EnvSnapshot`]); unlike
-    /// [`RobosuiteEnv::get_state`] it also holds the controller goals, the gripper
-    /// integrator, the warm start and the episode counter, so stepping on from a restored
-    /// snapshot repeats the original steps bit for bit.
+    /// [`RobosuiteEnv::get_state`] it also holds the controller goals, the gripper commands,
+    /// the warm start, the observation cache and the episode counter, so stepping on from a
+    /// restored snapshot repeats the original steps bit for bit.
     pub fn snapshot(&self) -> EnvSnapshot {
         EnvSnapshot {
             physics: self.sim.integration_state(),
             robots: self.robots.iter().map(Robot::controller_state).collect(),
             task: self.task.save_state(),
+            observation: self.buf.clone(),
             timestep: self.timestep,
             phase: self.phase,
         }
@@ -328,25 +437,29 @@ impl RobosuiteEnv {
     /// Restores a snapshot taken from this environment.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for a snapshot of another kind of environment;
-    /// [`Error::Closed`] after `close`.
+    /// [`Error::InvalidArgument`] for a snapshot of another kind of environment (nothing is
+    /// changed then); [`Error::Closed`] after `close`.
     pub fn restore(&mut self, snapshot: &EnvSnapshot) -> Result<()> {
         if self.phase == Phase::Closed {
             return Err(Error::Closed);
         }
         if snapshot.robots.len() != self.robots.len()
             || snapshot.physics.len() != self.sim.integration_state().len()
+            || snapshot.observation.len() != self.buf.len()
         {
             return Err(Error::invalid_argument(
                 "snapshot",
                 "the snapshot was taken from a different environment",
             ));
         }
+        let mut robots = self.robots.clone();
+        for (robot, state) in robots.iter_mut().zip(&snapshot.robots) {
+            robot.set_controller_state(state)?;
+        }
         self.task.load_state(&mut self.sim, &snapshot.task)?;
         self.sim.set_integration_state(&snapshot.physics)?;
-        for (robot, state) in self.robots.iter_mut().zip(&snapshot.robots) {
-            robot.set_controller_state(state);
-        }
+        self.robots = robots;
+        self.buf.copy_from_slice(&snapshot.observation);
         self.timestep = snapshot.timestep;
         self.phase = if snapshot.phase == Phase::Closed {
             Phase::NeedsReset
@@ -356,16 +469,15 @@ impl RobosuiteEnv {
         Ok(())
     }
 
-    /// The observation of the current simulator state.
-    pub fn observation(&mut self) -> DictValue {
-        self.fill_observation();
+    /// The observation of the last observation pass (after the last step, reset or
+    /// [`RobosuiteEnv::set_state`]), as robosuite's `observation_spec()` returns it.
+    pub fn observation(&self) -> DictValue {
         self.layout.to_dict(&self.buf)
     }
 
     /// The reward of the current simulator state.
     pub fn reward(&self) -> f64 {
-        self.task
-            .reward(&self.sim, &self.robots, &self.reward_config())
+        self.task.reward(&self.sim, &self.robots, &self.reward_config())
     }
 
     /// Whether the task is solved in the current simulator state.
@@ -376,40 +488,35 @@ impl RobosuiteEnv {
     fn reward_config(&self) -> RewardConfig {
         RewardConfig {
             reward_scale: self.config.reward_scale,
-            reward_shaping: self.config.reward_shaping,
+            reward_shaping: self.config.reward_shaping.unwrap_or(false),
             horizon: self.config.horizon,
         }
     }
 
-    fn fill_observation(&mut self) {
-        for ((robot, range), own) in self
-            .robots
-            .iter()
-            .zip(&self.robot_ranges)
-            .zip(&self.robot_obs_len)
-        {
-            let out = &mut self.buf[range.clone()];
-            robot.write_observations(&self.sim, &mut out[..*own]);
-            if out.len() > *own {
-                self.task.write_robot_observations(
-                    &self.sim,
-                    &self.robots,
-                    robot.index(),
-                    &mut out[*own..],
-                );
-            }
+    /// One observation pass: every robot's observables, then the task's, into the buffer.
+    fn observe(&mut self) {
+        for (robot, range) in self.robots.iter().zip(&self.robot_ranges) {
+            robot.observe(&self.sim, &mut self.buf[range.clone()]);
         }
-        if let Some(range) = &self.object_range {
-            self.task
-                .write_observations(&self.sim, &self.robots, &mut self.buf[range.clone()]);
-        }
+        self.task
+            .observe(&self.sim, &mut self.buf[self.task_range.clone()]);
+    }
+
+    /// The end of every reset: episode counter 0, running, a first observation.
+    fn begin_episode(&mut self) -> Result<(DictValue, Info)> {
+        self.timestep = 0;
+        self.observe();
+        self.phase = Phase::Running;
+        let info = Info::new().with("success", self.check_success());
+        Ok((self.observation(), info))
     }
 
     fn check_action(&self, action: &ArrayD<f64>) -> Result<()> {
         let dim = self.action_dim();
         if action.len() != dim || action.ndim() != 1 {
             return Err(Error::InvalidAction(format!(
-                "expected an action of shape [{dim}] (per robot: 6 OSC deltas, 1 gripper), got shape {:?}",
+                "expected an action of shape [{dim}] (per robot: each arm's controller input, \
+                 then each arm's gripper input), got shape {:?}",
                 action.shape()
             )));
         }
@@ -437,6 +544,9 @@ impl RobosuiteEnv {
         self.timestep += 1;
         self.simulate(&flat);
         self.action_buf = flat;
+        // robosuite samples its observables on the last substep, before `_post_action`
+        // computes the reward (which updates Wipe's wiped markers).
+        self.observe();
         let reward = self.reward();
         let reward_config = self.reward_config();
         self.task
@@ -477,40 +587,6 @@ impl RobosuiteEnv {
             }
         }
     }
-}
-
-/// Composes the scene of `task` with the robots of `config` (arena, robots with mounts and
-/// grippers, objects), uncompiled.
-///
-/// # Errors
-/// [`Error::InvalidArgument`] for an invalid configuration; [`Error::Model`] when a part
-/// does not attach.
-pub fn compose_scene(task: &dyn Task, config: &EnvConfig) -> Result<SceneBuilder> {
-    config.validate()?;
-    check_robot_count(task, config)?;
-    let mut scene = SceneBuilder::with_arena(&task.arena_xml())?;
-    for (i, name) in config.robots.iter().enumerate() {
-        let (pos, quat) = task.robot_base_pose(i);
-        scene.add_robot(i, &task.robot_spec(i, robot_spec(name)?)?, pos, quat)?;
-    }
-    task.build_objects(&mut scene)?;
-    Ok(scene)
-}
-
-fn check_robot_count(task: &dyn Task, config: &EnvConfig) -> Result<()> {
-    let need = task.num_robots();
-    if config.robots.len() != need {
-        return Err(Error::invalid_argument(
-            "robots",
-            format!(
-                "{} needs {need} robot(s), got {} ({:?})",
-                task.name(),
-                config.robots.len(),
-                config.robots
-            ),
-        ));
-    }
-    Ok(())
 }
 
 impl gym_core::Env for RobosuiteEnv {
@@ -557,20 +633,20 @@ impl gym_core::Env for RobosuiteEnv {
         }
         // A failure below leaves the episode unusable until a successful reset.
         self.phase = Phase::NeedsReset;
-        self.task.randomize_model(&mut self.sim, &mut self.rng)?;
+        if self.source == ModelSource::Composed {
+            self.task.randomize_model(&mut self.sim, &mut self.rng)?;
+        }
         self.sim.reset_data();
         for robot in &mut self.robots {
             robot.reset(&mut self.sim, &mut self.rng);
         }
+        self.task.clear_observation_cache();
         self.task.place_objects(&mut self.sim, &mut self.rng)?;
         self.sim.forward();
         for robot in &mut self.robots {
             robot.rebase(&self.sim);
         }
-        self.timestep = 0;
-        self.phase = Phase::Running;
-        let info = Info::new().with("success", self.check_success());
-        Ok((self.observation(), info))
+        self.begin_episode()
     }
 
     fn step(&mut self, action: &ArrayD<f64>) -> Result<Step<DictValue>> {
@@ -584,8 +660,9 @@ impl gym_core::Env for RobosuiteEnv {
         })
     }
 
-    /// [`Env::step`] writing into `observation` and `info` in place when they hold the
-    /// previous step's keys, shapes and dtypes: a loop of steps does not allocate.
+    /// [`Env::step`](gym_core::Env::step) writing into `observation` and `info` in place
+    /// when they hold the previous step's keys, shapes and dtypes: a loop of steps does not
+    /// allocate.
     fn step_into(
         &mut self,
         action: &ArrayD<f64>,
@@ -593,7 +670,6 @@ impl gym_core::Env for RobosuiteEnv {
         info: &mut Info,
     ) -> Result<Transition> {
         let (transition, success) = self.advance(action)?;
-        self.fill_observation();
         self.layout.write_dict(&self.buf, observation);
         if info.len() != 1 || info.get("success").is_none() {
             info.clear();

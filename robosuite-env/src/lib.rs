@@ -13,32 +13,36 @@
 //! ```
 //!
 //! Layout:
-//! * [`models`]: our own MJCF parts (world, table arena, Panda arm, mount, gripper,
-//!   objects) and the [`SceneBuilder`](models::scene::SceneBuilder) that composes them with
-//!   robosuite's names;
+//! * [`assets`]: where robosuite's own model files are (fetched by the build);
+//! * [`mjcf`]: robosuite's MJCF processing (default classes, prefixes, merges);
+//! * [`models`]: robosuite's model classes (arenas, robots, mounts, grippers, objects) and
+//!   the scene composed from them;
 //! * [`sim`]: the simulator an environment owns, name lookups, contacts, in-place model edits;
-//! * [`controllers`]: `OSC_POSE` and the gripper controller;
-//! * [`robots`]: robot descriptions and the run-time [`Robot`](robots::Robot);
-//! * [`tasks`]: the [`Task`](tasks::Task) trait, placement samplers and the tasks (Lift,
-//!   Stack, NutAssembly*, PickPlace*, Door, Wipe, ToolHang);
-//! * [`observations`]: robosuite's ordered observation dict;
+//! * [`math`]: rotations and the linear algebra of the controllers;
+//! * [`controllers`]: the arm controller abstraction with `OSC_POSE`, and `GRIP`;
+//! * [`robots`]: robots bound to a compiled scene, with arms, grippers and observables;
+//! * [`observables`]: robosuite's observables and its ordered observation dict;
+//! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and
+//!   the tasks;
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
 //!   [`register_envs`]).
 
+pub mod assets;
 pub mod config;
 pub mod controllers;
 pub mod env;
+pub mod math;
+pub mod mjcf;
 pub mod models;
-pub mod observations;
+pub mod observables;
 pub mod registry;
 pub mod robots;
 pub mod sim;
 pub mod tasks;
 
 pub use config::EnvConfig;
-pub use env::{EnvSnapshot, RobosuiteEnv};
+pub use env::{EnvSnapshot, ModelSource, RobosuiteEnv};
 pub use registry::{
-    ENV_NAMES, default_config, make, make_from_scene_xml, make_task, make_with, register_envs,
-    scene_xml,
+    ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,
 };
 pub use robots::{InitNoise, NoiseKind};

@@ -1,45 +1,24 @@
 //! Environments by name: [`make`], [`make_with`] and registration in
 //! [`gym_core::registry`].
 
+use crate::assets::Assets;
 use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
-use crate::tasks::{Door, Lift, LiftConfig, NutAssembly, PickPlace, Stack, Task, ToolHang, Wipe};
+use crate::tasks::{LiftSpec, TaskSpec};
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
 use std::sync::Arc;
 
 /// The environment names this crate provides.
-pub const ENV_NAMES: &[&str] = &[
-    "Lift",
-    "Stack",
-    "NutAssembly",
-    "NutAssemblySingle",
-    "NutAssemblySquare",
-    "NutAssemblyRound",
-    "PickPlace",
-    "PickPlaceSingle",
-    "PickPlaceMilk",
-    "PickPlaceBread",
-    "PickPlaceCereal",
-    "PickPlaceCan",
-    "Door",
-    "Wipe",
-    "ToolHang",
-];
+pub const ENV_NAMES: &[&str] = &["Lift"];
 
-/// The task registered under `name`, with its default settings.
+/// The task registered under `name`, with robosuite's default settings.
 ///
 /// # Errors
 /// [`Error::UnknownEnv`] listing [`ENV_NAMES`].
-pub fn make_task(name: &str) -> Result<Box<dyn Task>> {
+pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
     match name {
-        "Lift" => Ok(Box::new(Lift::new(LiftConfig::default())?)),
-        "Stack" => Ok(Box::new(Stack::new())),
-        "Door" => Ok(Box::new(Door::default())),
-        "Wipe" => Ok(Box::new(Wipe::default())),
-        "ToolHang" => Ok(Box::new(ToolHang::new())),
-        n if n.starts_with("NutAssembly") => Ok(Box::new(NutAssembly::variant(n)?)),
-        n if n.starts_with("PickPlace") => Ok(Box::new(PickPlace::variant(n)?)),
+        "Lift" => Ok(Box::new(LiftSpec::default())),
         other => Err(Error::UnknownEnv {
             id: other.to_owned(),
             available: ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
@@ -59,13 +38,7 @@ pub fn make_task(name: &str) -> Result<Box<dyn Task>> {
 /// [`Error::UnknownEnv`] listing the valid names; [`Error::Model`] when the scene cannot
 /// be built.
 pub fn make(name: &str) -> Result<RobosuiteEnv> {
-    make_with(name, default_config(name))
-}
-
-/// robosuite's default configuration for `name`: [`EnvConfig::default`], except that
-/// `Wipe` shapes its reward by default.
-pub fn default_config(name: &str) -> EnvConfig {
-    EnvConfig::default().with_reward_shaping(name == "Wipe")
+    make_with(name, EnvConfig::default())
 }
 
 /// Makes the environment `name` with `config`.
@@ -74,7 +47,7 @@ pub fn default_config(name: &str) -> EnvConfig {
 /// [`Error::UnknownEnv`] listing the valid names; [`Error::InvalidArgument`] for an invalid
 /// configuration; [`Error::Model`] when the scene cannot be built.
 pub fn make_with(name: &str, config: EnvConfig) -> Result<RobosuiteEnv> {
-    RobosuiteEnv::new(make_task(name)?, config)
+    RobosuiteEnv::new(make_task(name)?.as_ref(), config)
 }
 
 /// Makes the task `name` on a caller-supplied scene MJCF that follows robosuite's names.
@@ -82,17 +55,19 @@ pub fn make_with(name: &str, config: EnvConfig) -> Result<RobosuiteEnv> {
 /// # Errors
 /// As [`RobosuiteEnv::from_scene_xml`], and [`Error::UnknownEnv`] for an unknown name.
 pub fn make_from_scene_xml(name: &str, xml: &str, config: EnvConfig) -> Result<RobosuiteEnv> {
-    RobosuiteEnv::from_scene_xml(make_task(name)?, xml, config)
+    RobosuiteEnv::from_scene_xml(make_task(name)?.as_ref(), xml, config)
 }
 
-/// The MJCF of the scene `make_with(name, config)` builds (with the cube at its mean size),
-/// for inspection or for [`make_from_scene_xml`].
+/// The MJCF robosuite would compile for `make_with(name, config)` (its `get_xml()`: the
+/// composed scene with robosuite's `njmax`/`nconmax`), for inspection or for
+/// [`make_from_scene_xml`].
 ///
 /// # Errors
 /// As [`make_with`].
 pub fn scene_xml(name: &str, config: &EnvConfig) -> Result<String> {
-    let task = make_task(name)?;
-    crate::env::compose_scene(task.as_ref(), config)?.to_xml()
+    let spec = make_task(name)?;
+    let assets = Assets::locate()?;
+    Ok(crate::env::compose_scene(spec.as_ref(), config, &assets)?.to_xml())
 }
 
 /// Registers every environment of this crate in [`gym_core::registry`], so that
@@ -103,17 +78,12 @@ pub fn register_envs() {
         register(EnvSpec {
             id: name.to_owned(),
             factory: Arc::new(move |kwargs| {
-                let mut config = EnvConfig::from_kwargs(kwargs)?;
-                if name == "Wipe" && kwargs.get("reward_shaping").is_none() {
-                    config.reward_shaping = true;
-                }
+                let config = EnvConfig::from_kwargs(kwargs)?;
                 Ok(make_with(name, config)?.boxed())
             }),
             max_episode_steps: None,
             nondeterministic: false,
-            description: format!(
-                "robosuite 1.5.2 {name} with a Panda arm, OSC_POSE and the Panda gripper"
-            ),
+            description: format!("robosuite 1.5.2 {name} on robosuite's own model files"),
         });
     }
 }

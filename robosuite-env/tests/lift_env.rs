@@ -237,14 +237,16 @@ fn reset_randomises_the_cube_in_place_like_a_recompile() {
         assert!(q[0].abs() < 1e-12 && q[1].abs() < 1e-12);
 
         // The same model compiled from scratch with this cube size has the same constants.
-        let config = robosuite_env::tasks::LiftConfig {
+        let spec = robosuite_env::tasks::LiftSpec {
             cube_size_min: h,
             cube_size_max: h,
             ..Default::default()
         };
-        let fresh_task = robosuite_env::tasks::Lift::new(config).unwrap();
-        let scene = robosuite_env::env::compose_scene(&fresh_task, &EnvConfig::default()).unwrap();
-        let fresh = Sim::new(scene.compile().unwrap()).unwrap();
+        let assets = robosuite_env::assets::Assets::locate().unwrap();
+        let scene =
+            robosuite_env::env::compose_scene(&spec, &EnvConfig::default(), &assets).unwrap();
+        let memory = robosuite_env::tasks::TaskSpec::memory(&spec);
+        let fresh = Sim::new(scene.compile(memory).unwrap()).unwrap();
         let f = fresh.model();
         assert!((f.body_mass()[cube] - m.body_mass()[cube]).abs() < 1e-12);
         for i in 0..3 {
@@ -499,7 +501,7 @@ fn configuration_errors_list_valid_values() {
         .with("reward_shaping", true)
         .with("seed", 3i64);
     let c = EnvConfig::from_kwargs(&kwargs).unwrap();
-    assert_eq!((c.horizon, c.reward_shaping, c.seed), (7, true, Some(3)));
+    assert_eq!((c.horizon, c.reward_shaping, c.seed), (7, Some(true), Some(3)));
     assert!(matches!(
         EnvConfig::from_kwargs(&Info::new().with("horizn", 7i64)),
         Err(Error::UnknownKey { .. })
@@ -529,16 +531,14 @@ fn registry_makes_boxed_envs() {
 fn supplied_scene_xml_builds_the_task() {
     let xml = scene_xml("Lift", &EnvConfig::default()).unwrap();
     let mut env = make_from_scene_xml("Lift", &xml, EnvConfig::default()).unwrap();
-    assert_eq!(
-        env.model_source(),
-        robosuite_env::tasks::ModelSource::Supplied
-    );
+    assert_eq!(env.model_source(), robosuite_env::ModelSource::Supplied);
     let (obs, _) = env.reset(Some(0), None).unwrap();
     assert!(env.observation_space().contains(&obs));
-    // Sizes are kept as the file gives them.
+    // Sizes are kept as the file gives them (the composed cube: the middle of its range).
     let geom = robosuite_env::sim::geom_id(env.sim().model(), "cube_g0").unwrap();
-    assert_eq!(env.sim().model().geom_size()[geom], [0.021; 3]);
-    assert!((get(&obs, "cube_pos")[2] - 0.831).abs() < 1e-12);
+    let mid = 0.5 * (0.020 + 0.022);
+    assert_eq!(env.sim().model().geom_size()[geom], [mid; 3]);
+    assert!((get(&obs, "cube_pos")[2] - (0.81 + mid)).abs() < 1e-12);
     let _ = env.step(&zero()).unwrap();
 
     // Errors are typed and never abort.
@@ -561,7 +561,7 @@ fn supplied_scene_xml_builds_the_task() {
         Err(Error::Model(_))
     ));
     let missing = RobosuiteEnv::from_scene_file(
-        robosuite_env::make_task("Lift").unwrap(),
+        robosuite_env::make_task("Lift").unwrap().as_ref(),
         "/nonexistent/scene.xml",
         EnvConfig::default(),
     );
@@ -573,11 +573,7 @@ fn gripper_integrator_follows_the_sign_of_the_action() {
     let mut env = lift(EnvConfig::default());
     env.reset(Some(0), None).unwrap();
     let command = |e: &RobosuiteEnv| {
-        e.robots()[0]
-            .gripper_controller()
-            .unwrap()
-            .command()
-            .to_vec()
+        e.robots()[0].arm().gripper().controller().command().to_vec()
     };
     let ctrl = |e: &RobosuiteEnv| e.sim().data().ctrl()[7..9].to_vec();
     assert_eq!(command(&env), [0.0, 0.0]);

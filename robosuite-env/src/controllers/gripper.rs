@@ -1,65 +1,77 @@
-//! robosuite's `GRIP` controller (`SimpleGripController`) with the Panda gripper's
-//! command integrator.
+//! robosuite's `GRIP` controller (`SimpleGripController`) with each gripper's action
+//! mapping (`format_action`).
 
-/// The gripper command integrator and its mapping to position-actuator targets.
+use crate::models::grippers::GripAction;
+
+/// A gripper's command state and its mapping to actuator targets.
 ///
-/// Per env step (`set_goal`): `c ← clip(c + signs·speed·sign(a), −1, 1)`; only the sign of
-/// the action matters and 0 holds. Per substep (`ctrl`): `ctrl_i = bias_i + weight_i·c_i`
-/// with `bias = (hi + lo)/2`, `weight = (hi − lo)/2` of each actuator's ctrlrange, clipped
-/// to the ctrlrange. For the Panda, `a > 0` closes and `a < 0` opens.
+/// Per env step (`set_goal`) the gripper's [`GripAction`] updates one command per actuator
+/// in `[-1, 1]` (Panda: `c ← clip(c + [-1, 1]·0.2·sign(a), −1, 1)`; only the sign of the
+/// action matters and 0 holds). Per substep (`ctrl`): `ctrl_i = bias_i + weight_i·c_i` with
+/// `bias = (hi + lo)/2`, `weight = (hi − lo)/2` of each actuator's ctrlrange, clipped to it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GripController {
-    signs: Vec<f64>,
-    speed: f64,
+    action: GripAction,
     ranges: Vec<[f64; 2]>,
     command: Vec<f64>,
 }
 
 impl GripController {
-    /// A controller for actuators with the given ctrlranges; `signs` says which way each
-    /// finger's command moves for a positive action (Panda: `[-1, 1]`).
-    pub fn new(signs: Vec<f64>, speed: f64, ranges: Vec<[f64; 2]>) -> Self {
+    /// A controller for actuators with the given ctrlranges.
+    pub fn new(action: GripAction, ranges: Vec<[f64; 2]>) -> Self {
         let n = ranges.len();
         Self {
-            signs,
-            speed,
+            action,
             ranges,
             command: vec![0.0; n],
         }
     }
 
-    /// Zeroes the integrator (every reset).
+    /// The number of action dimensions.
+    pub fn action_dim(&self) -> usize {
+        self.action.dof()
+    }
+
+    /// Zeroes the command (every reset).
     pub fn reset(&mut self) {
         self.command.iter_mut().for_each(|c| *c = 0.0);
     }
 
-    /// Integrates one env-step action (`a` is the gripper entry of the action).
-    pub fn set_goal(&mut self, a: f64) {
-        let sign = if a > 0.0 {
-            1.0
-        } else if a < 0.0 {
-            -1.0
-        } else {
-            0.0
-        };
-        for (c, s) in self.command.iter_mut().zip(&self.signs) {
-            *c = (*c + s * self.speed * sign).clamp(-1.0, 1.0);
+    /// Applies one env step's gripper action (`action` has [`GripController::action_dim`]
+    /// values).
+    pub fn set_goal(&mut self, action: &[f64]) {
+        match self.action {
+            GripAction::None => {}
+            GripAction::SignIntegrator { signs, speed } => {
+                let a = action.first().copied().unwrap_or(0.0);
+                let sign = if a > 0.0 {
+                    1.0
+                } else if a < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                };
+                for (c, s) in self.command.iter_mut().zip(signs) {
+                    *c = (*c + s * speed * sign).clamp(-1.0, 1.0);
+                }
+            }
         }
     }
 
-    /// The integrator state `c` (one entry per actuator).
+    /// The command per actuator.
     pub fn command(&self) -> &[f64] {
         &self.command
     }
 
-    /// Sets the integrator state (for snapshots); extra or missing entries are ignored.
+    /// Sets the command (for snapshots), each entry clipped to `[-1, 1]`; extra or missing
+    /// entries are ignored.
     pub fn set_command(&mut self, command: &[f64]) {
         for (c, v) in self.command.iter_mut().zip(command) {
             *c = v.clamp(-1.0, 1.0);
         }
     }
 
-    /// The actuator target of actuator `i` for the current command.
+    /// The target of actuator `i` for the current command.
     pub fn ctrl(&self, i: usize) -> f64 {
         let [lo, hi] = self.ranges[i];
         let bias = 0.5 * (hi + lo);
@@ -71,20 +83,22 @@ impl GripController {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::models::grippers::PANDA_GRIPPER;
 
     #[test]
     fn panda_integrator_saturates_after_five_steps() {
-        let mut g = GripController::new(vec![-1.0, 1.0], 0.2, vec![[0.0, 0.04], [-0.04, 0.0]]);
+        let mut g = GripController::new(PANDA_GRIPPER.action, vec![[0.0, 0.04], [-0.04, 0.0]]);
+        assert_eq!(g.action_dim(), 1);
         assert_eq!((g.ctrl(0), g.ctrl(1)), (0.02, -0.02));
         for _ in 0..5 {
-            g.set_goal(0.3);
+            g.set_goal(&[0.3]);
         }
         assert_eq!(g.command(), [-1.0, 1.0]);
         assert_eq!((g.ctrl(0), g.ctrl(1)), (0.0, 0.0));
-        g.set_goal(0.0);
+        g.set_goal(&[0.0]);
         assert_eq!(g.command(), [-1.0, 1.0]);
         for _ in 0..10 {
-            g.set_goal(-1e-9);
+            g.set_goal(&[-1e-9]);
         }
         assert_eq!(g.command(), [1.0, -1.0]);
         assert_eq!((g.ctrl(0), g.ctrl(1)), (0.04, -0.04));

@@ -1,56 +1,27 @@
-//! robosuite's `OSC_POSE` operational-space controller (`controllers/parts/arm/osc.py`).
+//! robosuite's `OSC_POSE` operational-space controller (`controllers/parts/arm/osc.py`) for
+//! an arm of any number of joints.
 
 use super::config::OscConfig;
-use super::math::{
-    PsdPinv, axisangle2quat, inv_spd, mat_from_row_major, orientation_error, quat2mat_f32,
-};
+use super::{ArmBinding, ArmController};
+use crate::math::{PsdPinv, axisangle2quat, mat_from_row_major, orientation_error, quat2mat_f32};
 use crate::sim::Sim;
+use gym_core::{Error, Result};
 use mujoco_rs::mujoco_c::{mj_fullM, mj_jacSite};
-use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{Cholesky, DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
 
-type Vec6 = SVector<f64, 6>;
-type Vec7 = SVector<f64, 7>;
-type Mat7 = SMatrix<f64, 7, 7>;
-type Jac = SMatrix<f64, 6, 7>;
-
-/// Where the controller reads and writes in the model.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OscBinding {
-    /// The controlled site (the gripper's grip site).
-    pub site: usize,
-    /// The site whose frame is the base frame of the input (`robotN_right_center`).
-    pub base_site: usize,
-    /// The `qpos` addresses of the 7 arm joints.
-    pub qpos: [usize; 7],
-    /// The dof (`qvel`) addresses of the 7 arm joints.
-    pub dofs: [usize; 7],
-    /// The ctrlrange of each arm joint's motor (torques are clipped to it).
-    pub ctrlrange: [[f64; 2]; 7],
-}
-
-/// The internal state of an [`OscPose`]: its goal and nullspace target.
-#[derive(Debug, Clone, PartialEq)]
-pub struct OscState {
-    /// Goal position in the base frame.
-    pub goal_pos: [f64; 3],
-    /// Goal orientation in the base frame (column-major).
-    pub goal_ori: [f64; 9],
-    /// Nullspace target posture.
-    pub q0: [f64; 7],
-}
-
-/// The `OSC_POSE` controller of one 7-dof arm.
+/// The `OSC_POSE` controller of one arm.
 ///
 /// * `set_goal` (first substep of each env step): the input is clipped to
 ///   `[input_min, input_max]`, scaled to a delta (±0.05 m, ±0.5 rad by default) in the base
-///   frame and applied to the *achieved* pose: `goal_p = R_bᵀ(x − p_b) + δp`,
-///   `goal_R = Rot(δr)·R_bᵀR` (with robosuite's float32 `quat2mat`).
-/// * `compute_torques` (every substep, from the state after `mj_step1`):
+///   frame (the `{robot}{arm}_center` site) and applied to the *achieved* pose:
+///   `goal_p = R_bᵀ(x − p_b) + δp`, `goal_R = Rot(δr)·R_bᵀR` (with robosuite's float32
+///   `quat2mat`).
+/// * `compute` (every substep, from the state after `mj_step1`):
 ///   `τ = Jᵀ[Λp·F; Λo·T] + h + Nᵀ·M·(k_n(q₀ − q) − 2√k_n·q̇)` with
 ///   `F = kp∘e_p − kd∘v`, `T = kp∘e_o − kd∘ω`, `Λ = pinv(J M⁻¹ Jᵀ)` (and its position and
-///   orientation blocks), `N = I − M⁻¹JᵀΛJ`, clipped to the motors' ctrlrange.
+///   orientation blocks), `N = I − M⁻¹JᵀΛJ`.
 ///
-/// Jacobians and the mass matrix go into buffers allocated once; the substep loop does not
+/// Every matrix lives in a buffer allocated at construction: the substep loop does not
 /// allocate.
 #[derive(Debug, Clone)]
 pub struct OscPose {
@@ -59,22 +30,62 @@ pub struct OscPose {
     scale: [f64; 6],
     out_offset: [f64; 6],
     in_offset: f64,
-    bind: OscBinding,
-    nv: usize,
+    bind: ArmBinding,
     jacp: Vec<f64>,
     jacr: Vec<f64>,
     full_m: Vec<f64>,
+    work: Work,
     goal_pos: Vector3<f64>,
     goal_ori: Matrix3<f64>,
-    q0: Vec7,
-    torques: Vec7,
+    q0: DVector<f64>,
+}
+
+/// The controller's n-sized buffers.
+#[derive(Debug, Clone)]
+struct Work {
+    jac: DMatrix<f64>,
+    mass: DMatrix<f64>,
+    m_inv: DMatrix<f64>,
+    chol: Option<DMatrix<f64>>,
+    j_minv: DMatrix<f64>,
+    jbar: DMatrix<f64>,
+    null: DMatrix<f64>,
+    q: DVector<f64>,
+    qd: DVector<f64>,
+    posture: DVector<f64>,
+    posture_m: DVector<f64>,
+    tau: DVector<f64>,
+}
+
+impl Work {
+    fn new(n: usize) -> Self {
+        Self {
+            jac: DMatrix::zeros(6, n),
+            mass: DMatrix::zeros(n, n),
+            m_inv: DMatrix::zeros(n, n),
+            chol: Some(DMatrix::zeros(n, n)),
+            j_minv: DMatrix::zeros(6, n),
+            jbar: DMatrix::zeros(n, 6),
+            null: DMatrix::zeros(n, n),
+            q: DVector::zeros(n),
+            qd: DVector::zeros(n),
+            posture: DVector::zeros(n),
+            posture_m: DVector::zeros(n),
+            tau: DVector::zeros(n),
+        }
+    }
 }
 
 impl OscPose {
-    /// A controller for the arm described by `bind` in a model with `nv` dofs.
+    /// A controller for the arm described by `bind`.
     ///
-    /// The configuration must have been validated ([`OscConfig::validate`]).
-    pub fn new(config: OscConfig, bind: OscBinding, nv: usize) -> Self {
+    /// # Errors
+    /// [`Error::InvalidArgument`] when the configuration is invalid
+    /// ([`OscConfig::validate`]).
+    pub fn new(config: OscConfig, bind: ArmBinding) -> Result<Self> {
+        config.validate()?;
+        let n = bind.dofs.len();
+        let nv = bind.nv;
         let kd = config.kd();
         let scale = std::array::from_fn(|i| {
             (config.output_max[i] - config.output_min[i]).abs()
@@ -83,22 +94,21 @@ impl OscPose {
         let out_offset =
             std::array::from_fn(|i| (config.output_max[i] + config.output_min[i]) / 2.0);
         let in_offset = (config.input_max + config.input_min) / 2.0;
-        Self {
+        Ok(Self {
             config,
             kd,
             scale,
             out_offset,
             in_offset,
-            bind,
-            nv,
             jacp: vec![0.0; 3 * nv],
             jacr: vec![0.0; 3 * nv],
             full_m: vec![0.0; nv * nv],
+            work: Work::new(n),
             goal_pos: Vector3::zeros(),
             goal_ori: Matrix3::identity(),
-            q0: Vec7::zeros(),
-            torques: Vec7::zeros(),
-        }
+            q0: DVector::zeros(n),
+            bind,
+        })
     }
 
     /// The configuration.
@@ -107,7 +117,7 @@ impl OscPose {
     }
 
     /// The model binding.
-    pub fn binding(&self) -> &OscBinding {
+    pub fn binding(&self) -> &ArmBinding {
         &self.bind
     }
 
@@ -122,13 +132,8 @@ impl OscPose {
     }
 
     /// The nullspace target `q₀` (the arm posture at the last reset).
-    pub fn initial_joints(&self) -> [f64; 7] {
-        self.q0.into()
-    }
-
-    /// The torques of the last [`OscPose::compute_torques`] (after clipping).
-    pub fn torques(&self) -> [f64; 7] {
-        self.torques.into()
+    pub fn initial_joints(&self) -> &[f64] {
+        self.q0.as_slice()
     }
 
     fn site_pose(sim: &Sim, site: usize) -> (Vector3<f64>, Matrix3<f64>) {
@@ -139,47 +144,71 @@ impl OscPose {
         )
     }
 
-    /// The goal and nullspace target, for snapshots.
-    pub fn state(&self) -> OscState {
-        let mut goal_ori = [0.0; 9];
-        goal_ori.copy_from_slice(self.goal_ori.as_slice());
-        OscState {
-            goal_pos: self.goal_pos.into(),
-            goal_ori,
-            q0: self.q0.into(),
-        }
-    }
-
-    /// Restores a state from [`OscPose::state`].
-    pub fn set_state(&mut self, state: &OscState) {
-        self.goal_pos = Vector3::from(state.goal_pos);
-        self.goal_ori = Matrix3::from_column_slice(&state.goal_ori);
-        self.q0 = Vec7::from(state.q0);
-    }
-
-    /// Re-bases the controller on the current state (after `mj_forward`): `q₀` = current
-    /// arm posture, goal = current pose. robosuite re-creates its controllers at each reset.
-    pub fn reset(&mut self, sim: &Sim) {
-        let qpos = sim.data().qpos();
-        self.q0 = Vec7::from_fn(|i, _| qpos[self.bind.qpos[i]]);
-        let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
-        let (x, r) = Self::site_pose(sim, self.bind.site);
-        self.goal_pos = r_b.transpose() * (x - p_b);
-        self.goal_ori = r_b.transpose() * r;
-        self.torques = Vec7::zeros();
-    }
-
     /// Scales a raw input to the delta robosuite applies (`scale_action`).
-    pub fn scale_action(&self, action: &[f64; 6]) -> [f64; 6] {
+    pub fn scale_action(&self, action: &[f64]) -> [f64; 6] {
         std::array::from_fn(|i| {
             let a = action[i].clamp(self.config.input_min, self.config.input_max);
             (a - self.in_offset) * self.scale[i] + self.out_offset[i]
         })
     }
 
-    /// Sets the goal from a 6-dim input `[dx, dy, dz, ax, ay, az]` (delta in the base frame,
-    /// applied to the achieved pose). Call once per env step, after `mj_step1`.
-    pub fn set_goal(&mut self, sim: &Sim, action: &[f64; 6]) {
+    /// `M⁻¹` of the arm's mass matrix into `work.m_inv` (robosuite: `np.linalg.inv`):
+    /// Cholesky in place when positive definite, LU otherwise.
+    fn invert_mass(work: &mut Work) {
+        let n = work.mass.nrows();
+        let mut buf = work.chol.take().unwrap_or_else(|| DMatrix::zeros(n, n));
+        buf.copy_from(&work.mass);
+        let chol = Cholesky::new_unchecked(buf);
+        let l = chol.l_dirty();
+        let definite = (0..n).all(|i| l[(i, i)].is_finite() && l[(i, i)] > 0.0);
+        work.m_inv.fill_with_identity();
+        if definite {
+            chol.solve_mut(&mut work.m_inv);
+            work.chol = Some(chol.unpack_dirty());
+        } else {
+            // Not positive definite (a degenerate model): the general inverse, or the
+            // pseudo-inverse when singular. Rare, so it may allocate.
+            work.chol = Some(chol.unpack_dirty());
+            match work.mass.clone().try_inverse() {
+                Some(inv) => work.m_inv.copy_from(&inv),
+                None => {
+                    let pinv = work
+                        .mass
+                        .clone()
+                        .pseudo_inverse(1e-15)
+                        .unwrap_or_else(|_| DMatrix::zeros(n, n));
+                    work.m_inv.copy_from(&pinv);
+                }
+            }
+        }
+    }
+}
+
+impl ArmController for OscPose {
+    fn name(&self) -> &'static str {
+        "OSC_POSE"
+    }
+
+    fn action_dim(&self) -> usize {
+        6
+    }
+
+    fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
+        (vec![self.config.input_min; 6], vec![self.config.input_max; 6])
+    }
+
+    fn reset(&mut self, sim: &Sim) {
+        let qpos = sim.data().qpos();
+        for (i, &a) in self.bind.qpos.iter().enumerate() {
+            self.q0[i] = qpos[a];
+        }
+        let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
+        let (x, r) = Self::site_pose(sim, self.bind.site);
+        self.goal_pos = r_b.transpose() * (x - p_b);
+        self.goal_ori = r_b.transpose() * r;
+    }
+
+    fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
         let delta = self.scale_action(action);
         let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
         let (x, r) = Self::site_pose(sim, self.bind.site);
@@ -190,10 +219,9 @@ impl OscPose {
         self.goal_ori = rot * (r_b.transpose() * r);
     }
 
-    /// Computes the arm torques for the current state (after `mj_step1`), clipped to the
-    /// motors' ctrlrange. Does not allocate.
-    pub fn compute_torques(&mut self, sim: &Sim) -> [f64; 7] {
-        let nv = self.nv;
+    fn compute(&mut self, sim: &Sim, torques: &mut [f64]) {
+        let nv = self.bind.nv;
+        let n = self.bind.dofs.len();
         let (m_ptr, d_ptr) = sim.raw();
         let site = i32::try_from(self.bind.site).unwrap_or(i32::MAX);
         // SAFETY: m/d are live; jacp/jacr hold 3·nv and full_m nv·nv values.
@@ -210,18 +238,23 @@ impl OscPose {
         let d = sim.data();
         let (qpos, qvel, bias) = (d.qpos(), d.qvel(), d.qfrc_bias());
         let dofs = &self.bind.dofs;
+        let w = &mut self.work;
 
-        // Task Jacobian on the arm dofs, end-effector velocity over all dofs (robosuite's
+        // Task Jacobian on the arm dofs; end-effector velocity over all dofs (robosuite's
         // get_site_xvelp / xvelr = Jacobian × full qvel).
-        let jac = Jac::from_fn(|r, c| {
-            if r < 3 {
-                self.jacp[r * nv + dofs[c]]
-            } else {
-                self.jacr[(r - 3) * nv + dofs[c]]
+        for c in 0..n {
+            for r in 0..3 {
+                w.jac[(r, c)] = self.jacp[r * nv + dofs[c]];
+                w.jac[(r + 3, c)] = self.jacr[r * nv + dofs[c]];
             }
-        });
+            for r in 0..n {
+                w.mass[(r, c)] = self.full_m[dofs[r] * nv + dofs[c]];
+            }
+            w.q[c] = qpos[self.bind.qpos[c]];
+            w.qd[c] = qvel[dofs[c]];
+        }
         let mut v = Vector3::zeros();
-        let mut w = Vector3::zeros();
+        let mut om = Vector3::zeros();
         for r in 0..3 {
             let (mut sv, mut sw) = (0.0, 0.0);
             for (k, qd) in qvel.iter().enumerate() {
@@ -229,12 +262,8 @@ impl OscPose {
                 sw += self.jacr[r * nv + k] * qd;
             }
             v[r] = sv;
-            w[r] = sw;
+            om[r] = sw;
         }
-        let mass = Mat7::from_fn(|r, c| self.full_m[dofs[r] * nv + dofs[c]]);
-        let q = Vec7::from_fn(|i, _| qpos[self.bind.qpos[i]]);
-        let qd = Vec7::from_fn(|i, _| qvel[dofs[i]]);
-        let h = Vec7::from_fn(|i, _| bias[dofs[i]]);
 
         // Pose error in the world frame.
         let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
@@ -246,40 +275,99 @@ impl OscPose {
         let kp = &self.config.kp;
         let kd = &self.kd;
         let force = Vector3::from_fn(|i, _| e_p[i] * kp[i] + (-v[i]) * kd[i]);
-        let torque = Vector3::from_fn(|i, _| e_o[i] * kp[3 + i] + (-w[i]) * kd[3 + i]);
+        let torque = Vector3::from_fn(|i, _| e_o[i] * kp[3 + i] + (-om[i]) * kd[3 + i]);
 
         // Operational-space matrices (control_utils.opspace_matrices).
-        let m_inv = inv_spd(&mass);
-        let jp = jac.fixed_rows::<3>(0).into_owned();
-        let jr = jac.fixed_rows::<3>(3).into_owned();
-        let lambda = (jac * m_inv * jac.transpose()).pinv_psd();
-        let wrench: Vec6 = if self.config.uncouple_pos_ori {
-            let lambda_p = (jp * m_inv * jp.transpose()).pinv_psd();
-            let lambda_o = (jr * m_inv * jr.transpose()).pinv_psd();
+        Self::invert_mass(w);
+        // Small products by hand: nalgebra's dynamic matrix products allocate packing
+        // buffers.
+        for r in 0..6 {
+            for c in 0..n {
+                let mut s = 0.0;
+                for k in 0..n {
+                    s += w.jac[(r, k)] * w.m_inv[(k, c)];
+                }
+                w.j_minv[(r, c)] = s;
+            }
+        }
+        let lambda_inv = Matrix6::from_fn(|r, c| {
+            let mut s = 0.0;
+            for k in 0..n {
+                s += w.j_minv[(r, k)] * w.jac[(c, k)];
+            }
+            s
+        });
+        let lambda = lambda_inv.pinv_psd();
+        let wrench: Vector6<f64> = if self.config.uncouple_pos_ori {
+            let lambda_p = lambda_inv.fixed_view::<3, 3>(0, 0).into_owned().pinv_psd();
+            let lambda_o = lambda_inv.fixed_view::<3, 3>(3, 3).into_owned().pinv_psd();
             let fp = lambda_p * force;
             let fo = lambda_o * torque;
-            Vec6::new(fp[0], fp[1], fp[2], fo[0], fo[1], fo[2])
+            Vector6::new(fp[0], fp[1], fp[2], fo[0], fo[1], fo[2])
         } else {
-            lambda
-                * Vec6::new(
-                    force[0], force[1], force[2], torque[0], torque[1], torque[2],
-                )
+            lambda * Vector6::new(force[0], force[1], force[2], torque[0], torque[1], torque[2])
         };
-        let mut tau = jac.transpose() * wrench + h;
+        // τ = Jᵀ wrench + h
+        for c in 0..n {
+            let mut s = 0.0;
+            for r in 0..6 {
+                s += w.jac[(r, c)] * wrench[r];
+            }
+            w.tau[c] = s + bias[dofs[c]];
+        }
 
-        // Nullspace posture term (control_utils.nullspace_torques).
-        let jbar = m_inv * jac.transpose() * lambda;
-        let nullspace = Mat7::identity() - jbar * jac;
+        // Nullspace posture term (control_utils.nullspace_torques): N = I − M⁻¹Jᵀ Λ J.
+        for rr in 0..n {
+            for c in 0..6 {
+                let mut s = 0.0;
+                for k in 0..6 {
+                    s += w.j_minv[(k, rr)] * lambda[(k, c)];
+                }
+                w.jbar[(rr, c)] = s;
+            }
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let mut s = 0.0;
+                for k in 0..6 {
+                    s += w.jbar[(i, k)] * w.jac[(k, j)];
+                }
+                w.null[(i, j)] = f64::from(u8::from(i == j)) - s;
+            }
+        }
         let kn = self.config.nullspace_kp;
         let kvn = kn.sqrt() * 2.0;
-        let pose_torques = mass * ((self.q0 - q) * kn - qd * kvn);
-        tau += nullspace.transpose() * pose_torques;
-
-        for i in 0..7 {
-            let [lo, hi] = self.bind.ctrlrange[i];
-            tau[i] = tau[i].clamp(lo, hi);
+        for i in 0..n {
+            w.posture[i] = (self.q0[i] - w.q[i]) * kn - w.qd[i] * kvn;
         }
-        self.torques = tau;
-        tau.into()
+        w.mass.mul_to(&w.posture, &mut w.posture_m);
+        w.tau.gemv_tr(1.0, &w.null, &w.posture_m, 1.0);
+        torques.copy_from_slice(w.tau.as_slice());
+    }
+
+    fn state(&self) -> Vec<f64> {
+        let mut out = Vec::with_capacity(12 + self.q0.len());
+        out.extend(self.goal_pos.iter());
+        out.extend(self.goal_ori.iter());
+        out.extend(self.q0.iter());
+        out
+    }
+
+    fn set_state(&mut self, state: &[f64]) -> Result<()> {
+        let n = self.q0.len();
+        if state.len() != 12 + n || state.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid_argument(
+                "controller state",
+                format!("expected {} finite values for OSC_POSE, got {}", 12 + n, state.len()),
+            ));
+        }
+        self.goal_pos = Vector3::from_column_slice(&state[..3]);
+        self.goal_ori = Matrix3::from_column_slice(&state[3..12]);
+        self.q0.copy_from_slice(&state[12..]);
+        Ok(())
+    }
+
+    fn clone_box(&self) -> Box<dyn ArmController> {
+        Box::new(self.clone())
     }
 }

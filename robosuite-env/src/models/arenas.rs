@@ -1,69 +1,244 @@
-//! Arenas generated from their parameters (robosuite's `TableArena`).
+//! robosuite's arenas (`robosuite/models/arenas/`): the workspace a task happens in, built
+//! from robosuite's arena files and configured as its arena classes configure them.
 
-/// A table arena: floor, a table box whose top face is at `top_z`, visual legs, the
-/// `table_top` site and fixed cameras.
+use super::ENVIRONMENT_COLLISION_COLOR;
+use crate::assets::Assets;
+use crate::mjcf::tree::{self, array_to_string, attr, element, set_attr};
+use crate::mjcf::{MjcfDoc, tree::append};
+use gym_core::{Error, Result};
+
+/// Which of robosuite's robot base offsets (`base_xpos_offset`) an arena uses.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TableArena {
-    /// Full size of the table box (x, y, z) in metres.
-    pub full_size: [f64; 3],
-    /// Sliding, torsional and rolling friction of the table top.
-    pub friction: [f64; 3],
-    /// Position of the centre of the table top (robosuite's `table_offset`).
-    pub top: [f64; 3],
+pub enum ArenaKind {
+    /// A table of this length (x): robots stand at `(-0.16 - length / 2, 0, 0)` (Panda).
+    Table {
+        /// The table's full length along x.
+        length: f64,
+    },
+    /// The two bins of PickPlace.
+    Bins,
+    /// No table (TwoArmPegInHole).
+    Empty,
 }
 
-impl Default for TableArena {
-    /// robosuite's default: 0.8 × 0.8 × 0.05, friction (1, 0.005, 0.0001), top at z = 0.8.
-    fn default() -> Self {
-        Self {
-            full_size: [0.8, 0.8, 0.05],
-            friction: [1.0, 0.005, 0.0001],
-            top: [0.0, 0.0, 0.8],
+/// An arena: its processed MJCF and the figures tasks read from it.
+#[derive(Debug, Clone)]
+pub struct Arena {
+    /// The arena's document (its world body, assets, lights and cameras).
+    pub doc: MjcfDoc,
+    /// Which base offsets robots take in it.
+    pub kind: ArenaKind,
+    /// Full size of the table (or of the bin area), if the arena has one.
+    pub table_full_size: [f64; 3],
+    /// Where the table surface is (robosuite's `table_offset`, or `bin1_pos` for bins).
+    pub table_offset: [f64; 3],
+}
+
+/// robosuite's `Arena.__init__`: loads the file and adds the two mocap target bodies
+/// (`left_eef_target`, `right_eef_target`). Collision geoms are recoloured by [`finish`].
+fn load(assets: &Assets, file: &str) -> Result<MjcfDoc> {
+    let mut doc = MjcfDoc::load(&assets.file(file)?)?;
+    for (side, rgb) in [("left", "0.898 0.420 0.435"), ("right", "0.208 0.314 0.439")] {
+        let mut body = element(
+            "body",
+            &[
+                ("name", format!("{side}_eef_target")),
+                ("pos", "0 0 -1".to_owned()),
+                ("mocap", "true".to_owned()),
+            ],
+        );
+        for (shape, size, alpha) in [("box", "0.05 0.05 0.05", "0.5"), ("sphere", "0.01", "0.8")] {
+            append(
+                &mut body,
+                element(
+                    "geom",
+                    &[
+                        ("name", format!("{side}_eef_target_{shape}")),
+                        ("type", shape.to_owned()),
+                        ("size", size.to_owned()),
+                        ("pos", "0 0 0".to_owned()),
+                        ("group", "2".to_owned()),
+                        ("rgba", format!("{rgb} {alpha}")),
+                        ("conaffinity", "0".to_owned()),
+                        ("contype", "0".to_owned()),
+                    ],
+                ),
+            );
         }
+        append(doc.worldbody_mut(), body);
+    }
+    Ok(doc)
+}
+
+/// The end of robosuite's `Arena.__init__`: every collision geom but the floor takes the
+/// environment collision colour.
+fn finish(doc: &mut MjcfDoc) {
+    tree::recolor_collision_geoms(
+        doc.worldbody_mut(),
+        &ENVIRONMENT_COLLISION_COLOR,
+        &|e| attr(e, "name") == Some("floor"),
+    );
+}
+
+fn floor_at_origin(doc: &mut MjcfDoc) -> Result<()> {
+    let floor = tree::children_mut(doc.worldbody_mut())
+        .find(|e| e.name == "geom" && attr(e, "name") == Some("floor"))
+        .ok_or_else(|| Error::Model("the arena has no geom named `floor`".into()))?;
+    set_attr(floor, "pos", array_to_string(&[0.0; 3]));
+    Ok(())
+}
+
+fn direct_child_mut<'a>(
+    parent: &'a mut crate::mjcf::Element,
+    tag: &str,
+    name: &str,
+) -> Result<&'a mut crate::mjcf::Element> {
+    tree::children_mut(parent)
+        .find(|e| e.name == tag && attr(e, "name") == Some(name))
+        .ok_or_else(|| Error::Model(format!("the arena has no <{tag} name=\"{name}\">")))
+}
+
+impl Arena {
+    /// robosuite's `TableArena(table_full_size, table_friction, table_offset)` from
+    /// `arenas/table_arena.xml` (or another table file such as `arenas/pegs_arena.xml`):
+    /// table body centred below `table_offset`, its collision and visual boxes and top site
+    /// sized to the table, the four visual legs placed near the corners.
+    ///
+    /// # Errors
+    /// [`Error::Model`] when the file is missing or lacks the table elements;
+    /// [`Error::InvalidArgument`] for non-positive or non-finite sizes.
+    pub fn table(
+        assets: &Assets,
+        file: &str,
+        full_size: [f64; 3],
+        friction: [f64; 3],
+        offset: [f64; 3],
+    ) -> Result<Self> {
+        check_size("table_full_size", &full_size)?;
+        if offset.iter().chain(&friction).any(|v| !v.is_finite()) {
+            return Err(Error::invalid_argument(
+                "table_offset",
+                format!("must be finite, got offset {offset:?}, friction {friction:?}"),
+            ));
+        }
+        let mut doc = load(assets, file)?;
+        let half = full_size.map(|v| v / 2.0);
+        let center = [offset[0], offset[1], -half[2] + offset[2]];
+        floor_at_origin(&mut doc)?;
+        let table = direct_child_mut(doc.worldbody_mut(), "body", "table")?;
+        set_attr(table, "pos", array_to_string(&center));
+        let collision = direct_child_mut(table, "geom", "table_collision")?;
+        set_attr(collision, "size", array_to_string(&half));
+        set_attr(collision, "friction", array_to_string(&friction));
+        set_attr(
+            direct_child_mut(table, "geom", "table_visual")?,
+            "size",
+            array_to_string(&half),
+        );
+        set_attr(
+            direct_child_mut(table, "site", "table_top")?,
+            "pos",
+            array_to_string(&[0.0, 0.0, half[2]]),
+        );
+        let dx = [0.1, -0.1, -0.1, 0.1];
+        let dy = [0.1, 0.1, -0.1, -0.1];
+        for (i, (dx, dy)) in dx.iter().zip(dy).enumerate() {
+            let leg = direct_child_mut(table, "geom", &format!("table_leg{}_visual", i + 1))?;
+            let mut x = 0.0;
+            if half[0] > (dx * 2.0f64).abs() {
+                x += dx.signum() * half[0] - dx;
+            }
+            let mut y = 0.0;
+            if half[1] > (dy * 2.0f64).abs() {
+                y += dy.signum() * half[1] - dy;
+            }
+            let z = (offset[2] - half[2]) / 2.0;
+            set_attr(leg, "pos", array_to_string(&[x, y, -z]));
+            set_attr(leg, "size", array_to_string(&[0.025, z]));
+        }
+        finish(&mut doc);
+        Ok(Self {
+            doc,
+            kind: ArenaKind::Table {
+                length: full_size[0],
+            },
+            table_full_size: full_size,
+            table_offset: offset,
+        })
+    }
+
+    /// robosuite's `BinsArena(bin1_pos, table_full_size, table_friction)` from
+    /// `arenas/bins_arena.xml` (the bins are fixed in the file; only the floor is placed).
+    ///
+    /// # Errors
+    /// [`Error::Model`] when the file is missing or malformed.
+    pub fn bins(assets: &Assets, bin1_pos: [f64; 3], full_size: [f64; 3]) -> Result<Self> {
+        check_size("table_full_size", &full_size)?;
+        let mut doc = load(assets, "arenas/bins_arena.xml")?;
+        floor_at_origin(&mut doc)?;
+        finish(&mut doc);
+        Ok(Self {
+            doc,
+            kind: ArenaKind::Bins,
+            table_full_size: full_size,
+            table_offset: bin1_pos,
+        })
+    }
+
+    /// robosuite's `EmptyArena` (`arenas/empty_arena.xml`): floor, walls, cameras.
+    ///
+    /// # Errors
+    /// [`Error::Model`] when the file is missing or malformed.
+    pub fn empty(assets: &Assets) -> Result<Self> {
+        let mut doc = load(assets, "arenas/empty_arena.xml")?;
+        finish(&mut doc);
+        Ok(Self {
+            doc,
+            kind: ArenaKind::Empty,
+            table_full_size: [0.0; 3],
+            table_offset: [0.0; 3],
+        })
+    }
+
+    /// robosuite's `Arena.set_origin`: adds `offset` to the position of every element
+    /// directly in the world body that has one.
+    ///
+    /// # Errors
+    /// [`Error::Model`] when a position is not three numbers.
+    pub fn set_origin(&mut self, offset: [f64; 3]) -> Result<()> {
+        for node in tree::children_mut(self.doc.worldbody_mut()) {
+            if attr(node, "pos").is_some() {
+                let p = tree::attr_array(node, "pos", [0.0; 3])?;
+                set_attr(
+                    node,
+                    "pos",
+                    array_to_string(&[p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]]),
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// The table's body, for tasks that put things on it (Wipe's markers).
+    ///
+    /// # Errors
+    /// [`Error::Model`] when the arena has no body `table`.
+    pub fn table_body_mut(&mut self) -> Result<&mut crate::mjcf::Element> {
+        direct_child_mut(self.doc.worldbody_mut(), "body", "table")
+    }
+
+    /// The table's half size.
+    pub fn table_half_size(&self) -> [f64; 3] {
+        self.table_full_size.map(|v| v / 2.0)
     }
 }
 
-impl TableArena {
-    /// The arena's MJCF (attach it to the world with an empty prefix).
-    pub fn to_xml(&self) -> String {
-        let [sx, sy, sz] = self.full_size.map(|v| v / 2.0);
-        let [tx, ty, tz] = self.top;
-        let body_z = tz - sz;
-        let [f0, f1, f2] = self.friction;
-        // Legs reach from under the table to the floor; they are visual only.
-        let leg_half = ((body_z - sz) / 2.0).max(0.001);
-        let leg_z = -sz - leg_half;
-        let (lx, ly) = ((sx - 0.1).max(0.0), (sy - 0.1).max(0.0));
-        let legs: String = [(lx, ly), (-lx, ly), (-lx, -ly), (lx, -ly)]
-            .iter()
-            .enumerate()
-            .map(|(i, (x, y))| {
-                format!(
-                    r#"<geom name="table_leg{}_visual" type="cylinder" pos="{x} {y} {leg_z}" size="0.025 {leg_half}" group="1" contype="0" conaffinity="0" rgba="0.3 0.3 0.3 1"/>"#,
-                    i + 1
-                )
-            })
-            .collect::<Vec<_>>()
-            .join("\n      ");
-        format!(
-            r#"<mujoco model="table_arena">
-  <compiler angle="radian" autolimits="true" inertiagrouprange="0 0"/>
-  <worldbody>
-    <light name="key_light" pos="1.0 1.0 4.0" dir="-0.19 -0.19 -0.96" directional="true" diffuse="0.8 0.8 0.8" specular="0.3 0.3 0.3" castshadow="false"/>
-    <light name="fill_light" pos="-3.0 -3.0 4.0" dir="0.5 0.5 -0.7" directional="true" diffuse="0.4 0.4 0.4" specular="0.1 0.1 0.1" castshadow="false"/>
-    <geom name="floor" type="plane" pos="0 0 0" size="3 3 0.125" condim="3" group="1" contype="1" conaffinity="1" rgba="0.55 0.55 0.55 1"/>
-    <body name="table" pos="{tx} {ty} {body_z}">
-      <geom name="table_collision" type="box" pos="0 0 0" size="{sx} {sy} {sz}" group="0" contype="1" conaffinity="1" condim="3" friction="{f0} {f1} {f2}" rgba="0.5 0.5 0.5 1"/>
-      {legs}
-      <site name="table_top" pos="0 0 {sz}" size="0.001" rgba="0 0 0 0" group="2"/>
-    </body>
-    <camera name="frontview" mode="fixed" pos="1.6 0 1.45" quat="0.56 0.43 0.43 0.56"/>
-    <camera name="birdview" mode="fixed" pos="-0.2 0 3.0" quat="0.7071 0 0 0.7071"/>
-    <camera name="agentview" mode="fixed" pos="0.5 0 1.35" quat="0.653 0.271 0.271 0.653"/>
-    <camera name="sideview" mode="fixed" pos="-0.0565 1.2761 1.4880" quat="0.0099 0.0069 0.5912 0.8064"/>
-  </worldbody>
-</mujoco>
-"#
-        )
+fn check_size(name: &str, size: &[f64; 3]) -> Result<()> {
+    if size.iter().any(|v| !v.is_finite() || *v <= 0.0) {
+        return Err(Error::invalid_argument(
+            name,
+            format!("must be positive and finite, got {size:?}"),
+        ));
     }
+    Ok(())
 }

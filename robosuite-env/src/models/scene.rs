@@ -1,198 +1,127 @@
-//! Composes a scene from parts with MuJoCo's model editing (`mjs_attach`), giving every
-//! element robosuite's name.
+//! A task's scene as robosuite's `ManipulationTask` composes it — the world of `base.xml`,
+//! then the arena, the robots and the objects merged in that order — and its compilation.
+//!
+//! Compiling robosuite's meshes takes a tenth of a second or more, so compiled models are
+//! kept in a process-wide cache keyed by the scene's MJCF and copied (`mj_copyModel`) for
+//! each environment.
 
-use crate::robots::RobotSpec;
+use super::arenas::Arena;
+use super::objects::ObjectModel;
+use super::robots::RobotModel;
+use crate::assets::Assets;
+use crate::mjcf::tree::{self, append, set_attr};
+use crate::mjcf::{MergeBody, MjcfDoc};
 use crate::sim::check_mujoco_version;
 use gym_core::{Error, Result};
-use mujoco_rs::wrappers::mj_editing::{Attach, MjSpec};
 use mujoco_rs::wrappers::mj_model::MjModel;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
-fn parse(part: &str, xml: &str) -> Result<MjSpec> {
-    if xml.contains('\0') {
-        return Err(Error::Model(format!(
-            "the MJCF of `{part}` contains a NUL byte"
-        )));
+/// robosuite's simulation timestep (`macros.SIMULATION_TIMESTEP`).
+pub const SIMULATION_TIMESTEP: f64 = 0.002;
+
+/// The bytes MuJoCo reserves per `mjData` for contacts, constraints and its stack unless a
+/// task asks for more (robosuite's `njmax`/`nconmax` of 5000 reserve 1.2 GiB instead).
+pub const DEFAULT_MEMORY: usize = 2 << 20;
+
+/// The most compiled scenes the cache keeps.
+const CACHE_CAPACITY: usize = 64;
+
+/// A composed scene: one MJCF document, element for element the one robosuite composes.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    doc: MjcfDoc,
+}
+
+impl Scene {
+    /// robosuite's `ManipulationTask(arena, robots, objects)` on `MujocoWorldBase`:
+    /// `base.xml` with the timestep set, then the arena, each robot and each object (its
+    /// assets merged, its body appended to the world body).
+    ///
+    /// # Errors
+    /// [`Error::Model`] when `base.xml` is missing or malformed.
+    pub fn compose(
+        assets: &Assets,
+        arena: &Arena,
+        robots: &[RobotModel],
+        objects: &[ObjectModel],
+    ) -> Result<Self> {
+        let mut doc = MjcfDoc::load(&assets.file("base.xml")?)?;
+        let option = tree::find_mut(doc.root_mut(), "option", &[])
+            .ok_or_else(|| Error::Model("base.xml has no <option>".into()))?;
+        set_attr(option, "timestep", tree::format_number(SIMULATION_TIMESTEP));
+        doc.merge(arena.doc.clone(), MergeBody::World)?;
+        for robot in robots {
+            doc.merge(robot.doc().clone(), MergeBody::World)?;
+        }
+        for object in objects {
+            doc.merge_assets(&object.assets);
+            append(doc.worldbody_mut(), object.body.clone());
+        }
+        Ok(Self { doc })
     }
-    MjSpec::from_xml_string(xml)
-        .map_err(|e| Error::Model(format!("cannot parse the MJCF of `{part}`: {e:?}")))
+
+    /// The scene's document.
+    pub fn doc(&self) -> &MjcfDoc {
+        &self.doc
+    }
+
+    /// The scene's document, mutably (for tasks that edit it after the merge).
+    pub fn doc_mut(&mut self) -> &mut MjcfDoc {
+        &mut self.doc
+    }
+
+    /// The MJCF robosuite would compile (`env.model.get_xml()`).
+    pub fn to_xml(&self) -> String {
+        self.doc.to_xml()
+    }
+
+    /// The MJCF this crate compiles: [`Scene::to_xml`] with robosuite's `njmax`/`nconmax`
+    /// replaced by an arena of `memory` bytes.
+    pub fn to_mujoco_xml(&self, memory: usize) -> String {
+        let mut doc = self.doc.clone();
+        let root = doc.root_mut();
+        if tree::child(root, "size").is_none() {
+            append(root, crate::mjcf::Element::new("size"));
+        }
+        let size = tree::child_mut(root, "size").expect("just ensured");
+        for attr_name in ["nconmax", "njmax"] {
+            tree::remove_attr(size, attr_name);
+        }
+        set_attr(size, "memory", memory.to_string());
+        doc.to_xml()
+    }
+
+    /// Compiles the scene with an arena of `memory` bytes (cached: a scene compiled before is
+    /// copied).
+    ///
+    /// # Errors
+    /// [`Error::Model`] when MuJoCo is not 3.17.0 or rejects the scene.
+    pub fn compile(&self, memory: usize) -> Result<MjModel> {
+        compile_cached(&self.to_mujoco_xml(memory))
+    }
 }
 
-fn attach_error(part: &str) -> impl FnOnce(mujoco_rs::error::MjEditError) -> Error + '_ {
-    move |e| Error::Model(format!("cannot attach `{part}`: {e:?}"))
-}
-
-/// Builds a scene: the world, then an arena, robots and objects, compiled to one model.
+/// Compiles MJCF text, or copies the model compiled from the same text before.
 ///
-/// Body order (and so joint, qpos and actuator order) follows the order of the calls, so
-/// tasks add robots before objects, as robosuite does.
-#[derive(Debug)]
-pub struct SceneBuilder {
-    spec: MjSpec,
-}
-
-impl SceneBuilder {
-    /// Starts from the empty world (physics options of robosuite).
-    ///
-    /// # Errors
-    /// [`Error::Model`] when the MuJoCo library is not 3.17.0 or the world cannot be parsed.
-    pub fn new() -> Result<Self> {
-        check_mujoco_version()?;
-        Ok(Self {
-            spec: parse("world", super::WORLD_XML)?,
-        })
+/// # Errors
+/// [`Error::Model`] with MuJoCo's message when it rejects the text, or when the MuJoCo
+/// library is not 3.17.0.
+pub fn compile_cached(xml: &str) -> Result<MjModel> {
+    static CACHE: OnceLock<Mutex<HashMap<String, Arc<MjModel>>>> = OnceLock::new();
+    check_mujoco_version()?;
+    let cache = CACHE.get_or_init(Default::default);
+    // One compilation at a time: MuJoCo's XML loader keeps global state.
+    let mut map = cache.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(model) = map.get(xml) {
+        return Ok(MjModel::clone(model));
     }
-
-    /// Starts from the world with an arena: the content of the arena MJCF's `<worldbody>`
-    /// becomes the world's, keeping the arena's names unprefixed (`floor`, `table`,
-    /// `table_top`, ...) as robosuite's arenas are.
-    ///
-    /// # Errors
-    /// [`Error::Model`] when the MuJoCo library is not 3.17.0, the arena has no
-    /// `<worldbody>`, or the result cannot be parsed.
-    pub fn with_arena(arena_xml: &str) -> Result<Self> {
-        check_mujoco_version()?;
-        let inner = arena_xml
-            .find("<worldbody>")
-            .and_then(|start| {
-                let from = start + "<worldbody>".len();
-                arena_xml[from..]
-                    .rfind("</worldbody>")
-                    .map(|end| &arena_xml[from..from + end])
-            })
-            .ok_or_else(|| {
-                Error::Model("the arena MJCF has no <worldbody>...</worldbody>".into())
-            })?;
-        let world = super::WORLD_XML.replacen(
-            "<worldbody/>",
-            &format!("<worldbody>{inner}</worldbody>"),
-            1,
-        );
-        Ok(Self {
-            spec: parse("arena", &world)?,
-        })
+    let model = MjModel::from_xml_string(xml)
+        .map_err(|e| Error::Model(format!("MuJoCo cannot compile the scene: {e}")))?;
+    if map.len() >= CACHE_CAPACITY {
+        map.clear();
     }
-
-    /// Attaches a part's world-body content at the world origin with a name prefix.
-    ///
-    /// # Errors
-    /// [`Error::Model`] when the part does not parse or attach.
-    pub fn add_part(&mut self, part: &str, xml: &str, prefix: &str) -> Result<&mut Self> {
-        self.add_part_at(part, xml, prefix, [0.0; 3], [1.0, 0.0, 0.0, 0.0])
-    }
-
-    /// Attaches a part's world-body content in a frame at `pos` / `quat` (wxyz).
-    ///
-    /// # Errors
-    /// [`Error::Model`] when the part does not parse or attach.
-    pub fn add_part_at(
-        &mut self,
-        part: &str,
-        xml: &str,
-        prefix: &str,
-        pos: [f64; 3],
-        quat: [f64; 4],
-    ) -> Result<&mut Self> {
-        let mut child = parse(part, xml)?;
-        self.spec
-            .world_body_mut()
-            .add_frame()
-            .with_pos(pos)
-            .with_quat(quat)
-            .attach_by_deep_copy(&mut child, prefix, "")
-            .map_err(attach_error(part))?;
-        Ok(self)
-    }
-
-    /// Attaches a part to the body `parent` (a full, prefixed name) with a name prefix.
-    ///
-    /// # Errors
-    /// [`Error::Model`] when the body does not exist or the part does not parse or attach.
-    pub fn add_part_to_body(
-        &mut self,
-        part: &str,
-        xml: &str,
-        parent: &str,
-        prefix: &str,
-    ) -> Result<&mut Self> {
-        let mut child = parse(part, xml)?;
-        let body = self.spec.body_mut(parent).ok_or_else(|| {
-            Error::Model(format!(
-                "cannot attach `{part}`: the scene has no body `{parent}`"
-            ))
-        })?;
-        body.attach_by_deep_copy(&mut child, prefix, "")
-            .map_err(attach_error(part))?;
-        Ok(self)
-    }
-
-    /// Adds robot `index` with its base at `pos` / `quat` (wxyz): the arm (prefix
-    /// `robot{index}_`), its mount under the base (prefix `fixed_mount{index}_`) and its
-    /// gripper on the hand (prefix `gripper{index}_right_`).
-    ///
-    /// # Errors
-    /// [`Error::Model`] when a part does not parse or attach.
-    pub fn add_robot(
-        &mut self,
-        index: usize,
-        robot: &RobotSpec,
-        pos: [f64; 3],
-        quat: [f64; 4],
-    ) -> Result<&mut Self> {
-        let prefix = format!("robot{index}_");
-        self.add_part_at(robot.arm.name, robot.arm.xml, &prefix, pos, quat)?;
-        if let Some(gripper) = &robot.gripper {
-            let hand = format!("{prefix}{}", robot.arm.hand_body);
-            self.add_part_to_body(
-                gripper.name,
-                gripper.xml,
-                &hand,
-                &format!("gripper{index}_right_"),
-            )?;
-        }
-        if let Some(mount) = robot.arm.mount_xml {
-            let base = format!("{prefix}{}", robot.arm.base_body);
-            self.add_part_to_body("mount", mount, &base, &format!("fixed_mount{index}_"))?;
-        }
-        Ok(self)
-    }
-
-    /// Sets the bytes MuJoCo reserves per `mjData` for contacts, constraints and its stack
-    /// (the world's default is 2 MiB); tasks with many contacts may need more.
-    ///
-    /// # Errors
-    /// [`Error::InvalidArgument`] for less than 64 KiB.
-    pub fn set_memory(&mut self, bytes: usize) -> Result<&mut Self> {
-        if bytes < 1 << 16 {
-            return Err(Error::invalid_argument(
-                "memory",
-                format!("need at least 64 KiB, got {bytes} bytes"),
-            ));
-        }
-        self.spec.set_memory(bytes as _);
-        Ok(self)
-    }
-
-    /// Compiles the scene.
-    ///
-    /// # Errors
-    /// [`Error::Model`] with MuJoCo's message when compilation fails.
-    pub fn compile(mut self) -> Result<MjModel> {
-        self.spec
-            .compile()
-            .map_err(|e| Error::Model(format!("cannot compile the scene: {e:?}")))
-    }
-
-    /// The scene as MJCF text (for inspection or to load elsewhere).
-    ///
-    /// # Errors
-    /// [`Error::Model`] when MuJoCo cannot write the XML.
-    pub fn to_xml(&mut self) -> Result<String> {
-        // Compiling first resolves defaults, so the saved XML is complete.
-        self.spec
-            .compile()
-            .map_err(|e| Error::Model(format!("cannot compile the scene: {e:?}")))?;
-        self.spec
-            .save_xml_string(1 << 20)
-            .map_err(|e| Error::Model(format!("cannot write the scene XML: {e:?}")))
-    }
+    let model = Arc::new(model);
+    map.insert(xml.to_owned(), Arc::clone(&model));
+    Ok(MjModel::clone(&model))
 }

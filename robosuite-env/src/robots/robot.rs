@@ -1,102 +1,160 @@
-//! A robot bound to a compiled model: ids, controllers, reset noise and proprioception.
+//! A robot bound to a compiled model: its joints, arms, controllers, grippers, reset noise
+//! and proprioceptive observables (robosuite's `Robot` / `FixedBaseRobot`).
 
-use super::spec::RobotSpec;
-use crate::controllers::math::{mat_from_row_major, mat2quat};
-use crate::controllers::{GripController, OscBinding, OscConfig, OscPose, OscState};
-use crate::observations::ObsKey;
-use crate::sim::{GeomSet, Sim, actuator_for_joint, body_id, geom_id, joint_id, site_id};
+use super::noise::InitNoise;
+use crate::controllers::{ArmBinding, ArmController, GripController, OscConfig, OscPose};
+use crate::math::{mat2quat, mat_from_row_major, xyzw};
+use crate::models::grippers::GripperInfo;
+use crate::models::robots::RobotModel;
+use crate::observables::{Observable, ObsSpec, observe_all, specs};
+use crate::sim::{GeomSet, Sim, actuator_id, body_id, geom_id, joint_id, site_id};
 use gym_core::{DType, EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
-use rand::RngExt;
-use rand_distr::StandardNormal;
+use std::ops::Range;
 
-/// The number of arm joints the controllers handle.
-pub const ARM_DOF: usize = 7;
-
-/// The law of the reset noise on the arm joints.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NoiseKind {
-    /// `magnitude · N(0, 1)` per joint (robosuite's `"gaussian"`).
-    Gaussian,
-    /// `magnitude · U(−1, 1)` per joint (robosuite's `"uniform"`).
-    Uniform,
-}
-
-/// robosuite's `initialization_noise`: added to `init_qpos` on every reset.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InitNoise {
-    /// Scale of the noise in radians.
-    pub magnitude: f64,
-    /// Its law.
-    pub kind: NoiseKind,
-}
-
-impl Default for InitNoise {
-    /// robosuite's `"default"`: Gaussian with magnitude 0.02.
-    fn default() -> Self {
-        Self {
-            magnitude: 0.02,
-            kind: NoiseKind::Gaussian,
-        }
-    }
-}
-
-impl InitNoise {
-    /// No noise (robosuite's `None`: magnitude 0; the seven draws still happen, so the RNG
-    /// stream stays aligned with the noisy setting).
-    pub fn none() -> Self {
-        Self {
-            magnitude: 0.0,
-            kind: NoiseKind::Gaussian,
-        }
-    }
-
-    /// Draws the seven offsets.
-    pub fn sample(&self, rng: &mut EnvRng) -> [f64; ARM_DOF] {
-        std::array::from_fn(|_| {
-            let z: f64 = match self.kind {
-                NoiseKind::Gaussian => rng.sample(StandardNormal),
-                NoiseKind::Uniform => -1.0 + 2.0 * rng.random::<f64>(),
-            };
-            z * self.magnitude
-        })
-    }
-}
-
-/// The controller state of a robot, for snapshots.
+/// The controller state of a robot, for snapshots: per arm, the arm controller's state and
+/// the gripper command.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobotState {
-    /// The arm controller's goal and nullspace target.
-    pub arm: OscState,
-    /// The gripper integrator.
-    pub gripper: Vec<f64>,
+    /// Per arm: the arm controller's [`ArmController::state`].
+    pub arms: Vec<Vec<f64>>,
+    /// Per arm: the gripper command.
+    pub grippers: Vec<Vec<f64>>,
 }
 
+/// A gripper in a compiled scene.
 #[derive(Debug, Clone)]
-struct GripperRuntime {
+pub struct Gripper {
+    info: GripperInfo,
+    has_gripper: bool,
     qpos: Vec<usize>,
     dofs: Vec<usize>,
     actuators: Vec<usize>,
-    init_qpos: Vec<f64>,
+    controller: GripController,
     left_pads: GeomSet,
     right_pads: GeomSet,
-    controller: GripController,
+    geoms: GeomSet,
+    corners: Vec<usize>,
 }
 
-/// One robot in a compiled scene: an arm with the `OSC_POSE` controller and, optionally, a
-/// gripper with the `GRIP` controller.
+impl Gripper {
+    /// The gripper's figures.
+    pub fn info(&self) -> &GripperInfo {
+        &self.info
+    }
+
+    /// Whether the arm has a gripper (false with `gripper_types=None`, where robosuite
+    /// attaches a null gripper).
+    pub fn has_gripper(&self) -> bool {
+        self.has_gripper
+    }
+
+    /// The action dimension.
+    pub fn action_dim(&self) -> usize {
+        self.controller.action_dim()
+    }
+
+    /// The geoms of the left and right finger-pad groups (`_check_grasp`).
+    pub fn finger_pads(&self) -> (&GeomSet, &GeomSet) {
+        (&self.left_pads, &self.right_pads)
+    }
+
+    /// Every contact geom of the gripper.
+    pub fn contact_geoms(&self) -> &GeomSet {
+        &self.geoms
+    }
+
+    /// The ids of the gripper's named corner geoms (the wiping tool's).
+    pub fn corners(&self) -> &[usize] {
+        &self.corners
+    }
+
+    /// The gripper controller.
+    pub fn controller(&self) -> &GripController {
+        &self.controller
+    }
+}
+
+/// One arm: its joints (a range of the robot's joints), motors, controller and gripper.
+#[derive(Debug, Clone)]
+pub struct Arm {
+    side: &'static str,
+    joints: Range<usize>,
+    actuators: Vec<usize>,
+    ctrlrange: Vec<[f64; 2]>,
+    controller: Box<dyn ArmController>,
+    torques: Vec<f64>,
+    eef_site: usize,
+    eef_body: usize,
+    gripper: Gripper,
+}
+
+impl Arm {
+    /// `"right"` or `"left"`.
+    pub fn side(&self) -> &'static str {
+        self.side
+    }
+
+    /// The arm controller.
+    pub fn controller(&self) -> &dyn ArmController {
+        self.controller.as_ref()
+    }
+
+    /// The gripper.
+    pub fn gripper(&self) -> &Gripper {
+        &self.gripper
+    }
+
+    /// The arm motors' actuator ids.
+    pub fn actuators(&self) -> &[usize] {
+        &self.actuators
+    }
+
+    /// The arm motors' ctrlranges (torques are clipped to them).
+    pub fn ctrlrange(&self) -> &[[f64; 2]] {
+        &self.ctrlrange
+    }
+
+    /// The arm's joints as a range of the robot's joints.
+    pub fn joints(&self) -> Range<usize> {
+        self.joints.clone()
+    }
+
+    /// The grip site id (`gripper{i}_{arm}_grip_site`: `eef_pos`, the controller's reference).
+    pub fn eef_site(&self) -> usize {
+        self.eef_site
+    }
+
+    /// The eef body id (the hand: `eef_quat`).
+    pub fn eef_body(&self) -> usize {
+        self.eef_body
+    }
+
+    /// The torques of the last substep (clipped to the motors' ctrlrange).
+    pub fn torques(&self) -> &[f64] {
+        &self.torques
+    }
+
+    /// The action dimension: the arm controller's plus the gripper's.
+    pub fn action_dim(&self) -> usize {
+        self.controller.action_dim() + self.gripper.action_dim()
+    }
+}
+
+/// One robot in a compiled scene.
 #[derive(Debug, Clone)]
 pub struct Robot {
     index: usize,
-    spec: RobotSpec,
+    name: &'static str,
+    joint_qpos: Vec<usize>,
+    joint_dofs: Vec<usize>,
+    init_qpos: Vec<f64>,
     noise: InitNoise,
-    arm_qpos: [usize; ARM_DOF],
-    arm_dofs: [usize; ARM_DOF],
-    arm_actuators: [usize; ARM_DOF],
-    hand_body: usize,
-    eef_site: usize,
-    osc: OscPose,
-    gripper: Option<GripperRuntime>,
+    base_body: usize,
+    arms: Vec<Arm>,
+    contact_geoms: GeomSet,
+    observables: Vec<Observable<Robot>>,
+    qpos_buf: Vec<f64>,
 }
 
 fn joint_addresses(model: &MjModel, name: &str) -> Result<(usize, usize)> {
@@ -107,95 +165,206 @@ fn joint_addresses(model: &MjModel, name: &str) -> Result<(usize, usize)> {
     ))
 }
 
+fn geom_set(model: &MjModel, names: &[String]) -> Result<GeomSet> {
+    Ok(GeomSet::new(
+        names
+            .iter()
+            .map(|n| geom_id(model, n))
+            .collect::<Result<Vec<_>>>()?,
+    ))
+}
+
 impl Robot {
-    /// Binds robot `index` (names prefixed `robot{index}_` / `gripper{index}_right_`) in
-    /// `model`.
+    /// Binds robot `robot` (as composed into the scene) in the compiled `model`, with
+    /// `controller` on every arm and the reset noise `noise`.
     ///
     /// # Errors
-    /// [`Error::Model`] when a joint, body, site, geom or actuator is missing;
-    /// [`Error::Unsupported`] for a robot without a gripper.
+    /// [`Error::Model`] when a joint, body, site, geom or actuator robosuite names is
+    /// missing; [`Error::InvalidArgument`] for an invalid controller configuration.
     pub fn bind(
         model: &MjModel,
-        index: usize,
-        spec: RobotSpec,
-        osc: OscConfig,
+        robot: &RobotModel,
+        controller: &OscConfig,
         noise: InitNoise,
     ) -> Result<Self> {
-        let rp = format!("robot{index}_");
-        let gp = format!("gripper{index}_right_");
-        let mut arm_qpos = [0; ARM_DOF];
-        let mut arm_dofs = [0; ARM_DOF];
-        let mut arm_actuators = [0; ARM_DOF];
-        let mut ctrlrange = [[0.0; 2]; ARM_DOF];
-        for (i, joint) in spec.arm.joints.iter().enumerate() {
-            let name = format!("{rp}{joint}");
-            let (q, d) = joint_addresses(model, &name)?;
-            arm_qpos[i] = q;
-            arm_dofs[i] = d;
-            let a = actuator_for_joint(model, joint_id(model, &name)?, &name)?;
-            arm_actuators[i] = a;
-            ctrlrange[i] = model.actuator_ctrlrange()[a];
-        }
-        let hand_body = body_id(model, &format!("{rp}{}", spec.arm.hand_body))?;
-        let base_site = site_id(model, &format!("{rp}{}", spec.arm.center_site))?;
-        let Some(gspec) = spec.gripper.clone() else {
-            return Err(Error::Unsupported("robots without a gripper".into()));
-        };
-        let eef_site = site_id(model, &format!("{gp}{}", gspec.grip_site))?;
-        let mut gq = Vec::new();
-        let mut gd = Vec::new();
-        let mut ga = Vec::new();
-        let mut ranges = Vec::new();
-        for joint in gspec.joints {
-            let name = format!("{gp}{joint}");
-            let (q, d) = joint_addresses(model, &name)?;
-            gq.push(q);
-            gd.push(d);
-            let a = actuator_for_joint(model, joint_id(model, &name)?, &name)?;
-            ga.push(a);
-            ranges.push(model.actuator_ctrlrange()[a]);
-        }
-        let pads = |names: &[&str]| -> Result<GeomSet> {
-            Ok(GeomSet::new(
-                names
-                    .iter()
-                    .map(|n| geom_id(model, &format!("{gp}{n}")))
-                    .collect::<Result<Vec<_>>>()?,
-            ))
-        };
-        let gripper = GripperRuntime {
-            qpos: gq,
-            dofs: gd,
-            actuators: ga,
-            init_qpos: gspec.init_qpos.to_vec(),
-            left_pads: pads(gspec.left_pads)?,
-            right_pads: pads(gspec.right_pads)?,
-            controller: GripController::new(gspec.command_signs.to_vec(), gspec.speed, ranges),
-        };
+        noise.validate()?;
+        let index = robot.idn;
         let nv = model.ffi().nv as usize;
-        let osc = OscPose::new(
-            osc,
-            OscBinding {
+        let joints = robot.joints();
+        let mut joint_qpos = Vec::with_capacity(joints.len());
+        let mut joint_dofs = Vec::with_capacity(joints.len());
+        for j in &joints {
+            let (q, d) = joint_addresses(model, j)?;
+            joint_qpos.push(q);
+            joint_dofs.push(d);
+        }
+        let actuators = robot.actuators();
+        let narms = robot.arms.len();
+        let per_arm = joints.len() / narms;
+        if per_arm * narms != joints.len() || actuators.len() != joints.len() {
+            return Err(Error::Model(format!(
+                "{}: {} joints and {} motors do not split into {narms} arm(s)",
+                robot.info.name,
+                joints.len(),
+                actuators.len()
+            )));
+        }
+        let mut arms = Vec::with_capacity(narms);
+        for (a, arm) in robot.arms.iter().enumerate() {
+            let range = a * per_arm..(a + 1) * per_arm;
+            let mut act_ids = Vec::with_capacity(per_arm);
+            let mut ctrlrange = Vec::with_capacity(per_arm);
+            for name in &actuators[range.clone()] {
+                let id = actuator_id(model, name)?;
+                act_ids.push(id);
+                ctrlrange.push(model.actuator_ctrlrange()[id]);
+            }
+            let g = &arm.gripper;
+            let eef_site = site_id(model, &g.xml.name("grip_site"))?;
+            let base_site = site_id(model, &format!("robot{index}_{}_center", arm.side))?;
+            let binding = ArmBinding {
                 site: eef_site,
                 base_site,
-                qpos: arm_qpos,
-                dofs: arm_dofs,
+                qpos: joint_qpos[range.clone()].to_vec(),
+                dofs: joint_dofs[range.clone()].to_vec(),
+                nv,
+            };
+            let controller: Box<dyn ArmController> =
+                Box::new(OscPose::new(controller.clone(), binding)?);
+            let (mut gq, mut gd, mut ga, mut granges) = (vec![], vec![], vec![], vec![]);
+            for j in g.xml.names_of(&g.xml.names.joints) {
+                let (q, d) = joint_addresses(model, &j)?;
+                gq.push(q);
+                gd.push(d);
+            }
+            for name in g.xml.names_of(&g.xml.names.actuators) {
+                let id = actuator_id(model, &name)?;
+                ga.push(id);
+                granges.push(model.actuator_ctrlrange()[id]);
+            }
+            let named = |list: &[&str]| -> Vec<String> { list.iter().map(|n| g.xml.name(n)).collect() };
+            let gripper = Gripper {
+                info: g.info,
+                has_gripper: arm.has_gripper,
+                qpos: gq,
+                dofs: gd,
+                actuators: ga,
+                controller: GripController::new(g.info.action, granges),
+                left_pads: geom_set(model, &named(g.info.left_fingerpad))?,
+                right_pads: geom_set(model, &named(g.info.right_fingerpad))?,
+                geoms: geom_set(model, &g.xml.names_of(&g.xml.names.contact_geoms))?,
+                corners: named(g.info.corners)
+                    .iter()
+                    .map(|n| geom_id(model, n))
+                    .collect::<Result<_>>()?,
+            };
+            arms.push(Arm {
+                side: arm.side,
+                joints: range,
+                actuators: act_ids,
+                torques: vec![0.0; per_arm],
                 ctrlrange,
-            },
-            nv,
-        );
-        Ok(Self {
+                controller,
+                eef_site,
+                eef_body: body_id(model, &robot.eef_body(a))?,
+                gripper,
+            });
+        }
+        let contact_geoms = geom_set(model, &robot.xml.names_of(&robot.xml.names.contact_geoms))?;
+        let mut out = Self {
             index,
-            spec,
+            name: robot.info.name,
+            init_qpos: robot.info.init_qpos.to_vec(),
+            qpos_buf: vec![0.0; joint_qpos.len()],
+            joint_qpos,
+            joint_dofs,
             noise,
-            arm_qpos,
-            arm_dofs,
-            arm_actuators,
-            hand_body,
-            eef_site,
-            osc,
-            gripper: Some(gripper),
-        })
+            base_body: body_id(model, &robot.xml.root_body())?,
+            arms,
+            contact_geoms,
+            observables: Vec::new(),
+        };
+        out.observables = out.make_observables();
+        Ok(out)
+    }
+
+    /// robosuite's proprioceptive observables, modality `robot{i}_proprio`: `joint_pos`,
+    /// `joint_pos_cos`, `joint_pos_sin`, `joint_vel`, `joint_acc` over every robot joint,
+    /// then per arm `eef_pos` (grip site), `eef_quat` (eef body, xyzw), `eef_quat_site`
+    /// (grip site, float32) and, with a gripper, `gripper_qpos` and `gripper_qvel` (arm keys
+    /// prefixed `right_` / `left_` on a bimanual robot).
+    fn make_observables(&self) -> Vec<Observable<Robot>> {
+        let pf = format!("robot{}_", self.index);
+        let modality = format!("{pf}proprio");
+        let n = self.joint_qpos.len();
+        let m = modality.as_str();
+        let mut obs = vec![
+            Observable::f64(format!("{pf}joint_pos"), n, m, |r: &Robot, sim, out| {
+                for (o, &a) in out.iter_mut().zip(&r.joint_qpos) {
+                    *o = sim.data().qpos()[a];
+                }
+            }),
+            Observable::f64(format!("{pf}joint_pos_cos"), n, m, |r: &Robot, sim, out| {
+                for (o, &a) in out.iter_mut().zip(&r.joint_qpos) {
+                    *o = sim.data().qpos()[a].cos();
+                }
+            }),
+            Observable::f64(format!("{pf}joint_pos_sin"), n, m, |r: &Robot, sim, out| {
+                for (o, &a) in out.iter_mut().zip(&r.joint_qpos) {
+                    *o = sim.data().qpos()[a].sin();
+                }
+            }),
+            Observable::f64(format!("{pf}joint_vel"), n, m, |r: &Robot, sim, out| {
+                for (o, &a) in out.iter_mut().zip(&r.joint_dofs) {
+                    *o = sim.data().qvel()[a];
+                }
+            }),
+            Observable::f64(format!("{pf}joint_acc"), n, m, |r: &Robot, sim, out| {
+                for (o, &a) in out.iter_mut().zip(&r.joint_dofs) {
+                    *o = sim.data().qacc()[a];
+                }
+            }),
+        ];
+        let bimanual = self.arms.len() > 1;
+        for (i, arm) in self.arms.iter().enumerate() {
+            let apf = if bimanual {
+                format!("{pf}{}_", arm.side)
+            } else {
+                pf.clone()
+            };
+            obs.push(Observable::f64(format!("{apf}eef_pos"), 3, m, move |r: &Robot, sim, out| {
+                out.copy_from_slice(&sim.data().site_xpos()[r.arms[i].eef_site]);
+            }));
+            obs.push(Observable::f64(format!("{apf}eef_quat"), 4, m, move |r: &Robot, sim, out| {
+                out.copy_from_slice(&xyzw(sim.data().xquat()[r.arms[i].eef_body]));
+            }));
+            obs.push(Observable::new(
+                format!("{apf}eef_quat_site"),
+                &[4],
+                DType::F32,
+                m,
+                move |r: &Robot, sim, out| {
+                    let q = mat2quat(&mat_from_row_major(&sim.data().site_xmat()[r.arms[i].eef_site]));
+                    for (o, v) in out.iter_mut().zip(q) {
+                        *o = f64::from(v as f32);
+                    }
+                },
+            ));
+            if arm.gripper.has_gripper {
+                let ng = arm.gripper.qpos.len();
+                obs.push(Observable::f64(format!("{apf}gripper_qpos"), ng, m, move |r: &Robot, sim, out| {
+                    for (o, &a) in out.iter_mut().zip(&r.arms[i].gripper.qpos) {
+                        *o = sim.data().qpos()[a];
+                    }
+                }));
+                obs.push(Observable::f64(format!("{apf}gripper_qvel"), ng, m, move |r: &Robot, sim, out| {
+                    for (o, &a) in out.iter_mut().zip(&r.arms[i].gripper.dofs) {
+                        *o = sim.data().qvel()[a];
+                    }
+                }));
+            }
+        }
+        obs
     }
 
     /// The robot's index (`robot{index}_`).
@@ -203,179 +372,189 @@ impl Robot {
         self.index
     }
 
-    /// Its description.
-    pub fn spec(&self) -> &RobotSpec {
-        &self.spec
+    /// robosuite's robot name.
+    pub fn name(&self) -> &'static str {
+        self.name
     }
 
-    /// The action dimension: 6 for the arm plus 1 for a gripper with fingers (a wiping
-    /// tool has none).
+    /// The arms.
+    pub fn arms(&self) -> &[Arm] {
+        &self.arms
+    }
+
+    /// The first (right) arm.
+    pub fn arm(&self) -> &Arm {
+        &self.arms[0]
+    }
+
+    /// The `qpos` addresses of the robot's joints.
+    pub fn joint_qpos(&self) -> &[usize] {
+        &self.joint_qpos
+    }
+
+    /// The `qvel` addresses of the robot's joints.
+    pub fn joint_dofs(&self) -> &[usize] {
+        &self.joint_dofs
+    }
+
+    /// The robot's rest posture (`init_qpos`).
+    pub fn init_qpos(&self) -> &[f64] {
+        &self.init_qpos
+    }
+
+    /// The robot's root body id.
+    pub fn base_body(&self) -> usize {
+        self.base_body
+    }
+
+    /// The robot's own contact geoms (arm links, not mount or gripper).
+    pub fn contact_geoms(&self) -> &GeomSet {
+        &self.contact_geoms
+    }
+
+    /// The action dimension (every arm's controller and gripper).
     pub fn action_dim(&self) -> usize {
-        6 + usize::from(self.gripper.as_ref().is_some_and(|g| !g.qpos.is_empty()))
+        self.arms.iter().map(Arm::action_dim).sum()
     }
 
-    /// The arm controller.
-    pub fn controller(&self) -> &OscPose {
-        &self.osc
+    /// The action bounds `(low, high)`: per arm the controller's, then per arm the
+    /// gripper's `[-1, 1]`.
+    pub fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
+        let (mut lo, mut hi) = (Vec::new(), Vec::new());
+        for arm in &self.arms {
+            let (l, h) = arm.controller.action_limits();
+            lo.extend(l);
+            hi.extend(h);
+        }
+        for arm in &self.arms {
+            let n = arm.gripper.action_dim();
+            lo.extend(std::iter::repeat_n(-1.0, n));
+            hi.extend(std::iter::repeat_n(1.0, n));
+        }
+        (lo, hi)
     }
 
-    /// The gripper controller, if the robot has a gripper.
-    pub fn gripper_controller(&self) -> Option<&GripController> {
-        self.gripper.as_ref().map(|g| &g.controller)
+    /// The grip-site position of arm `arm` (read without a forward pass).
+    pub fn eef_pos(&self, sim: &Sim, arm: usize) -> [f64; 3] {
+        sim.data().site_xpos()[self.arms[arm].eef_site]
     }
 
-    /// The grip site id (`gripperN_right_grip_site`).
-    pub fn eef_site(&self) -> usize {
-        self.eef_site
+    /// The specs of the robot's observables, in order.
+    pub fn observation_specs(&self) -> Vec<ObsSpec> {
+        specs(&self.observables)
     }
 
-    /// The hand body id (`robotN_right_hand`).
-    pub fn hand_body(&self) -> usize {
-        self.hand_body
+    /// Writes the robot's observables in order into `out` (their total length), reading
+    /// the data as it is (robosuite's one-substep kinematic lag after a step).
+    pub fn observe(&self, sim: &Sim, out: &mut [f64]) {
+        observe_all(&self.observables, self, sim, out);
     }
 
-    /// The `qpos` addresses of the arm joints.
-    pub fn arm_qpos(&self) -> &[usize; ARM_DOF] {
-        &self.arm_qpos
-    }
-
-    /// The grip site position (`robotN_eef_pos`, read without a forward pass).
-    pub fn eef_pos(&self, sim: &Sim) -> [f64; 3] {
-        sim.data().site_xpos()[self.eef_site]
-    }
-
-    /// The geoms of the left and right finger-pad groups.
-    pub fn finger_pads(&self) -> Option<(&GeomSet, &GeomSet)> {
-        self.gripper.as_ref().map(|g| (&g.left_pads, &g.right_pads))
-    }
-
-    /// Writes the reset configuration: `init_qpos` plus noise on the arm (seven draws from
-    /// `rng`), the gripper's initial opening, and zeroes the gripper integrator. Call after
+    /// The reset posture: `init_qpos` plus noise (one draw per joint from `rng`), the
+    /// grippers' initial positions, and zeroed gripper commands. Call after
     /// `mj_resetData`; [`Robot::rebase`] after the next `mj_forward`.
     pub fn reset(&mut self, sim: &mut Sim, rng: &mut EnvRng) {
-        let noise = self.noise.sample(rng);
+        self.qpos_buf.copy_from_slice(&self.init_qpos);
+        self.noise.perturb(rng, &mut self.qpos_buf);
         let qpos = sim.data_mut().qpos_mut();
-        for i in 0..ARM_DOF {
-            qpos[self.arm_qpos[i]] = self.spec.arm.init_qpos[i] + noise[i];
+        for (&a, &v) in self.joint_qpos.iter().zip(&self.qpos_buf) {
+            qpos[a] = v;
         }
-        if let Some(g) = &mut self.gripper {
-            for (adr, v) in g.qpos.iter().zip(&g.init_qpos) {
-                qpos[*adr] = *v;
+        for arm in &mut self.arms {
+            let g = &mut arm.gripper;
+            if g.has_gripper
+                && let Some(init) = g.info.init_qpos
+            {
+                for (&a, &v) in g.qpos.iter().zip(init) {
+                    qpos[a] = v;
+                }
             }
             g.controller.reset();
         }
     }
 
-    /// The controller state (arm goal, nullspace target, gripper integrator).
+    /// Zeroes every gripper command (robosuite's `current_action` at reset).
+    pub fn zero_gripper_commands(&mut self) {
+        for arm in &mut self.arms {
+            arm.gripper.controller.reset();
+        }
+    }
+
+    /// Re-bases the arm controllers on the current (forwarded) state.
+    pub fn rebase(&mut self, sim: &Sim) {
+        for arm in &mut self.arms {
+            arm.controller.reset(sim);
+            arm.torques.iter_mut().for_each(|t| *t = 0.0);
+        }
+    }
+
+    /// Sets the goals from this robot's slice of the action (per arm the controller's part,
+    /// then per arm the gripper's); call on the first substep, after `mj_step1`. The slice
+    /// length is checked by the environment.
+    pub fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
+        let mut at = 0;
+        for arm in &mut self.arms {
+            let n = arm.controller.action_dim();
+            arm.controller.set_goal(sim, &action[at..at + n]);
+            at += n;
+        }
+        for arm in &mut self.arms {
+            let n = arm.gripper.action_dim();
+            arm.gripper.controller.set_goal(&action[at..at + n]);
+            at += n;
+        }
+    }
+
+    /// Computes and writes this robot's controls (every substep, after `mj_step1`), each
+    /// clipped to its actuator's ctrlrange as robosuite clips them.
+    pub fn apply_control(&mut self, sim: &mut Sim) {
+        for arm in &mut self.arms {
+            arm.controller.compute(sim, &mut arm.torques);
+            for (t, [lo, hi]) in arm.torques.iter_mut().zip(&arm.ctrlrange) {
+                *t = t.clamp(*lo, *hi);
+            }
+            let ctrl = sim.data_mut().ctrl_mut();
+            for (&a, &t) in arm.actuators.iter().zip(&arm.torques) {
+                ctrl[a] = t;
+            }
+            for (i, &a) in arm.gripper.actuators.iter().enumerate() {
+                ctrl[a] = arm.gripper.controller.ctrl(i);
+            }
+        }
+    }
+
+    /// The controller state (per arm: controller state, gripper command).
     pub fn controller_state(&self) -> RobotState {
         RobotState {
-            arm: self.osc.state(),
-            gripper: self
-                .gripper
-                .as_ref()
-                .map_or_else(Vec::new, |g| g.controller.command().to_vec()),
+            arms: self.arms.iter().map(|a| a.controller.state()).collect(),
+            grippers: self
+                .arms
+                .iter()
+                .map(|a| a.gripper.controller.command().to_vec())
+                .collect(),
         }
     }
 
     /// Restores a state from [`Robot::controller_state`].
-    pub fn set_controller_state(&mut self, state: &RobotState) {
-        self.osc.set_state(&state.arm);
-        if let Some(g) = &mut self.gripper {
-            g.controller.set_command(&state.gripper);
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a state of another robot; nothing is changed then.
+    pub fn set_controller_state(&mut self, state: &RobotState) -> Result<()> {
+        if state.arms.len() != self.arms.len() || state.grippers.len() != self.arms.len() {
+            return Err(Error::invalid_argument(
+                "snapshot",
+                "the robot state has another number of arms",
+            ));
         }
-    }
-
-    /// Re-bases the arm controller on the current (forwarded) state.
-    pub fn rebase(&mut self, sim: &Sim) {
-        self.osc.reset(sim);
-    }
-
-    /// Sets the goals from this robot's slice of the action (`[6 arm, 1 gripper]`); call on
-    /// the first substep, after `mj_step1`. The slice length is checked by the environment.
-    pub fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
-        let arm: [f64; 6] = std::array::from_fn(|i| action[i]);
-        self.osc.set_goal(sim, &arm);
-        if let (Some(g), Some(a)) = (&mut self.gripper, action.get(6)) {
-            g.controller.set_goal(*a);
+        let mut copy: Vec<Box<dyn ArmController>> =
+            self.arms.iter().map(|a| a.controller.clone()).collect();
+        for (c, s) in copy.iter_mut().zip(&state.arms) {
+            c.set_state(s)?;
         }
-    }
-
-    /// Computes and writes this robot's controls (every substep, after `mj_step1`).
-    pub fn apply_control(&mut self, sim: &mut Sim) {
-        let tau = self.osc.compute_torques(sim);
-        let ctrl = sim.data_mut().ctrl_mut();
-        for i in 0..ARM_DOF {
-            ctrl[self.arm_actuators[i]] = tau[i];
+        for ((arm, c), g) in self.arms.iter_mut().zip(copy).zip(&state.grippers) {
+            arm.controller = c;
+            arm.gripper.controller.set_command(g);
         }
-        if let Some(g) = &self.gripper {
-            for (i, a) in g.actuators.iter().enumerate() {
-                ctrl[*a] = g.controller.ctrl(i);
-            }
-        }
-    }
-
-    /// The proprioceptive observation keys, in robosuite's order.
-    pub fn observation_keys(&self) -> Vec<ObsKey> {
-        let p = format!("robot{}_", self.index);
-        let ng = self.gripper.as_ref().map_or(0, |g| g.qpos.len());
-        let f64k = |n: &str, len: usize| ObsKey::new(format!("{p}{n}"), &[len], DType::F64);
-        vec![
-            f64k("joint_pos", ARM_DOF),
-            f64k("joint_pos_cos", ARM_DOF),
-            f64k("joint_pos_sin", ARM_DOF),
-            f64k("joint_vel", ARM_DOF),
-            f64k("joint_acc", ARM_DOF),
-            f64k("eef_pos", 3),
-            f64k("eef_quat", 4),
-            ObsKey::new(format!("{p}eef_quat_site"), &[4], DType::F32),
-            f64k("gripper_qpos", ng),
-            f64k("gripper_qvel", ng),
-        ]
-    }
-
-    /// Writes the proprioception (in the order of [`Robot::observation_keys`]) into `out`,
-    /// reading the data as it is (robosuite's one-substep kinematic lag after a step).
-    pub fn write_observations(&self, sim: &Sim, out: &mut [f64]) {
-        let d = sim.data();
-        let (qpos, qvel, qacc) = (d.qpos(), d.qvel(), d.qacc());
-        let mut k = 0;
-        let mut put = |v: f64| {
-            out[k] = v;
-            k += 1;
-        };
-        for &a in &self.arm_qpos {
-            put(qpos[a]);
-        }
-        for &a in &self.arm_qpos {
-            put(qpos[a].cos());
-        }
-        for &a in &self.arm_qpos {
-            put(qpos[a].sin());
-        }
-        for &a in &self.arm_dofs {
-            put(qvel[a]);
-        }
-        for &a in &self.arm_dofs {
-            put(qacc[a]);
-        }
-        for v in d.site_xpos()[self.eef_site] {
-            put(v);
-        }
-        let hq = d.xquat()[self.hand_body];
-        for v in [hq[1], hq[2], hq[3], hq[0]] {
-            put(v);
-        }
-        let sq = mat2quat(&mat_from_row_major(&d.site_xmat()[self.eef_site]));
-        for v in sq {
-            put(f64::from(v as f32));
-        }
-        if let Some(g) = &self.gripper {
-            for &a in &g.qpos {
-                put(qpos[a]);
-            }
-            for &a in &g.dofs {
-                put(qvel[a]);
-            }
-        }
+        Ok(())
     }
 }

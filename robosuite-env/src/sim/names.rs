@@ -49,6 +49,14 @@ pub fn site_id(model: &MjModel, name: &str) -> Result<usize> {
     lookup(model, mjtObj::mjOBJ_SITE, "site", name)
 }
 
+/// The id of the actuator `name`.
+///
+/// # Errors
+/// [`Error::Model`] when there is no such actuator.
+pub fn actuator_id(model: &MjModel, name: &str) -> Result<usize> {
+    lookup(model, mjtObj::mjOBJ_ACTUATOR, "actuator", name)
+}
+
 /// The id of the (first) actuator whose transmission is the joint `joint`.
 ///
 /// Binding actuators by joint rather than by name accepts robosuite's exported models as

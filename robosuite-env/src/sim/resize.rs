@@ -4,18 +4,20 @@
 use super::Sim;
 use gym_core::{Error, Result};
 
-/// The box geom and its body that [`resize_box_body`] edits.
+/// The box geoms and their body that [`resize_box_body`] edits.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoxGeomUpdate {
-    /// The body that holds the box and nothing else with mass.
+pub struct BoxGeomUpdate<'a> {
+    /// The body that holds the boxes and nothing else with mass.
     pub body: usize,
-    /// The box geom (type box, at the body's origin, aligned with it).
-    pub geom: usize,
+    /// The box geoms (type box, at the body's origin, aligned with it, all of one size):
+    /// the first is the collision geom whose density gives the mass; the others (robosuite's
+    /// visual copy) have no mass.
+    pub geoms: &'a [usize],
     /// The density the mass follows (kg/m³).
     pub density: f64,
 }
 
-/// Gives the box geom the half-extents `half` and updates everything the compiler derives
+/// Gives the box geoms the half-extents `half` and updates everything the compiler derives
 /// from them: `geom_size`, `geom_rbound`, `geom_aabb`, the body's bounding-volume boxes,
 /// `body_mass` and `body_inertia` (solid box of the given density, as MuJoCo's compiler),
 /// `mj_setConst` for the constants derived from masses (subtree masses, inverse weights,
@@ -25,7 +27,10 @@ pub struct BoxGeomUpdate {
 ///
 /// # Errors
 /// [`Error::InvalidArgument`] for non-positive or non-finite half-extents.
-pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate, half: [f64; 3]) -> Result<()> {
+pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate<'_>, half: [f64; 3]) -> Result<()> {
+    let Some(&main) = target.geoms.first() else {
+        return Err(Error::invalid_argument("geoms", "no box geom to resize"));
+    };
     if half.iter().any(|h| !h.is_finite() || *h <= 0.0) {
         return Err(Error::invalid_argument(
             "half_extents",
@@ -33,7 +38,7 @@ pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate, half: [f64; 3]) -> 
         ));
     }
     let [x, y, z] = half;
-    let old_rbound = sim.model().geom_rbound()[target.geom];
+    let old_rbound = sim.model().geom_rbound()[main];
     let mass = target.density * 8.0 * x * y * z;
     let inertia = [
         mass * (y * y + z * z) / 3.0,
@@ -42,10 +47,11 @@ pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate, half: [f64; 3]) -> 
     ];
     {
         let model = sim.model_mut();
-        model.geom_size_mut()[target.geom] = half;
-        model.geom_rbound_mut()[target.geom] = (x * x + y * y + z * z).sqrt();
-        let aabb = &mut model.geom_aabb_mut()[target.geom];
-        aabb[3..6].copy_from_slice(&half);
+        for &g in target.geoms {
+            model.geom_size_mut()[g] = half;
+            model.geom_rbound_mut()[g] = (x * x + y * y + z * z).sqrt();
+            model.geom_aabb_mut()[g][3..6].copy_from_slice(&half);
+        }
         model.body_mass_mut()[target.body] = mass;
         model.body_inertia_mut()[target.body] = inertia;
         let adr = model.body_bvhadr()[target.body];
@@ -63,15 +69,14 @@ pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate, half: [f64; 3]) -> 
     // SAFETY: m and d belong together; mj_setConst only rewrites constant fields of the model
     // (no sizes) and uses the data as scratch.
     unsafe { mujoco_rs::mujoco_c::mj_setConst(m, d) };
-    update_statistics(sim, target, old_rbound);
+    update_statistics(sim, target.body, main, old_rbound);
     Ok(())
 }
 
 /// Recomputes `stat.meanmass`, `stat.meaninertia`, `stat.meansize` and the body's
 /// `dof_length` as the compiler's `setStat` does (for a body whose size is its geom's
 /// bounding radius: a single geom at the body origin).
-fn update_statistics(sim: &mut Sim, target: BoxGeomUpdate, old_rbound: f64) {
-    let body = target.body;
+fn update_statistics(sim: &mut Sim, body: usize, main: usize, old_rbound: f64) {
     let (nbody, nv) = {
         let m = sim.model().ffi();
         (m.nbody as usize, m.nv as usize)
@@ -91,7 +96,7 @@ fn update_statistics(sim: &mut Sim, target: BoxGeomUpdate, old_rbound: f64) {
         sim.model().stat().meaninertia
     };
     let model = sim.model_mut();
-    let new_rbound = model.geom_rbound()[target.geom];
+    let new_rbound = model.geom_rbound()[main];
     if nbody > 1 {
         let meanmass = model.body_mass()[1..].iter().sum::<f64>() / (nbody - 1) as f64;
         let meansize = model.stat().meansize

@@ -1,15 +1,17 @@
-//! Helpers shared by the tasks: free-joint objects, distances, grasp checks and the
-//! object-in-gripper-frame observations of robosuite's `_create_obj_sensors`.
+//! Helpers shared by the tasks: free-joint objects, distances, grasp checks, reward scaling,
+//! robosuite's single-object modes and its object-pose sensors.
 
 use super::RewardConfig;
-use crate::observations::ObsKey;
-use crate::robots::Robot;
+use crate::math::{conj, mat2quat, mat_from_row_major, quat_mul, quat_rotate, xyzw};
+use crate::models::objects::ObjectModel;
+use crate::observables::Observable;
+use crate::robots::{Gripper, Robot};
 use crate::sim::{GeomSet, Sim, any_contact_between, body_id, geom_id, joint_id};
 use gym_core::{DType, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 
 /// A free-floating object bound in a compiled model.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FreeBody {
     /// Body id.
     pub body: usize,
@@ -22,25 +24,26 @@ pub struct FreeBody {
 }
 
 impl FreeBody {
-    /// Binds body `body`, free joint `joint` and the contact geoms `geoms`.
+    /// Binds `object`: its root body, its first joint (which must be free) and its contact
+    /// geoms.
     ///
     /// # Errors
-    /// [`Error::Model`] for a missing name or a joint that is not free.
-    pub fn bind(model: &MjModel, body: &str, joint: &str, geoms: &[String]) -> Result<Self> {
-        let b = body_id(model, body)?;
-        let j = joint_id(model, joint)?;
+    /// [`Error::Model`] for a missing name or a first joint that is not free.
+    pub fn bind(model: &MjModel, object: &ObjectModel) -> Result<Self> {
+        let joint = object
+            .joints()
+            .into_iter()
+            .next()
+            .ok_or_else(|| Error::Model(format!("object `{}` has no joint", object.name)))?;
+        let j = joint_id(model, &joint)?;
         if model.jnt_type()[j] != mujoco_rs::mujoco_c::mjtJoint::mjJNT_FREE {
             return Err(Error::Model(format!("`{joint}` must be a free joint")));
         }
-        let ids = geoms
-            .iter()
-            .map(|g| geom_id(model, g))
-            .collect::<Result<Vec<_>>>()?;
         Ok(Self {
-            body: b,
+            body: body_id(model, &object.root_body())?,
             qpos: model.jnt_qposadr()[j] as usize,
             dof: model.jnt_dofadr()[j] as usize,
-            geoms: GeomSet::new(ids),
+            geoms: geoms_of(model, &object.contact_geoms())?,
         })
     }
 
@@ -64,6 +67,19 @@ impl FreeBody {
     }
 }
 
+/// The geom ids of `names`.
+///
+/// # Errors
+/// [`Error::Model`] for a missing geom.
+pub fn geoms_of(model: &MjModel, names: &[String]) -> Result<GeomSet> {
+    Ok(GeomSet::new(
+        names
+            .iter()
+            .map(|n| geom_id(model, n))
+            .collect::<Result<Vec<_>>>()?,
+    ))
+}
+
 /// robosuite's `clear_objects` target: unused objects are parked at (10, 10, 10).
 pub const PARKED_POS: [f64; 3] = [10.0, 10.0, 10.0];
 
@@ -77,94 +93,28 @@ pub fn dist_xy(a: [f64; 3], b: [f64; 3]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-/// robosuite's `_check_grasp` for robot 0: both finger-pad groups touch `geoms`.
-pub fn is_grasped(sim: &Sim, robots: &[Robot], geoms: &GeomSet) -> bool {
+/// `a − b`.
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// robosuite's `_check_grasp(gripper, object_geoms)`: some geom of each finger-pad group
+/// touches `geoms`.
+pub fn is_grasped(sim: &Sim, gripper: &Gripper, geoms: &GeomSet) -> bool {
+    let (left, right) = gripper.finger_pads();
+    any_contact_between(sim.data(), left, geoms) && any_contact_between(sim.data(), right, geoms)
+}
+
+/// Whether robot 0's (first arm's) gripper grasps `geoms`.
+pub fn robot0_grasps(sim: &Sim, robots: &[Robot], geoms: &GeomSet) -> bool {
     robots
         .first()
-        .and_then(Robot::finger_pads)
-        .is_some_and(|(left, right)| {
-            any_contact_between(sim.data(), left, geoms)
-                && any_contact_between(sim.data(), right, geoms)
-        })
+        .is_some_and(|r| is_grasped(sim, r.arm().gripper(), geoms))
 }
 
 /// Robot 0's grip-site position (the origin when there is no robot).
 pub fn eef_pos(sim: &Sim, robots: &[Robot]) -> [f64; 3] {
-    robots.first().map_or([0.0; 3], |r| r.eef_pos(sim))
-}
-
-/// wxyz → xyzw.
-pub fn xyzw(q: [f64; 4]) -> [f64; 4] {
-    [q[1], q[2], q[3], q[0]]
-}
-
-/// Quaternion (wxyz) product.
-pub fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// Rotates `v` by the unit quaternion `q` (wxyz).
-pub fn quat_rotate(q: [f64; 4], v: [f64; 3]) -> [f64; 3] {
-    let p = quat_mul(quat_mul(q, [0.0, v[0], v[1], v[2]]), conj(q));
-    [p[1], p[2], p[3]]
-}
-
-/// Conjugate (inverse of a unit quaternion).
-pub fn conj(q: [f64; 4]) -> [f64; 4] {
-    [q[0], -q[1], -q[2], -q[3]]
-}
-
-/// Yaw rotation (wxyz) by `angle` about z.
-pub fn yaw_quat(angle: f64) -> [f64; 4] {
-    let (s, c) = (angle / 2.0).sin_cos();
-    [c, 0.0, 0.0, s]
-}
-
-/// Writes robosuite's four object sensors in the order of its observation dict:
-/// `{obj}_to_robot0_eef_pos` (3), `{obj}_to_robot0_eef_quat` (4, xyzw), `{obj}_pos` (3),
-/// `{obj}_quat` (4, xyzw). The relative pose is the object's pose in the frame of the
-/// end effector (grip-site position, hand-body orientation, as robosuite's
-/// `world_pose_in_gripper`).
-pub fn write_object_pose_obs(
-    sim: &Sim,
-    robots: &[Robot],
-    pos: [f64; 3],
-    quat: [f64; 4],
-    out: &mut [f64],
-) {
-    let (eef_p, eef_q) = robots
-        .first()
-        .map_or(([0.0; 3], [1.0, 0.0, 0.0, 0.0]), |r| {
-            (r.eef_pos(sim), sim.data().xquat()[r.hand_body()])
-        });
-    let inv = conj(eef_q);
-    let rel_p = quat_rotate(
-        inv,
-        [pos[0] - eef_p[0], pos[1] - eef_p[1], pos[2] - eef_p[2]],
-    );
-    let mut rel_q = quat_mul(inv, quat);
-    if rel_q[0] < 0.0 {
-        rel_q = rel_q.map(|v| -v);
-    }
-    out[0..3].copy_from_slice(&rel_p);
-    out[3..7].copy_from_slice(&xyzw(rel_q));
-    out[7..10].copy_from_slice(&pos);
-    out[10..14].copy_from_slice(&xyzw(quat));
-}
-
-/// The four observation keys of [`write_object_pose_obs`] for `name`.
-pub fn object_pose_keys(name: &str) -> Vec<ObsKey> {
-    vec![
-        ObsKey::new(format!("{name}_to_robot0_eef_pos"), &[3], DType::F64),
-        ObsKey::new(format!("{name}_to_robot0_eef_quat"), &[4], DType::F64),
-        ObsKey::new(format!("{name}_pos"), &[3], DType::F64),
-        ObsKey::new(format!("{name}_quat"), &[4], DType::F64),
-    ]
+    robots.first().map_or([0.0; 3], |r| r.eef_pos(sim, 0))
 }
 
 /// Applies `reward_scale` (`None`: unnormalised) with robosuite's normalisation divisor.
@@ -172,6 +122,170 @@ pub fn scale_reward(reward: f64, scale: Option<f64>, max: f64) -> f64 {
     match scale {
         Some(s) => reward * s / max,
         None => reward,
+    }
+}
+
+/// Where an object's pose is read (robosuite's object sensors read a body, and ToolHang's
+/// a geom or a site).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PoseRef {
+    /// A body's `xpos` / `xquat`.
+    Body(usize),
+    /// A geom's `geom_xpos` / `geom_xmat` (quaternion through robosuite's `mat2quat`).
+    Geom(usize),
+    /// A site's `site_xpos` / `site_xmat` (quaternion through robosuite's `mat2quat`).
+    Site(usize),
+}
+
+impl PoseRef {
+    /// The position and the `xyzw` quaternion, as read without a forward pass.
+    pub fn pose(self, sim: &Sim) -> ([f64; 3], [f64; 4]) {
+        let d = sim.data();
+        match self {
+            Self::Body(b) => (d.xpos()[b], xyzw(d.xquat()[b])),
+            Self::Geom(g) => (
+                d.geom_xpos()[g],
+                mat2quat(&mat_from_row_major(&d.geom_xmat()[g])),
+            ),
+            Self::Site(s) => (
+                d.site_xpos()[s],
+                mat2quat(&mat_from_row_major(&d.site_xmat()[s])),
+            ),
+        }
+    }
+}
+
+/// robosuite's object sensors (`_create_obj_sensors`) for a set of objects, with the
+/// observation cache they read.
+///
+/// robosuite computes `{obj}_to_robot0_eef_pos` / `_quat` (the object's pose in the frame
+/// of the grip-site position and the hand-body orientation) before it samples `{obj}_pos`
+/// and `{obj}_quat` in the same pass, from its observation cache: so they combine the
+/// current gripper pose with the object pose of the *previous* observation, and are zero
+/// in the first observation after a reset. This keeps that cache.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjectSensors {
+    poses: Vec<PoseRef>,
+    eef_site: usize,
+    eef_body: usize,
+    previous: Option<Vec<([f64; 3], [f64; 4])>>,
+}
+
+impl ObjectSensors {
+    /// Sensors for objects whose poses `poses` reads, relative to robot 0's first arm.
+    pub fn new(poses: Vec<PoseRef>, robots: &[Robot]) -> Self {
+        let (eef_site, eef_body) = robots
+            .first()
+            .map_or((0, 0), |r| (r.arm().eef_site(), r.arm().eef_body()));
+        Self {
+            poses,
+            eef_site,
+            eef_body,
+            previous: None,
+        }
+    }
+
+    /// Forgets the cached poses (every reset).
+    pub fn clear(&mut self) {
+        self.previous = None;
+    }
+
+    /// Caches the objects' current poses (after every observation pass).
+    pub fn remember(&mut self, sim: &Sim) {
+        let poses = self.poses.iter().map(|p| p.pose(sim)).collect();
+        self.previous = Some(poses);
+    }
+
+    /// The cache as flat numbers (for snapshots): empty when cleared.
+    pub fn save(&self) -> Vec<f64> {
+        self.previous.as_ref().map_or_else(Vec::new, |poses| {
+            poses
+                .iter()
+                .flat_map(|(p, q)| p.iter().chain(q).copied())
+                .collect()
+        })
+    }
+
+    /// Restores a cache from [`ObjectSensors::save`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a wrong length.
+    pub fn load(&mut self, values: &[f64]) -> Result<()> {
+        if values.is_empty() {
+            self.previous = None;
+            return Ok(());
+        }
+        if values.len() != 7 * self.poses.len() {
+            return Err(Error::invalid_argument(
+                "task state",
+                format!("expected {} cached pose values, got {}", 7 * self.poses.len(), values.len()),
+            ));
+        }
+        self.previous = Some(
+            values
+                .chunks_exact(7)
+                .map(|c| ([c[0], c[1], c[2]], [c[3], c[4], c[5], c[6]]))
+                .collect(),
+        );
+        Ok(())
+    }
+
+    /// The length of [`ObjectSensors::save`] when filled.
+    pub fn saved_len(&self) -> usize {
+        7 * self.poses.len()
+    }
+
+    /// The relative pose of object `i`'s cached pose in the current gripper frame:
+    /// position and `xyzw` quaternion (`w ≥ 0`), or zeros before the first pass.
+    fn relative(&self, sim: &Sim, i: usize) -> ([f64; 3], [f64; 4]) {
+        let Some((pos, quat_xyzw)) = self.previous.as_ref().map(|p| p[i]) else {
+            return ([0.0; 3], [0.0; 4]);
+        };
+        let d = sim.data();
+        let eef_p = d.site_xpos()[self.eef_site];
+        let eef_q = d.xquat()[self.eef_body];
+        let q = [quat_xyzw[3], quat_xyzw[0], quat_xyzw[1], quat_xyzw[2]];
+        let inv = conj(eef_q);
+        let rel_p = quat_rotate(inv, sub(pos, eef_p));
+        let mut rel_q = quat_mul(inv, q);
+        if rel_q[0] < 0.0 {
+            rel_q = rel_q.map(|v| -v);
+        }
+        (rel_p, xyzw(rel_q))
+    }
+
+    /// The four observables of object `i` named `name`, in robosuite's order:
+    /// `{name}_to_robot0_eef_pos`, `{name}_to_robot0_eef_quat`, `{name}_pos`, `{name}_quat`
+    /// (modality `object`). `get` finds the sensors in the task; `quat_dtype` is the dtype
+    /// robosuite gives the quaternions.
+    pub fn observables<T: 'static>(
+        get: fn(&T) -> &ObjectSensors,
+        i: usize,
+        name: &str,
+        quat_dtype: DType,
+    ) -> Vec<Observable<T>> {
+        vec![
+            Observable::f64(format!("{name}_to_robot0_eef_pos"), 3, "object", move |t: &T, sim, out| {
+                out.copy_from_slice(&get(t).relative(sim, i).0);
+            }),
+            Observable::new(
+                format!("{name}_to_robot0_eef_quat"),
+                &[4],
+                quat_dtype,
+                "object",
+                move |t: &T, sim, out| out.copy_from_slice(&get(t).relative(sim, i).1),
+            ),
+            Observable::f64(format!("{name}_pos"), 3, "object", move |t: &T, sim, out| {
+                out.copy_from_slice(&get(t).poses[i].pose(sim).0);
+            }),
+            Observable::new(
+                format!("{name}_quat"),
+                &[4],
+                quat_dtype,
+                "object",
+                move |t: &T, sim, out| out.copy_from_slice(&get(t).poses[i].pose(sim).1),
+            ),
+        ]
     }
 }
 
@@ -193,45 +307,6 @@ impl ObjectMode {
             Self::All => 0,
             Self::RandomSingle => 1,
             Self::Single(_) => 2,
-        }
-    }
-
-    /// The pose observation keys of the objects in play (14 per object). In
-    /// [`ObjectMode::RandomSingle`] robosuite renames them after each reset's object; a fixed
-    /// observation space cannot, so they are named `{single}_*` followed by `{single}_id`.
-    pub fn pose_keys(self, names: &[&str], single: &str) -> Vec<ObsKey> {
-        match self {
-            Self::All => names.iter().flat_map(|n| object_pose_keys(n)).collect(),
-            Self::Single(i) => object_pose_keys(names[i]),
-            Self::RandomSingle => {
-                let mut k = object_pose_keys(single);
-                k.push(ObsKey::new(format!("{single}_id"), &[], DType::I64));
-                k
-            }
-        }
-    }
-
-    /// Writes the pose observations of the objects in play, laid out as
-    /// [`ObjectMode::pose_keys`]: `write(i, out)` fills object `i`'s 14 values; `active` is the
-    /// object drawn for [`ObjectMode::RandomSingle`].
-    pub fn write_pose_obs(
-        self,
-        count: usize,
-        active: usize,
-        out: &mut [f64],
-        mut write: impl FnMut(usize, &mut [f64]),
-    ) {
-        match self {
-            Self::All => {
-                for i in 0..count {
-                    write(i, &mut out[14 * i..14 * (i + 1)]);
-                }
-            }
-            Self::Single(i) => write(i, &mut out[..14]),
-            Self::RandomSingle => {
-                write(active, &mut out[..14]);
-                out[14] = active as f64;
-            }
         }
     }
 

@@ -1,46 +1,49 @@
 //! robosuite's `Lift`: lift a small box off the table (`environments/manipulation/lift.py`).
 
-use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
-use super::{ModelSource, RewardConfig, Task};
-use crate::models::arenas::TableArena;
-use crate::models::objects::BoxObject;
-use crate::models::scene::SceneBuilder;
-use crate::observations::ObsKey;
+use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward};
+use super::placement::{Axis, Rotation, UniformRandomSampler};
+use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use crate::assets::Assets;
+use crate::models::arenas::Arena;
+use crate::models::objects::primitive::Primitive;
+use crate::models::objects::{CustomMaterial, ObjectModel, Shape};
+use crate::models::robots::RobotModel;
+use crate::observables::{ObsSpec, Observable, observe_all, specs};
 use crate::robots::Robot;
-use crate::sim::{
-    BoxGeomUpdate, GeomSet, Sim, any_contact_between, body_id, geom_id, joint_id, resize_box_body,
-};
-use gym_core::{DType, EnvRng, Error, Result};
+use crate::sim::{BoxGeomUpdate, Sim, geom_id, resize_box_body};
+use gym_core::{EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
 
 /// Lift's settings (robosuite's constructor defaults).
 #[derive(Debug, Clone, PartialEq)]
-pub struct LiftConfig {
-    /// The table arena (0.8 × 0.8 × 0.05, top at z = 0.8).
-    pub table: TableArena,
+pub struct LiftSpec {
+    /// The table's full size (default 0.8 × 0.8 × 0.05).
+    pub table_full_size: [f64; 3],
+    /// The table's friction (default `(1, 0.005, 0.0001)`).
+    pub table_friction: [f64; 3],
     /// Smallest cube half-extents (0.020 each).
     pub cube_size_min: [f64; 3],
     /// Largest cube half-extents (0.022 each); each is drawn uniformly per reset.
     pub cube_size_max: [f64; 3],
 }
 
-impl Default for LiftConfig {
+/// robosuite's table top for Lift, Stack and ToolHang.
+pub(crate) const TABLE_OFFSET: [f64; 3] = [0.0, 0.0, 0.8];
+
+impl Default for LiftSpec {
     fn default() -> Self {
         Self {
-            table: TableArena::default(),
+            table_full_size: [0.8, 0.8, 0.05],
+            table_friction: [1.0, 5e-3, 1e-4],
             cube_size_min: [0.020; 3],
             cube_size_max: [0.022; 3],
         }
     }
 }
 
-impl LiftConfig {
-    /// Checks the sizes.
-    ///
-    /// # Errors
-    /// [`Error::InvalidArgument`] for non-positive sizes or min > max.
-    pub fn validate(&self) -> Result<()> {
+impl LiftSpec {
+    fn validate(&self) -> Result<()> {
         for i in 0..3 {
             let (lo, hi) = (self.cube_size_min[i], self.cube_size_max[i]);
             if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && lo <= hi) {
@@ -50,22 +53,105 @@ impl LiftConfig {
                 ));
             }
         }
-        if self
-            .table
-            .full_size
-            .iter()
-            .any(|v| !v.is_finite() || *v <= 0.0)
-        {
-            return Err(Error::invalid_argument(
-                "table_full_size",
-                format!("must be positive, got {:?}", self.table.full_size),
-            ));
-        }
         Ok(())
     }
 }
 
-/// The Lift task: a cube (body `cube_main`, joint `cube_joint0`, geom `cube_g0`) on a table.
+/// Places robot 0 at its base offset for the arena, as every single-arm task of robosuite
+/// does (`robot_model.set_base_xpos(base_xpos_offset[arena])`).
+pub(crate) fn place_single_robot(robots: &mut [RobotModel], arena: &Arena) {
+    if let Some(robot) = robots.first_mut() {
+        let xpos = robot.info.base_offsets.for_arena(arena.kind);
+        robot.set_base_xpos(xpos);
+    }
+}
+
+/// robosuite's `redwood` material of Lift's cube.
+fn redwood(assets: &Assets) -> Result<CustomMaterial> {
+    CustomMaterial::new(
+        assets,
+        "WoodRed",
+        "redwood",
+        "redwood_mat",
+        &[("type", "cube")],
+        &[("texrepeat", "1 1"), ("specular", "0.4"), ("shininess", "0.1")],
+        false,
+    )
+}
+
+impl TaskSpec for LiftSpec {
+    fn name(&self) -> &str {
+        "Lift"
+    }
+
+    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
+        self.validate()?;
+        let mut arena = Arena::table(
+            assets,
+            "arenas/table_arena.xml",
+            self.table_full_size,
+            self.table_friction,
+            TABLE_OFFSET,
+        )?;
+        place_single_robot(robots, &arena);
+        arena.set_origin([0.0; 3])?;
+        let half = std::array::from_fn(|i| 0.5 * (self.cube_size_min[i] + self.cube_size_max[i]));
+        let mut cube = Primitive::new("cube", Shape::Box(half));
+        cube.material = Some(redwood(assets)?);
+        Ok(TaskScene {
+            arena,
+            objects: vec![cube.build()?],
+        })
+    }
+
+    fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>> {
+        let cube: &ObjectModel = &scene.objects[0];
+        let body = FreeBody::bind(model, cube)?;
+        let geoms = [cube.contact_geoms(), cube.visual_geoms()]
+            .concat()
+            .iter()
+            .map(|g| geom_id(model, g))
+            .collect::<Result<Vec<_>>>()?;
+        let half = model.geom_size()[geoms[0]];
+        let eef_site = robots.first().map_or(0, |r| r.arm().eef_site());
+        let mut task = Lift {
+            spec: self.clone(),
+            sampler: UniformRandomSampler {
+                x_range: [-0.03, 0.03],
+                y_range: [-0.03, 0.03],
+                rotation: Rotation::Random,
+                rotation_axis: Axis::Z,
+                ensure_object_boundary_in_range: false,
+                ensure_valid_placement: true,
+                reference_pos: TABLE_OFFSET,
+                z_offset: 0.01,
+            },
+            half,
+            cube: body,
+            cube_geoms: geoms,
+            eef_site,
+            observables: Vec::new(),
+        };
+        task.observables = vec![
+            Observable::f64("cube_pos", 3, "object", |t: &Lift, sim, out| {
+                out.copy_from_slice(&t.cube.pos(sim));
+            }),
+            Observable::f64("cube_quat", 4, "object", |t: &Lift, sim, out| {
+                out.copy_from_slice(&crate::math::xyzw(t.cube.quat(sim)));
+            }),
+            Observable::f64("gripper_to_cube_pos", 3, "object", |t: &Lift, sim, out| {
+                let (c, e) = (t.cube.pos(sim), sim.data().site_xpos()[t.eef_site]);
+                for i in 0..3 {
+                    out[i] = c[i] - e[i];
+                }
+            }),
+        ];
+        Ok(Box::new(task))
+    }
+}
+
+/// The bound Lift task: a cube (body `cube_main`, joint `cube_joint0`, geoms `cube_g0` and
+/// `cube_g0_vis`) on a table.
 ///
 /// * Reset: half-extents each `U(0.020, 0.022)` (mass and inertia follow, density 1000),
 ///   then — after the robot's noise — position `U(±0.03)²` around the table centre with a
@@ -75,75 +161,28 @@ impl LiftConfig {
 ///   when both finger-pad groups touch the cube; scaled by `reward_scale / 2.25`.
 #[derive(Debug, Clone)]
 pub struct Lift {
-    config: LiftConfig,
+    spec: LiftSpec,
     sampler: UniformRandomSampler,
     half: [f64; 3],
-    source: ModelSource,
-    cube_body: usize,
-    cube_geom: usize,
-    cube_qpos: usize,
-    cube_geoms: GeomSet,
+    cube: FreeBody,
+    cube_geoms: Vec<usize>,
+    eef_site: usize,
+    observables: Vec<Observable<Lift>>,
 }
 
 impl Lift {
-    /// Lift with the given settings.
-    ///
-    /// # Errors
-    /// [`Error::InvalidArgument`] for invalid settings.
-    pub fn new(config: LiftConfig) -> Result<Self> {
-        config.validate()?;
-        let sampler = UniformRandomSampler {
-            x_range: [-0.03, 0.03],
-            y_range: [-0.03, 0.03],
-            rotation: Rotation::Random,
-            rotation_axis: Axis::Z,
-            ensure_object_boundary_in_range: false,
-            ensure_valid_placement: true,
-            reference_pos: config.table.top,
-            z_offset: 0.01,
-        };
-        let half =
-            std::array::from_fn(|i| 0.5 * (config.cube_size_min[i] + config.cube_size_max[i]));
-        Ok(Self {
-            config,
-            sampler,
+    fn resize(&mut self, sim: &mut Sim, half: [f64; 3]) -> Result<()> {
+        resize_box_body(
+            sim,
+            BoxGeomUpdate {
+                body: self.cube.body,
+                geoms: &self.cube_geoms,
+                density: 1000.0,
+            },
             half,
-            source: ModelSource::Generated,
-            cube_body: 0,
-            cube_geom: 0,
-            cube_qpos: 0,
-            cube_geoms: GeomSet::default(),
-        })
-    }
-
-    /// The cube's current half-extents.
-    pub fn cube_half_size(&self) -> [f64; 3] {
-        self.half
-    }
-
-    /// The cube body id (`cube_main`).
-    pub fn cube_body(&self) -> usize {
-        self.cube_body
-    }
-
-    /// The cube's free-joint `qpos` address.
-    pub fn cube_qpos(&self) -> usize {
-        self.cube_qpos
-    }
-
-    /// Whether both finger-pad groups of robot 0 touch the cube (robosuite's `_check_grasp`).
-    pub fn is_grasped(&self, sim: &Sim, robots: &[Robot]) -> bool {
-        robots
-            .first()
-            .and_then(Robot::finger_pads)
-            .is_some_and(|(left, right)| {
-                any_contact_between(sim.data(), left, &self.cube_geoms)
-                    && any_contact_between(sim.data(), right, &self.cube_geoms)
-            })
-    }
-
-    fn cube_pos(&self, sim: &Sim) -> [f64; 3] {
-        sim.data().xpos()[self.cube_body]
+        )?;
+        self.half = half;
+        Ok(())
     }
 }
 
@@ -152,89 +191,29 @@ impl Task for Lift {
         "Lift"
     }
 
-    fn robot_base_pose(&self, _index: usize) -> ([f64; 3], [f64; 4]) {
-        // Panda's base_xpos_offset["table"](table length) on its mount: (-0.16 - L/2, 0, 0.912).
-        (
-            [-0.16 - self.config.table.full_size[0] / 2.0, 0.0, 0.912],
-            [1.0, 0.0, 0.0, 0.0],
-        )
-    }
-
-    fn arena_xml(&self) -> String {
-        self.config.table.to_xml()
-    }
-
-    fn build_objects(&self, scene: &mut SceneBuilder) -> Result<()> {
-        let cube = BoxObject::new("cube", self.half, [1.0, 0.0, 0.0, 1.0]);
-        scene.add_part("cube", &cube.to_xml(), "cube_")?;
-        Ok(())
-    }
-
-    fn bind(&mut self, model: &MjModel, _robots: &[Robot], source: ModelSource) -> Result<()> {
-        self.source = source;
-        self.cube_body = body_id(model, "cube_main")?;
-        self.cube_geom = geom_id(model, "cube_g0")?;
-        let joint = joint_id(model, "cube_joint0")?;
-        if model.jnt_type()[joint] != mujoco_rs::mujoco_c::mjtJoint::mjJNT_FREE {
-            return Err(Error::Model("`cube_joint0` must be a free joint".into()));
-        }
-        self.cube_qpos = model.jnt_qposadr()[joint] as usize;
-        self.cube_geoms = GeomSet::new([self.cube_geom]);
-        self.half = model.geom_size()[self.cube_geom];
-        Ok(())
-    }
-
     fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
-        if self.source != ModelSource::Generated {
-            return Ok(());
-        }
-        let (lo, hi) = (self.config.cube_size_min, self.config.cube_size_max);
+        let (lo, hi) = (self.spec.cube_size_min, self.spec.cube_size_max);
         let half: [f64; 3] = std::array::from_fn(|i| lo[i] + (hi[i] - lo[i]) * rng.random::<f64>());
-        resize_box_body(
-            sim,
-            BoxGeomUpdate {
-                body: self.cube_body,
-                geom: self.cube_geom,
-                density: 1000.0,
-            },
-            half,
-        )?;
-        self.half = half;
-        Ok(())
+        self.resize(sim, half)
     }
 
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
-        let obj = PlacedObject {
-            horizontal_radius: self.half[0].hypot(self.half[1]),
+        let extent = super::placement::PlacedObject {
+            horizontal_radius: (self.half[0] * self.half[0] + self.half[1] * self.half[1]).sqrt(),
             bottom_offset: -self.half[2],
             top_offset: self.half[2],
         };
-        let poses = self.sampler.sample(rng, &[obj], &[])?;
-        let (pos, quat) = poses[0];
-        let qpos = sim.data_mut().qpos_mut();
-        qpos[self.cube_qpos..self.cube_qpos + 3].copy_from_slice(&pos);
-        qpos[self.cube_qpos + 3..self.cube_qpos + 7].copy_from_slice(&quat);
+        let (pos, quat) = self.sampler.sample(rng, &[extent], &[])?[0];
+        self.cube.set_pose(sim, pos, quat);
         Ok(())
     }
 
-    fn observation_keys(&self) -> Vec<ObsKey> {
-        vec![
-            ObsKey::new("cube_pos", &[3], DType::F64),
-            ObsKey::new("cube_quat", &[4], DType::F64),
-            ObsKey::new("gripper_to_cube_pos", &[3], DType::F64),
-        ]
+    fn observation_specs(&self) -> Vec<ObsSpec> {
+        specs(&self.observables)
     }
 
-    fn write_observations(&self, sim: &Sim, robots: &[Robot], out: &mut [f64]) {
-        let d = sim.data();
-        let p = d.xpos()[self.cube_body];
-        let q = d.xquat()[self.cube_body];
-        let eef = robots.first().map_or([0.0; 3], |r| r.eef_pos(sim));
-        out[0..3].copy_from_slice(&p);
-        out[3..7].copy_from_slice(&[q[1], q[2], q[3], q[0]]);
-        for i in 0..3 {
-            out[7 + i] = p[i] - eef[i];
-        }
+    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
+        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
@@ -242,21 +221,16 @@ impl Task for Lift {
         if self.check_success(sim, robots) {
             reward = 2.25;
         } else if config.reward_shaping {
-            let cube = self.cube_pos(sim);
-            let eef = robots.first().map_or(cube, |r| r.eef_pos(sim));
-            let dist = ((cube[0] - eef[0]).powi(2)
-                + (cube[1] - eef[1]).powi(2)
-                + (cube[2] - eef[2]).powi(2))
-            .sqrt();
-            reward = 1.0 - (10.0 * dist).tanh();
-            if self.is_grasped(sim, robots) {
+            reward = 1.0 - (10.0 * dist(eef_pos(sim, robots), self.cube.pos(sim))).tanh();
+            if robot0_grasps(sim, robots, &self.cube.geoms) {
                 reward += 0.25;
             }
         }
-        match config.reward_scale {
-            Some(scale) => reward * (scale / 2.25),
-            None => reward,
-        }
+        scale_reward(reward, config.reward_scale, 2.25)
+    }
+
+    fn check_success(&self, sim: &Sim, _robots: &[Robot]) -> bool {
+        self.cube.pos(sim)[2] > TABLE_OFFSET[2] + 0.04
     }
 
     fn save_state(&self) -> Vec<f64> {
@@ -266,29 +240,13 @@ impl Task for Lift {
     fn load_state(&mut self, sim: &mut Sim, state: &[f64]) -> Result<()> {
         let half: [f64; 3] = state.try_into().map_err(|_| {
             Error::invalid_argument(
-                "state",
-                format!(
-                    "Lift's state is the 3 cube half-extents, got {} values",
-                    state.len()
-                ),
+                "task state",
+                format!("Lift's state is the 3 cube half-extents, got {} values", state.len()),
             )
         })?;
         if half != self.half {
-            resize_box_body(
-                sim,
-                BoxGeomUpdate {
-                    body: self.cube_body,
-                    geom: self.cube_geom,
-                    density: 1000.0,
-                },
-                half,
-            )?;
-            self.half = half;
+            self.resize(sim, half)?;
         }
         Ok(())
-    }
-
-    fn check_success(&self, sim: &Sim, _robots: &[Robot]) -> bool {
-        self.cube_pos(sim)[2] > self.config.table.top[2] + 0.04
     }
 }

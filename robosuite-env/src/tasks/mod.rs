@@ -1,44 +1,27 @@
 //! Tasks: what a manipulation environment adds to its robots (arena, objects, placement,
-//! observations, reward, success).
+//! observables, reward, success).
 //!
-//! A [`Task`] is object safe; [`RobosuiteEnv`](crate::RobosuiteEnv) holds one as
-//! `Box<dyn Task>`, so every robosuite task plugs into the same environment mechanics.
+//! A task comes in two types. A [`TaskSpec`] is its configuration: it builds its part of
+//! the scene from robosuite's model files ([`TaskSpec::build`]: arena, objects, robot
+//! placement) and, once the scene is compiled, binds to it ([`TaskSpec::bind`]), returning
+//! the [`Task`] that runs episodes. A bound task holds every id it needs; there is no
+//! half-built state.
 
 pub mod common;
-mod door;
 mod lift;
-mod nut_assembly;
-mod pick_place;
 pub mod placement;
-mod stack;
-mod tool_hang;
-mod wipe;
 
-pub use door::{Door, DoorConfig, door_xml};
-pub use lift::{Lift, LiftConfig};
-pub use nut_assembly::{NutAssembly, PEG_POS, pegs_arena_xml};
-pub use pick_place::{PickPlace, bins_arena_xml, in_quadrant, target_placement};
-pub use stack::Stack;
-pub use tool_hang::{ToolHang, frame_xml, stand_xml, tool_xml};
-pub use wipe::{Wipe, WipeConfig};
+pub use lift::{Lift, LiftSpec};
 
-use crate::models::scene::SceneBuilder;
-use crate::observations::ObsKey;
-use crate::robots::{Robot, RobotSpec};
+use crate::assets::Assets;
+use crate::models::arenas::Arena;
+use crate::models::objects::ObjectModel;
+use crate::models::robots::{GripperChoice, RobotModel};
+use crate::observables::ObsSpec;
+use crate::robots::Robot;
 use crate::sim::Sim;
 use gym_core::{EnvRng, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
-
-/// Where the compiled model came from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ModelSource {
-    /// Built by this crate from its own parts: the task may resize its objects on reset
-    /// (robosuite's hard reset).
-    Generated,
-    /// A scene MJCF supplied by the caller (for instance exported from robosuite): object
-    /// sizes stay as the file says (robosuite's soft reset).
-    Supplied,
-}
 
 /// Reward settings shared by all tasks (robosuite's `reward_scale` and `reward_shaping`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,15 +34,17 @@ pub struct RewardConfig {
     pub horizon: u64,
 }
 
-/// A robosuite task.
-///
-/// The environment calls, in order: [`Task::arena_xml`], [`Task::robot_base_pose`] and
-/// [`Task::build_objects`] while composing the model (robots are added in between, so robot joints precede object
-/// joints), [`Task::bind`] once compiled; on each reset [`Task::randomize_model`] (before
-/// the robots draw their noise), then [`Task::place_objects`] (after); after each step
-/// [`Task::reward`], [`Task::check_success`], [`Task::check_terminated`] and the object
-/// observations.
-pub trait Task: Send + std::fmt::Debug + 'static {
+/// A task's part of the scene: the arena and the objects, in robosuite's merge order.
+#[derive(Debug, Clone)]
+pub struct TaskScene {
+    /// The arena.
+    pub arena: Arena,
+    /// The objects.
+    pub objects: Vec<ObjectModel>,
+}
+
+/// A task's configuration: robosuite's environment class before `_load_model`.
+pub trait TaskSpec: Send + Sync + std::fmt::Debug {
     /// robosuite's environment name, such as `"Lift"`.
     fn name(&self) -> &str;
 
@@ -68,30 +53,61 @@ pub trait Task: Send + std::fmt::Debug + 'static {
         1
     }
 
-    /// The base position and orientation (wxyz) of robot `index`.
-    fn robot_base_pose(&self, index: usize) -> ([f64; 3], [f64; 4]);
-
-    /// The arena's MJCF; the content of its `<worldbody>` becomes the world's (see
-    /// [`SceneBuilder::with_arena`]).
-    fn arena_xml(&self) -> String;
-
-    /// Adds the objects (after the robots are added).
+    /// The gripper the task needs on arm `arm` of robot `robot` given the configured
+    /// choice, or an error when the task cannot take it (robosuite's Wipe requires its
+    /// wiping tool). The default takes the configured choice.
     ///
     /// # Errors
-    /// [`gym_core::Error::Model`] when a part does not attach.
-    fn build_objects(&self, scene: &mut SceneBuilder) -> Result<()>;
+    /// [`gym_core::Error::InvalidArgument`] naming what the task needs.
+    fn gripper(&self, _robot: usize, _arm: usize, configured: &GripperChoice) -> Result<GripperChoice> {
+        Ok(configured.clone())
+    }
 
-    /// Resolves the task's bodies, joints, geoms and sites in the compiled model.
+    /// Whether the task shapes its reward by default (robosuite: only Wipe).
+    fn default_reward_shaping(&self) -> bool {
+        false
+    }
+
+    /// Bytes of MuJoCo arena per `mjData` (contacts, constraints, solver stack).
+    fn memory(&self) -> usize {
+        crate::models::scene::DEFAULT_MEMORY
+    }
+
+    /// robosuite's `_load_model`: places the robots and builds the arena and the objects.
+    /// Sizes robosuite draws at every hard reset are built at a fixed value here and drawn
+    /// by [`Task::randomize_model`] at every reset instead, so equal configurations compose
+    /// equal scenes (and share one compiled model).
     ///
     /// # Errors
-    /// [`gym_core::Error::Model`] when a name is missing.
-    fn bind(&mut self, model: &MjModel, robots: &[Robot], source: ModelSource) -> Result<()>;
+    /// [`gym_core::Error::Model`] when a model file is missing or malformed;
+    /// [`gym_core::Error::InvalidArgument`] for an invalid task configuration.
+    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene>;
 
-    /// Re-draws model parameters (object sizes) without recompiling; called first in every
-    /// reset. The default does nothing.
+    /// Binds the task to the compiled scene: resolves every body, joint, geom and site it
+    /// uses.
     ///
     /// # Errors
-    /// [`gym_core::Error::Model`] when the model cannot be edited.
+    /// [`gym_core::Error::Model`] when the model lacks a name robosuite gives.
+    fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>>;
+}
+
+/// A task bound to a compiled scene: the per-episode part of robosuite's environment
+/// classes.
+///
+/// The environment calls, on each reset, [`Task::randomize_model`] (before the robots draw
+/// their noise), then [`Task::place_objects`] (after); on each step [`Task::on_policy_step`]
+/// at the first substep, then after the physics [`Task::reward`], [`Task::after_reward`],
+/// [`Task::check_success`] and [`Task::check_terminated`]; and [`Task::observe`] whenever
+/// it builds an observation.
+pub trait Task: Send + std::fmt::Debug {
+    /// robosuite's environment name.
+    fn name(&self) -> &str;
+
+    /// Re-draws model parameters (object sizes, marker layouts) without recompiling;
+    /// called first in every reset. The default does nothing.
+    ///
+    /// # Errors
+    /// [`gym_core::Error::Simulation`] when no valid layout is found.
     fn randomize_model(&mut self, _sim: &mut Sim, _rng: &mut EnvRng) -> Result<()> {
         Ok(())
     }
@@ -103,11 +119,19 @@ pub trait Task: Send + std::fmt::Debug + 'static {
     /// [`gym_core::Error::Simulation`] when no valid placement is found.
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()>;
 
-    /// The object observation keys, in robosuite's order (`object-state` concatenates them).
-    fn observation_keys(&self) -> Vec<ObsKey>;
+    /// Clears the task's observation cache (every reset, before the first observation
+    /// pass). The default has none.
+    fn clear_observation_cache(&mut self) {}
 
-    /// Writes the object observations into `out`.
-    fn write_observations(&self, sim: &Sim, robots: &[Robot], out: &mut [f64]);
+    /// The specs of the task's observables, in robosuite's order (object observables, and
+    /// robot ones a task adds, such as Wipe's `robot0_contact`).
+    fn observation_specs(&self) -> Vec<ObsSpec>;
+
+    /// Writes the task's observables, in the order of [`Task::observation_specs`]: one
+    /// observation pass (after each step and each reset). Mutable because some of
+    /// robosuite's sensors read its observation cache, the values of the previous pass
+    /// (see [`common::ObjectSensors`]).
+    fn observe(&mut self, sim: &Sim, out: &mut [f64]);
 
     /// The reward for the current state.
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64;
@@ -115,49 +139,9 @@ pub trait Task: Send + std::fmt::Debug + 'static {
     /// Whether the task is solved in the current state.
     fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool;
 
-    /// The task's mutable state (for example randomised sizes), for snapshots. The default
-    /// is empty.
-    fn save_state(&self) -> Vec<f64> {
-        Vec::new()
-    }
-
-    /// Restores a state from [`Task::save_state`], editing the model if needed; the
-    /// environment restores the simulator state afterwards. The default does nothing.
-    ///
-    /// # Errors
-    /// [`gym_core::Error::InvalidArgument`] for a state of the wrong shape.
-    fn load_state(&mut self, _sim: &mut Sim, _state: &[f64]) -> Result<()> {
-        Ok(())
-    }
-
     /// Whether the episode ends early (only robosuite's Wipe does). The default is `false`.
     fn check_terminated(&self, _sim: &Sim, _robots: &[Robot]) -> bool {
         false
-    }
-
-    /// The robot the task uses for robot `index`, given the configured one (Wipe swaps in
-    /// its wiping tool for the gripper). The default keeps it.
-    ///
-    /// # Errors
-    /// [`gym_core::Error::InvalidArgument`] when the task cannot use the robot.
-    fn robot_spec(&self, _index: usize, spec: RobotSpec) -> Result<RobotSpec> {
-        Ok(spec)
-    }
-
-    /// Extra keys the task appends to robot `index`'s proprioception (Wipe's
-    /// `robot0_contact`). The default has none.
-    fn robot_observation_keys(&self, _index: usize) -> Vec<ObsKey> {
-        Vec::new()
-    }
-
-    /// Writes the keys of [`Task::robot_observation_keys`].
-    fn write_robot_observations(
-        &self,
-        _sim: &Sim,
-        _robots: &[Robot],
-        _index: usize,
-        _out: &mut [f64],
-    ) {
     }
 
     /// Called on the first substep of every env step, after the controllers wrote their
@@ -166,7 +150,30 @@ pub trait Task: Send + std::fmt::Debug + 'static {
     fn on_policy_step(&mut self, _sim: &Sim, _robots: &[Robot]) {}
 
     /// Called after the step's reward was computed and before success and termination are
-    /// checked (robosuite's reward updates Wipe's wiped markers). The default does
-    /// nothing.
+    /// checked (robosuite's reward updates Wipe's wiped markers). The default does nothing.
     fn after_reward(&mut self, _sim: &mut Sim, _robots: &[Robot], _config: &RewardConfig) {}
+
+    /// The task's randomised model parameters and episode state (Lift's cube size, Wipe's
+    /// markers), for snapshots and replays. The default is empty.
+    fn save_state(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    /// Restores a state from [`Task::save_state`], editing the model if needed; the
+    /// environment restores the simulator state afterwards. The default accepts only an
+    /// empty state.
+    ///
+    /// # Errors
+    /// [`gym_core::Error::InvalidArgument`] for a state of the wrong shape; nothing is
+    /// changed then.
+    fn load_state(&mut self, _sim: &mut Sim, state: &[f64]) -> Result<()> {
+        if state.is_empty() {
+            Ok(())
+        } else {
+            Err(gym_core::Error::invalid_argument(
+                "task state",
+                format!("{} has no task state, got {} values", self.name(), state.len()),
+            ))
+        }
+    }
 }

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod fixtures;
+
 use gym_core::{DictValue, Env, Result};
 use ndarray::{ArrayD, IxDyn};
 use robosuite_env::RobosuiteEnv;

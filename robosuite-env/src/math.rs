@@ -1,5 +1,7 @@
-//! Small linear-algebra and rotation helpers, written to follow robosuite's
-//! `transform_utils` / `control_utils` (including their float32 steps).
+//! The crate's linear algebra and rotations, written to follow robosuite's
+//! `transform_utils` / `control_utils` (including their float32 steps): quaternions
+//! (MuJoCo's `wxyz` and robosuite's `xyzw`), rotation matrices, Euler angles and the
+//! pseudo-inverses of the operational-space controller.
 
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
@@ -54,16 +56,7 @@ macro_rules! impl_psd_pinv {
         }
     )*};
 }
-impl_psd_pinv!(3, 6, 7);
-
-/// The inverse of a symmetric positive definite matrix (robosuite: `np.linalg.inv` of the
-/// arm's mass matrix), with a pseudo-inverse fallback.
-pub fn inv_spd(a: &SMatrix<f64, 7, 7>) -> SMatrix<f64, 7, 7> {
-    match a.cholesky() {
-        Some(chol) => chol.inverse(),
-        None => a.try_inverse().unwrap_or_else(|| a.pinv_svd()),
-    }
-}
+impl_psd_pinv!(3, 6);
 
 /// A row-major MuJoCo 3×3 matrix (`xmat`) as a matrix.
 pub fn mat_from_row_major(m: &[f64; 9]) -> Matrix3<f64> {
@@ -162,6 +155,70 @@ pub fn mat2quat(m: &Matrix3<f64>) -> [f64; 4] {
     [sign * x / n, sign * y / n, sign * z / n, sign * w / n]
 }
 
+
+/// `wxyz` → `xyzw` (MuJoCo's order to robosuite's observation order).
+pub fn xyzw(q: [f64; 4]) -> [f64; 4] {
+    [q[1], q[2], q[3], q[0]]
+}
+
+/// Quaternion (`wxyz`) product.
+pub fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    [
+        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
+        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
+        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
+    ]
+}
+
+/// Conjugate of a quaternion (`wxyz`; the inverse of a unit quaternion).
+pub fn conj(q: [f64; 4]) -> [f64; 4] {
+    [q[0], -q[1], -q[2], -q[3]]
+}
+
+/// Rotates `v` by the unit quaternion `q` (`wxyz`).
+pub fn quat_rotate(q: [f64; 4], v: [f64; 3]) -> [f64; 3] {
+    let p = quat_mul(quat_mul(q, [0.0, v[0], v[1], v[2]]), conj(q));
+    [p[1], p[2], p[3]]
+}
+
+/// The rotation by `angle` about the x, y or z axis (`axis` 0, 1 or 2) as a `wxyz`
+/// quaternion (robosuite's placement samplers).
+pub fn axis_quat(axis: usize, angle: f64) -> [f64; 4] {
+    let (s, c) = (angle / 2.0).sin_cos();
+    let mut q = [c, 0.0, 0.0, 0.0];
+    q[1 + axis] = s;
+    q
+}
+
+/// robosuite's `euler2mat` (static x-y-z Euler angles, `(r, p, y)`).
+pub fn euler2mat(euler: [f64; 3]) -> Matrix3<f64> {
+    let (ai, aj, ak) = (-euler[2], -euler[1], -euler[0]);
+    let (si, sj, sk) = (ai.sin(), aj.sin(), ak.sin());
+    let (ci, cj, ck) = (ai.cos(), aj.cos(), ak.cos());
+    let (cc, cs) = (ci * ck, ci * sk);
+    let (sc, ss) = (si * ck, si * sk);
+    Matrix3::new(
+        cj * ci,
+        cj * si,
+        -sj,
+        sj * cs - sc,
+        sj * ss + cc,
+        cj * sk,
+        sj * cc + ss,
+        sj * sc - cs,
+        cj * ck,
+    )
+}
+
+/// robosuite's `mat2quat(euler2mat(rot))` reordered to `wxyz`, as `set_base_ori` writes a
+/// robot's base orientation: robosuite computes the quaternion in float32, so each
+/// component is rounded to float32.
+pub fn euler_xyz_to_quat_wxyz(rot: [f64; 3]) -> [f64; 4] {
+    let q = mat2quat(&euler2mat(rot));
+    [q[3], q[0], q[1], q[2]].map(|v| f64::from(v as f32))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,6 +255,21 @@ mod tests {
             assert!((quat2mat_f32(aa) - r.matrix()).abs().max() < 1e-6);
         }
         assert_eq!(axisangle2quat(&Vector3::zeros()), [0.0, 0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn euler_and_quaternion_helpers_agree() {
+        // A yaw of +90° (robosuite's "opposed" robot0) turns x into y.
+        let q = euler_xyz_to_quat_wxyz([0.0, 0.0, std::f64::consts::FRAC_PI_2]);
+        let v = quat_rotate(q, [1.0, 0.0, 0.0]);
+        assert!((v[0]).abs() < 1e-7 && (v[1] - 1.0).abs() < 1e-7, "{v:?}");
+        let r = euler2mat([0.3, -0.2, 1.1]);
+        assert!((r * r.transpose() - Matrix3::identity()).abs().max() < 1e-12);
+        let a = axis_quat(2, 0.7);
+        let b = axis_quat(2, -0.7);
+        let p = quat_mul(a, b);
+        assert!((p[0] - 1.0).abs() < 1e-15 && p[3].abs() < 1e-15);
+        assert_eq!(xyzw([1.0, 2.0, 3.0, 4.0]), [2.0, 3.0, 4.0, 1.0]);
     }
 
     #[test]

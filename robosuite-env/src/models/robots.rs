@@ -1,0 +1,330 @@
+//! robosuite's robot models (`robosuite/models/robots/`): a robot's file with its mount and
+//! grippers, prepared and composed as robosuite's `RobotModel`, `ManipulatorModel` and
+//! `Robot.load_model` prepare and compose them.
+
+use super::bases::{MountInfo, MountModel, RETHINK_MOUNT};
+use super::grippers::{GripperInfo, GripperModel, NULL_GRIPPER, gripper_info};
+use super::ROBOT_COLLISION_COLOR;
+use crate::assets::Assets;
+use crate::mjcf::tree::{self, array_to_string, attr, set_attr};
+use crate::mjcf::{MergeBody, MjcfDoc, XmlModel};
+use crate::math::{euler_xyz_to_quat_wxyz};
+use gym_core::{Error, Result};
+use std::f64::consts::PI;
+
+/// Where a robot stands relative to an arena's origin (robosuite's `base_xpos_offset`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BaseOffsets {
+    /// In the bins arena.
+    pub bins: [f64; 3],
+    /// In the empty arena.
+    pub empty: [f64; 3],
+    /// At a table of length `l`: `(table_x - l / 2, 0, 0)`.
+    pub table_x: f64,
+}
+
+impl BaseOffsets {
+    /// The offsets every single-arm robot of robosuite uses.
+    pub const SINGLE_ARM: Self = Self {
+        bins: [-0.5, -0.1, 0.0],
+        empty: [-0.6, 0.0, 0.0],
+        table_x: -0.16,
+    };
+
+    /// The offset in an arena.
+    pub fn for_arena(&self, kind: super::arenas::ArenaKind) -> [f64; 3] {
+        match kind {
+            super::arenas::ArenaKind::Table { length } => [self.table_x - length / 2.0, 0.0, 0.0],
+            super::arenas::ArenaKind::Bins => self.bins,
+            super::arenas::ArenaKind::Empty => self.empty,
+        }
+    }
+}
+
+/// A robot class of robosuite: the figures its Python class holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RobotInfo {
+    /// robosuite's robot name, such as `"Panda"`.
+    pub name: &'static str,
+    /// Its model file under `models/assets`.
+    pub file: &'static str,
+    /// Its arms (`["right"]`, or `["right", "left"]` for a bimanual robot).
+    pub arms: &'static [&'static str],
+    /// The body each arm's gripper attaches to, unprefixed, per arm.
+    pub eef_bodies: &'static [&'static str],
+    /// The joints' rest positions (robosuite's `init_qpos`), all arms in joint order.
+    pub init_qpos: &'static [f64],
+    /// Joint damping the class sets over the file's (`set_joint_attribute`), if any.
+    pub damping: Option<&'static [f64]>,
+    /// The mount it stands on by default.
+    pub default_mount: MountInfo,
+    /// Its default gripper per arm (robosuite class names).
+    pub default_grippers: &'static [&'static str],
+    /// robosuite's default controller configuration file, per arm (`default_panda`, ...).
+    pub default_controller: &'static [&'static str],
+    /// Where it stands in each arena.
+    pub base_offsets: BaseOffsets,
+    /// From its root body to its top.
+    pub top_offset: [f64; 3],
+    /// Its horizontal radius (the mount's is taken if larger).
+    pub horizontal_radius: f64,
+}
+
+/// robosuite's `Panda`.
+pub const PANDA: RobotInfo = RobotInfo {
+    name: "Panda",
+    file: "robots/panda/robot.xml",
+    arms: &["right"],
+    eef_bodies: &["right_hand"],
+    init_qpos: &[
+        0.0,
+        PI / 16.0,
+        0.00,
+        -PI / 2.0 - PI / 3.0,
+        0.00,
+        PI - 0.2,
+        PI / 4.0,
+    ],
+    damping: Some(&[0.1, 0.1, 0.1, 0.1, 0.1, 0.01, 0.01]),
+    default_mount: RETHINK_MOUNT,
+    default_grippers: &["PandaGripper"],
+    default_controller: &["default_panda"],
+    base_offsets: BaseOffsets::SINGLE_ARM,
+    top_offset: [0.0, 0.0, 1.0],
+    horizontal_radius: 0.5,
+};
+
+/// Every robot [`robot_info`] knows.
+pub const ROBOTS: &[RobotInfo] = &[PANDA];
+
+/// The names of [`ROBOTS`].
+pub fn robot_names() -> Vec<&'static str> {
+    ROBOTS.iter().map(|r| r.name).collect()
+}
+
+/// The robot robosuite names `name`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] (argument `robots`) listing the valid names.
+pub fn robot_info(name: &str) -> Result<RobotInfo> {
+    ROBOTS.iter().find(|r| r.name == name).copied().ok_or_else(|| {
+        Error::invalid_argument(
+            "robots",
+            format!("unknown robot `{name}`; valid: {}", robot_names().join(", ")),
+        )
+    })
+}
+
+/// Which gripper an arm carries: robosuite's `gripper_types` entry.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub enum GripperChoice {
+    /// The robot's default gripper (`"default"`).
+    #[default]
+    Default,
+    /// No gripper (`None`): robosuite attaches its `NullGripper`.
+    None,
+    /// A gripper by robosuite's class name.
+    Named(String),
+}
+
+impl GripperChoice {
+    /// The gripper for `arm` of `robot`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an unknown gripper name.
+    pub fn resolve(&self, robot: &RobotInfo, arm: usize) -> Result<(GripperInfo, bool)> {
+        match self {
+            Self::Default => Ok((gripper_info(robot.default_grippers[arm])?, true)),
+            Self::None => Ok((NULL_GRIPPER, false)),
+            Self::Named(name) => Ok((gripper_info(name)?, true)),
+        }
+    }
+}
+
+/// One arm of a composed robot model: its eef body and gripper.
+#[derive(Debug, Clone)]
+pub struct ArmModel {
+    /// `"right"` or `"left"`.
+    pub side: &'static str,
+    /// The gripper model (the null gripper when the arm has none).
+    pub gripper: GripperModel,
+    /// Whether the arm has a gripper (robosuite's `has_gripper`; false with `None`).
+    pub has_gripper: bool,
+}
+
+/// A robot's model composed as robosuite's `Robot.load_model` composes it: the robot file
+/// (prefix `robot{idn}_`, default joint friction, damping and armature), its mount under
+/// the root body (prefix `fixed_mount{idn}_`) and a gripper on each arm's eef body (prefix
+/// `gripper{idn}_{arm}_`).
+#[derive(Debug, Clone)]
+pub struct RobotModel {
+    /// The composed document with its element names (the robot's own, not the mount's or
+    /// the grippers').
+    pub xml: XmlModel,
+    /// The robot's figures.
+    pub info: RobotInfo,
+    /// Its index (`robot{idn}_`).
+    pub idn: usize,
+    /// The mount's figures, if it has one.
+    pub mount: Option<MountModel>,
+    /// Its arms, in robosuite's order.
+    pub arms: Vec<ArmModel>,
+}
+
+impl RobotModel {
+    /// Builds robot `info` as robot `idn` with its default mount and the given grippers (one
+    /// choice per arm).
+    ///
+    /// # Errors
+    /// [`Error::Model`] when a file is missing or malformed; [`Error::InvalidArgument`] for
+    /// a wrong number of gripper choices or an unknown gripper.
+    pub fn build(assets: &Assets, info: RobotInfo, idn: usize, grippers: &[GripperChoice]) -> Result<Self> {
+        if grippers.len() != info.arms.len() {
+            return Err(Error::invalid_argument(
+                "gripper_types",
+                format!(
+                    "{} has {} arm(s), got {} gripper choice(s)",
+                    info.name,
+                    info.arms.len(),
+                    grippers.len()
+                ),
+            ));
+        }
+        let mut xml = XmlModel::load(
+            &assets.file(info.file)?,
+            &format!("robot{idn}_"),
+            ROBOT_COLLISION_COLOR,
+        )?;
+        let dof = xml.names.joints.len();
+        if dof != info.init_qpos.len() {
+            return Err(Error::Model(format!(
+                "{} has {dof} joints in {}, but {} initial positions",
+                info.name,
+                info.file,
+                info.init_qpos.len()
+            )));
+        }
+        let frictionloss = vec![0.1; dof];
+        let damping = vec![0.1; dof];
+        let armature: Vec<f64> = (0..dof).map(|i| 5.0 / (i + 1) as f64).collect();
+        set_joint_attribute(&mut xml, "frictionloss", &frictionloss, false)?;
+        set_joint_attribute(&mut xml, "damping", &damping, false)?;
+        set_joint_attribute(&mut xml, "armature", &armature, false)?;
+        if let Some(values) = info.damping {
+            set_joint_attribute(&mut xml, "damping", values, true)?;
+        }
+        let mut model = Self {
+            xml,
+            info,
+            idn,
+            mount: None,
+            arms: Vec::new(),
+        };
+        model.add_mount(MountModel::load(assets, info.default_mount, idn)?)?;
+        for (i, side) in info.arms.iter().enumerate() {
+            let (gripper_info, has_gripper) = grippers[i].resolve(&info, i)?;
+            let gripper = GripperModel::load(assets, gripper_info, idn, side)?;
+            let eef = model.xml.name(info.eef_bodies[i]);
+            model
+                .xml
+                .doc
+                .merge(gripper.xml.doc.clone(), MergeBody::Body(&eef))?;
+            model.arms.push(ArmModel {
+                side,
+                gripper,
+                has_gripper,
+            });
+        }
+        Ok(model)
+    }
+
+    /// robosuite's `add_mount`: the mount's root body goes to `base_offset - top_offset` and
+    /// its bodies into the robot's root body.
+    fn add_mount(&mut self, mut mount: MountModel) -> Result<()> {
+        let offset = sub(self.xml.base_offset, mount.info.top_offset);
+        set_attr(mount.xml.root_body_element_mut(), "pos", array_to_string(&offset));
+        let root = self.xml.root_body();
+        self.xml
+            .doc
+            .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+        self.mount = Some(mount);
+        Ok(())
+    }
+
+    /// From the root body to the bottom of the mount (robosuite's `bottom_offset`).
+    pub fn bottom_offset(&self) -> [f64; 3] {
+        match &self.mount {
+            Some(m) => add(sub(m.bottom_offset(), m.info.top_offset), self.xml.base_offset),
+            None => self.xml.base_offset,
+        }
+    }
+
+    /// robosuite's `set_base_xpos`: puts the bottom of the robot (its mount) at `pos`.
+    pub fn set_base_xpos(&mut self, pos: [f64; 3]) {
+        let at = sub(pos, self.bottom_offset());
+        set_attr(self.xml.root_body_element_mut(), "pos", array_to_string(&at));
+    }
+
+    /// robosuite's `set_base_ori`: rotates the robot by the x-y-z Euler angles `rot`.
+    pub fn set_base_ori(&mut self, rot: [f64; 3]) {
+        let q = euler_xyz_to_quat_wxyz(rot);
+        set_attr(self.xml.root_body_element_mut(), "quat", array_to_string(&q));
+    }
+
+    /// The robot's joints, prefixed (robosuite's `robot_model.joints`).
+    pub fn joints(&self) -> Vec<String> {
+        self.xml.names_of(&self.xml.names.joints)
+    }
+
+    /// The robot's actuators, prefixed.
+    pub fn actuators(&self) -> Vec<String> {
+        self.xml.names_of(&self.xml.names.actuators)
+    }
+
+    /// The eef body of arm `i`, prefixed.
+    pub fn eef_body(&self, i: usize) -> String {
+        self.xml.name(self.info.eef_bodies[i])
+    }
+
+    /// The camera names in the robot's model (robot and gripper cameras).
+    pub fn cameras(&self) -> Vec<String> {
+        tree::find_all(self.xml.doc.worldbody(), "camera")
+            .into_iter()
+            .filter_map(|c| attr(c, "name").map(str::to_owned))
+            .collect()
+    }
+
+    /// The composed document, for merging into a task.
+    pub fn doc(&self) -> &MjcfDoc {
+        &self.xml.doc
+    }
+}
+
+/// robosuite's `set_joint_attribute`: sets `attrib` of every robot joint (in order) to its
+/// value, keeping values the file sets unless `force`.
+fn set_joint_attribute(xml: &mut XmlModel, attrib: &str, values: &[f64], force: bool) -> Result<()> {
+    let joints = xml.names_of(&xml.names.joints);
+    if values.len() != joints.len() {
+        return Err(Error::Model(format!(
+            "{attrib}: {} values for {} joints",
+            values.len(),
+            joints.len()
+        )));
+    }
+    for (name, v) in joints.iter().zip(values) {
+        let joint = tree::find_mut(xml.doc.worldbody_mut(), "joint", &[("name", Some(name))])
+            .ok_or_else(|| Error::Model(format!("no joint `{name}`")))?;
+        if force || attr(joint, attrib).is_none() {
+            set_attr(joint, attrib, array_to_string(&[*v]));
+        }
+    }
+    Ok(())
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}

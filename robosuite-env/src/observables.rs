@@ -1,0 +1,352 @@
+//! robosuite's observables (`robosuite/utils/observables.py`): each is one value — its key,
+//! shape, dtype, modality and reader — and [`ObsLayout`] lays them out as robosuite's
+//! observation dict: every observable in order, then one `{modality}-state` concatenation per
+//! modality in the order modalities first appear.
+//!
+//! Readers are closures over the observable's owner (a robot or a task) and the simulator;
+//! they write the values into a slice of one `f64` buffer (exact for every numeric dtype
+//! robosuite uses), cast to the key's dtype when the dict is built.
+
+use crate::sim::Sim;
+use gym_core::{
+    AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, Result, Scalar, Value,
+};
+use ndarray::{ArrayD, IxDyn};
+use std::sync::Arc;
+
+/// What an observable is, without its reader.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ObsSpec {
+    /// The key, such as `"robot0_eef_pos"`.
+    pub key: String,
+    /// The shape (`[]` for a scalar).
+    pub shape: Vec<usize>,
+    /// The dtype robosuite returns.
+    pub dtype: DType,
+    /// The modality (`"robot0_proprio"`, `"object"`, ...): observables of one modality are
+    /// also returned concatenated as `{modality}-state`.
+    pub modality: String,
+}
+
+impl ObsSpec {
+    /// The number of values.
+    pub fn len(&self) -> usize {
+        self.shape.iter().product()
+    }
+
+    /// Whether the observable holds no values.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Reads an observable's values from its owner `C` and the simulator.
+pub type Reader<C> = Arc<dyn Fn(&C, &Sim, &mut [f64]) + Send + Sync>;
+
+/// One robosuite observable (a "sensor" with its key): spec and reader.
+pub struct Observable<C> {
+    /// Key, shape, dtype and modality.
+    pub spec: ObsSpec,
+    read: Reader<C>,
+}
+
+impl<C> Clone for Observable<C> {
+    fn clone(&self) -> Self {
+        Self {
+            spec: self.spec.clone(),
+            read: Arc::clone(&self.read),
+        }
+    }
+}
+
+impl<C> std::fmt::Debug for Observable<C> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Observable").field("spec", &self.spec).finish()
+    }
+}
+
+impl<C> Observable<C> {
+    /// An observable of `shape` and `dtype` in `modality` whose values `read` writes.
+    pub fn new(
+        key: impl Into<String>,
+        shape: &[usize],
+        dtype: DType,
+        modality: &str,
+        read: impl Fn(&C, &Sim, &mut [f64]) + Send + Sync + 'static,
+    ) -> Self {
+        Self {
+            spec: ObsSpec {
+                key: key.into(),
+                shape: shape.to_vec(),
+                dtype,
+                modality: modality.to_owned(),
+            },
+            read: Arc::new(read),
+        }
+    }
+
+    /// A float64 vector observable.
+    pub fn f64(
+        key: impl Into<String>,
+        len: usize,
+        modality: &str,
+        read: impl Fn(&C, &Sim, &mut [f64]) + Send + Sync + 'static,
+    ) -> Self {
+        Self::new(key, &[len], DType::F64, modality, read)
+    }
+}
+
+/// Reads each observable of `set` in order into consecutive slices of `out`.
+pub fn observe_all<C>(set: &[Observable<C>], owner: &C, sim: &Sim, out: &mut [f64]) {
+    let mut at = 0;
+    for o in set {
+        let n = o.spec.len();
+        (o.read)(owner, sim, &mut out[at..at + n]);
+        at += n;
+    }
+}
+
+/// The specs of a set of observables.
+pub fn specs<C>(set: &[Observable<C>]) -> Vec<ObsSpec> {
+    set.iter().map(|o| o.spec.clone()).collect()
+}
+
+/// The total number of values of a set of specs.
+pub fn total_len(specs: &[ObsSpec]) -> usize {
+    specs.iter().map(ObsSpec::len).sum()
+}
+
+/// A modality concatenation: its key and the observables it joins.
+#[derive(Debug, Clone, PartialEq)]
+struct Group {
+    key: String,
+    members: Vec<usize>,
+    len: usize,
+}
+
+/// The layout of robosuite's observation dict over one flat `f64` buffer: each observable's
+/// values at its offset, in order; then the `{modality}-state` concatenations (float64).
+/// Inactive observables (robosuite's `active=False`, such as object observables with
+/// `use_object_obs=False`) keep their place in the buffer but are not in the dict.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObsLayout {
+    keys: Vec<(ObsSpec, usize)>,
+    groups: Vec<Group>,
+    len: usize,
+}
+
+impl ObsLayout {
+    /// Lays out `specs` in order; those for which `active` is false take buffer space only.
+    /// Each modality gets a concatenation of its active observables (in the order
+    /// modalities first appear; `image` modalities are not concatenated, as in robosuite).
+    pub fn new(specs: Vec<ObsSpec>, active: impl Fn(&ObsSpec) -> bool) -> Self {
+        let mut keys = Vec::with_capacity(specs.len());
+        let mut groups: Vec<Group> = Vec::new();
+        let mut at = 0;
+        for spec in specs {
+            let n = spec.len();
+            if !active(&spec) {
+                at += n;
+                continue;
+            }
+            let i = keys.len();
+            if spec.modality != "image" {
+                match groups.iter_mut().find(|g| g.key == spec.modality) {
+                    Some(g) => {
+                        g.members.push(i);
+                        g.len += spec.len();
+                    }
+                    None => groups.push(Group {
+                        key: spec.modality.clone(),
+                        members: vec![i],
+                        len: spec.len(),
+                    }),
+                }
+            }
+            keys.push((spec, at));
+            at += n;
+        }
+        for g in &mut groups {
+            g.key = format!("{}-state", g.key);
+        }
+        Self {
+            keys,
+            groups,
+            len: at,
+        }
+    }
+
+    /// The length of the flat buffer (inactive observables included).
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the layout has no values.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Every key of the dict, in order (observables, then concatenations).
+    pub fn key_names(&self) -> Vec<String> {
+        self.keys
+            .iter()
+            .map(|(k, _)| k.key.clone())
+            .chain(self.groups.iter().map(|g| g.key.clone()))
+            .collect()
+    }
+
+    /// The offset and length of an observable's values in the buffer.
+    pub fn range_of(&self, key: &str) -> Option<std::ops::Range<usize>> {
+        self.keys
+            .iter()
+            .find(|(k, _)| k.key == key)
+            .map(|(k, at)| *at..*at + k.len())
+    }
+
+    /// The observation space: a Dict of unbounded Boxes with each key's shape and dtype,
+    /// then one `float64` Box per concatenation.
+    ///
+    /// # Errors
+    /// A [`gym_core::Error::Space`] for duplicate keys.
+    pub fn space(&self) -> Result<DictSpace> {
+        let boxes = self
+            .keys
+            .iter()
+            .map(|(k, _)| (k.key.clone(), unbounded(&k.shape, k.dtype)));
+        let groups = self
+            .groups
+            .iter()
+            .map(|g| (g.key.clone(), unbounded(&[g.len], DType::F64)));
+        Ok(DictSpace::new(boxes.chain(groups))?)
+    }
+
+    fn group_values<'a>(&'a self, g: &'a Group, buf: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
+        g.members.iter().flat_map(move |&m| {
+            let (k, at) = &self.keys[m];
+            buf[*at..*at + k.len()].iter().copied()
+        })
+    }
+
+    /// The observation dict for a filled buffer.
+    pub fn to_dict(&self, buf: &[f64]) -> DictValue {
+        let mut out = DictValue::with_capacity(self.keys.len() + self.groups.len());
+        for (k, at) in &self.keys {
+            let values = buf[*at..*at + k.len()].to_vec();
+            out.insert(k.key.clone(), Value::Array(array(&k.shape, k.dtype, values)));
+        }
+        for g in &self.groups {
+            let values: Vec<f64> = self.group_values(g, buf).collect();
+            out.insert(g.key.clone(), Value::Array(array(&[g.len], DType::F64, values)));
+        }
+        out
+    }
+
+    /// Writes a filled buffer into `out` in place when `out` has this layout's keys (in
+    /// order), shapes and dtypes, as the previous observation does; otherwise replaces it
+    /// with [`ObsLayout::to_dict`]. In place, nothing is allocated.
+    pub fn write_dict(&self, buf: &[f64], out: &mut DictValue) {
+        if !self.matches(out) {
+            *out = self.to_dict(buf);
+            return;
+        }
+        let mut values = out.values_mut();
+        for (k, at) in &self.keys {
+            if let Some(Value::Array(a)) = values.next() {
+                let src = &buf[*at..*at + k.len()];
+                gym_core::for_each_array!(a, arr => arr
+                    .iter_mut()
+                    .zip(src)
+                    .for_each(|(d, s)| *d = Scalar::from_f64(*s)));
+            }
+        }
+        for g in &self.groups {
+            if let Some(Value::Array(a)) = values.next() {
+                let src = self.group_values(g, buf);
+                gym_core::for_each_array!(a, arr => arr
+                    .iter_mut()
+                    .zip(src)
+                    .for_each(|(d, s)| *d = Scalar::from_f64(s)));
+            }
+        }
+    }
+
+    /// Whether `dict` has this layout's keys in order with the same shapes and dtypes.
+    fn matches(&self, dict: &DictValue) -> bool {
+        if dict.len() != self.keys.len() + self.groups.len() {
+            return false;
+        }
+        let mut entries = dict.iter();
+        let keys_match = self.keys.iter().all(|(k, _)| {
+            matches!(entries.next(), Some((name, Value::Array(a)))
+                if *name == k.key && a.dtype() == k.dtype && a.shape() == k.shape.as_slice())
+        });
+        keys_match
+            && self.groups.iter().all(|g| {
+                matches!(entries.next(), Some((name, Value::Array(a)))
+                    if *name == g.key && a.dtype() == DType::F64 && a.shape() == [g.len])
+            })
+    }
+}
+
+fn unbounded(shape: &[usize], dtype: DType) -> AnySpace {
+    match dtype {
+        DType::I8 => BoxSpace::<i8>::unbounded(shape).into(),
+        DType::I16 => BoxSpace::<i16>::unbounded(shape).into(),
+        DType::I32 => BoxSpace::<i32>::unbounded(shape).into(),
+        DType::I64 => BoxSpace::<i64>::unbounded(shape).into(),
+        DType::U8 => BoxSpace::<u8>::uniform(0.0, 255.0, shape)
+            .map_or_else(|_| BoxSpace::<f64>::unbounded(shape).into(), Into::into),
+        DType::F32 => BoxSpace::<f32>::unbounded(shape).into(),
+        DType::F64 => BoxSpace::<f64>::unbounded(shape).into(),
+    }
+}
+
+fn array(shape: &[usize], dtype: DType, values: Vec<f64>) -> ArrayValue {
+    let f64s = ArrayD::from_shape_vec(IxDyn(shape), values).expect("layout lengths match shapes");
+    match dtype {
+        DType::F64 => ArrayValue::F64(f64s),
+        other => ArrayValue::F64(f64s).cast(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(key: &str, len: usize, dtype: DType, modality: &str) -> ObsSpec {
+        ObsSpec {
+            key: key.into(),
+            shape: vec![len],
+            dtype,
+            modality: modality.into(),
+        }
+    }
+
+    #[test]
+    fn modalities_concatenate_in_first_appearance_order() {
+        let layout = ObsLayout::new(
+            vec![
+                spec("robot0_a", 2, DType::F64, "robot0_proprio"),
+                spec("cube_pos", 3, DType::F64, "object"),
+                spec("hidden", 2, DType::F64, "object"),
+                spec("robot0_contact", 1, DType::I8, "robot0_proprio"),
+            ],
+            |s| s.key != "hidden",
+        );
+        assert_eq!(
+            layout.key_names(),
+            ["robot0_a", "cube_pos", "robot0_contact", "robot0_proprio-state", "object-state"]
+        );
+        let buf = [1.0, 2.0, 3.0, 4.0, 5.0, -1.0, -1.0, 1.0];
+        let d = layout.to_dict(&buf);
+        let proprio = d.get("robot0_proprio-state").unwrap().as_array().unwrap().to_f64_vec();
+        assert_eq!(proprio, [1.0, 2.0, 1.0]);
+        assert_eq!(d.get("robot0_contact").unwrap().as_array().unwrap().dtype(), DType::I8);
+        let mut out = d.clone();
+        let buf2 = [9.0, 8.0, 7.0, 6.0, 5.0, -1.0, -1.0, 0.0];
+        layout.write_dict(&buf2, &mut out);
+        assert_eq!(out, layout.to_dict(&buf2));
+        assert_eq!(layout.range_of("cube_pos"), Some(2..5));
+        assert_eq!(layout.space().unwrap().len(), 5);
+    }
+}

@@ -1,0 +1,195 @@
+//! robosuite 1.5.2's recorded behaviour (`tests/fixtures/robosuite/*.json`, written by
+//! `scripts/record_robosuite.py` from robosuite itself) and the comparison of this crate's
+//! environments with it.
+#![allow(dead_code)]
+
+use gym_core::{DictValue, Env};
+use std::collections::BTreeMap as IndexMap;
+use ndarray::{ArrayD, IxDyn};
+use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
+use serde::Deserialize;
+use std::path::PathBuf;
+
+/// One task's fixture.
+#[derive(Debug, Deserialize)]
+pub struct Fixture {
+    /// The task.
+    pub task: String,
+    /// The robot.
+    pub robot: String,
+    /// robosuite's counts (`nq`, `nv`, `nu`, `nbody`, ...).
+    pub counts: IndexMap<String, i64>,
+    /// Every element's name by kind, in model order.
+    pub names: IndexMap<String, Vec<String>>,
+    /// Recorded rollouts.
+    pub rollouts: Vec<Rollout>,
+    /// Initial object positions over many resets.
+    pub placement: Placement,
+}
+
+/// A recorded rollout from a reset.
+#[derive(Debug, Deserialize)]
+pub struct Rollout {
+    /// `"scripted"` or `"random"`.
+    pub kind: String,
+    /// robosuite's drawn task parameters, in `Task::save_state`'s layout.
+    pub task_state: Vec<f64>,
+    /// `[time, qpos, qvel]` after reset.
+    pub init_state: Vec<f64>,
+    /// The actions.
+    pub actions: Vec<Vec<f64>>,
+    /// After each action.
+    pub steps: Vec<RecordedStep>,
+}
+
+/// What robosuite reported after one step.
+#[derive(Debug, Deserialize)]
+pub struct RecordedStep {
+    /// `[time, qpos, qvel]`.
+    pub state: Vec<f64>,
+    /// Chosen observations, flattened.
+    pub obs: IndexMap<String, Vec<f64>>,
+    /// The reward.
+    pub reward: f64,
+    /// `_check_success()`.
+    pub success: bool,
+    /// Whether a robot or gripper geom touched something outside the robot.
+    pub robot_contact: bool,
+}
+
+/// Initial positions over resets.
+#[derive(Debug, Deserialize)]
+pub struct Placement {
+    /// The number of resets.
+    pub resets: usize,
+    /// Per object (root body): smallest and largest position.
+    pub objects: IndexMap<String, Bounds>,
+}
+
+/// Smallest and largest position.
+#[derive(Debug, Deserialize)]
+pub struct Bounds {
+    /// Smallest x, y, z.
+    pub min: [f64; 3],
+    /// Largest x, y, z.
+    pub max: [f64; 3],
+}
+
+/// The folder of the fixtures.
+pub fn fixture_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/robosuite")
+}
+
+/// Loads the fixture of `task`.
+pub fn load(task: &str) -> Fixture {
+    let path = fixture_dir().join(format!("{task}.json"));
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The tasks that have a fixture.
+pub fn recorded_tasks() -> Vec<String> {
+    let mut out: Vec<String> = std::fs::read_dir(fixture_dir())
+        .expect("the fixture folder exists")
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().into_string().ok()?;
+            name.strip_suffix(".json").map(str::to_owned)
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// The largest differences seen replaying one rollout.
+#[derive(Debug, Default, Clone)]
+pub struct ReplayErrors {
+    /// Robot joint positions and grip-site position before the robot first touches
+    /// anything (rad / m).
+    pub free_arm: f64,
+    /// Every recorded position (joints, grip site, objects) over the whole rollout.
+    pub all_positions: f64,
+    /// Robot joint positions and grip-site position after the first touch.
+    pub contact_arm: f64,
+    /// Object positions over the whole rollout (objects rest and slide on tables).
+    pub objects: f64,
+    /// Rewards.
+    pub reward: f64,
+    /// Steps whose success differs.
+    pub success_mismatches: usize,
+    /// The step of the first touch, if any.
+    pub first_contact: Option<usize>,
+    /// Steps compared.
+    pub steps: usize,
+}
+
+/// The values of an observation key as `f64`.
+pub fn values(obs: &DictValue, key: &str) -> Vec<f64> {
+    obs.get(key)
+        .and_then(|v| v.as_array())
+        .map(|a| a.to_f64_vec())
+        .unwrap_or_else(|| panic!("no observation `{key}`"))
+}
+
+fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+/// Position keys of a robot (compared at the arm tolerance).
+fn is_arm_key(key: &str) -> bool {
+    key.starts_with("robot") && (key.ends_with("joint_pos") || key.ends_with("eef_pos"))
+}
+
+/// Object position keys (world positions of objects).
+fn is_object_pos_key(key: &str) -> bool {
+    !key.starts_with("robot") && key.ends_with("_pos") && !key.contains("_to_") && !key.starts_with("gripper")
+}
+
+/// An environment for `fixture` with robosuite's defaults.
+pub fn env_for(fixture: &Fixture) -> RobosuiteEnv {
+    make_with(
+        &fixture.task,
+        EnvConfig::default().with_robots([fixture.robot.clone()]),
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", fixture.task))
+}
+
+/// Replays `rollout` from its recorded reset in `env` and measures the differences.
+pub fn replay(env: &mut RobosuiteEnv, rollout: &Rollout) -> ReplayErrors {
+    env.reset_to_state(&rollout.task_state, &rollout.init_state)
+        .expect("the recorded reset state loads");
+    let mut e = ReplayErrors {
+        first_contact: rollout.steps.iter().position(|s| s.robot_contact),
+        ..Default::default()
+    };
+    for (i, (action, rec)) in rollout.actions.iter().zip(&rollout.steps).enumerate() {
+        let a = ArrayD::from_shape_vec(IxDyn(&[action.len()]), action.clone()).unwrap();
+        let step = env.step(&a).expect("the recorded action steps");
+        let touched = e.first_contact.is_some_and(|c| i >= c);
+        for (key, want) in &rec.obs {
+            let got = values(&step.observation, key);
+            let d = max_abs_diff(&got, want);
+            if is_arm_key(key) {
+                if touched {
+                    e.contact_arm = e.contact_arm.max(d);
+                } else {
+                    e.free_arm = e.free_arm.max(d);
+                }
+                e.all_positions = e.all_positions.max(d);
+            } else if is_object_pos_key(key) {
+                e.objects = e.objects.max(d);
+                e.all_positions = e.all_positions.max(d);
+            }
+        }
+        e.reward = e.reward.max((step.reward - rec.reward).abs());
+        if step.info.get_bool("success") != Some(rec.success) {
+            e.success_mismatches += 1;
+        }
+        e.steps += 1;
+        if step.done() {
+            break;
+        }
+    }
+    e
+}

@@ -1,0 +1,121 @@
+//! robosuite-rs against robosuite 1.5.2 itself: the recorded scenes, rollouts and
+//! placements of `tests/fixtures/robosuite` (see `scripts/record_robosuite.py`).
+//!
+//! Tolerances (MuJoCo 3.17.0 here, 3.3.7 in the recording): robot joints and grip site in
+//! free motion within 1e-5 (rad / m); every position within 2 mm over the rollout once the
+//! robot touches something, and objects (which rest and slide on tables) within 2 mm
+//! throughout; success equal at every step; rewards within 1e-3.
+
+mod common;
+
+use common::fixtures::{env_for, load, recorded_tasks, replay};
+use gym_core::Env;
+use mujoco_rs::wrappers::mj_model::MjtObjBase as Obj;
+
+const FREE_ARM_TOL: f64 = 1e-5;
+const CONTACT_TOL: f64 = 2e-3;
+const REWARD_TOL: f64 = 1e-3;
+
+#[test]
+fn every_registered_task_has_a_fixture() {
+    let recorded = recorded_tasks();
+    for name in robosuite_env::ENV_NAMES {
+        assert!(recorded.iter().any(|r| r == name), "{name} has no recording");
+    }
+}
+
+#[test]
+fn scene_names_and_counts_equal_robosuites() {
+    for task in recorded_tasks() {
+        let fixture = load(&task);
+        let env = env_for(&fixture);
+        let m = env.sim().model();
+        let f = m.ffi();
+        let ours = [
+            ("nq", f.nq),
+            ("nv", f.nv),
+            ("nu", f.nu),
+            ("nbody", f.nbody),
+            ("njnt", f.njnt),
+            ("ngeom", f.ngeom),
+            ("nsite", f.nsite),
+            ("nmesh", f.nmesh),
+            ("nsensor", f.nsensor),
+            ("ncam", f.ncam),
+        ];
+        for (k, v) in ours {
+            assert_eq!(i64::from(v), fixture.counts[k], "{task}: {k}");
+        }
+        for (kind, obj) in [
+            ("body", Obj::mjOBJ_BODY),
+            ("joint", Obj::mjOBJ_JOINT),
+            ("geom", Obj::mjOBJ_GEOM),
+            ("site", Obj::mjOBJ_SITE),
+            ("actuator", Obj::mjOBJ_ACTUATOR),
+            ("sensor", Obj::mjOBJ_SENSOR),
+            ("camera", Obj::mjOBJ_CAMERA),
+            ("mesh", Obj::mjOBJ_MESH),
+        ] {
+            let want = &fixture.names[kind];
+            let got: Vec<String> = (0..want.len())
+                .map(|i| m.id_to_name(obj, i).unwrap_or("").to_owned())
+                .collect();
+            assert_eq!(&got, want, "{task}: {kind} names");
+        }
+    }
+}
+
+#[test]
+fn rollouts_replay_within_tolerance() {
+    for task in recorded_tasks() {
+        let fixture = load(&task);
+        let mut env = env_for(&fixture);
+        for rollout in &fixture.rollouts {
+            let e = replay(&mut env, rollout);
+            let what = format!("{task} {} rollout: {e:?}", rollout.kind);
+            println!("{what}");
+            assert_eq!(e.steps, rollout.steps.len(), "{what}");
+            assert!(e.free_arm <= FREE_ARM_TOL, "{what}");
+            assert!(e.contact_arm <= CONTACT_TOL, "{what}");
+            assert!(e.objects <= CONTACT_TOL, "{what}");
+            assert_eq!(e.success_mismatches, 0, "{what}");
+            assert!(e.reward <= REWARD_TOL, "{what}");
+        }
+    }
+}
+
+#[test]
+fn placement_ranges_equal_robosuites() {
+    for task in recorded_tasks() {
+        let fixture = load(&task);
+        let mut env = env_for(&fixture);
+        let n = fixture.placement.resets;
+        for (object, want) in &fixture.placement.objects {
+            let body = robosuite_env::sim::body_id(env.sim().model(), &format!("{object}_main"))
+                .or_else(|_| robosuite_env::sim::body_id(env.sim().model(), object))
+                .unwrap_or_else(|e| panic!("{task}: {e}"));
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for seed in 0..n as u64 {
+                env.reset(Some(seed), None).unwrap();
+                let p = env.sim().data().xpos()[body];
+                for i in 0..3 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+            for i in 0..3 {
+                // n uniform draws fall short of a bound by about range / n; allow 5 %.
+                let range = want.max[i] - want.min[i];
+                let tol = 0.05 * range + 1e-9;
+                assert!(
+                    (lo[i] - want.min[i]).abs() <= tol && (hi[i] - want.max[i]).abs() <= tol,
+                    "{task} {object} axis {i}: ours [{}, {}], robosuite [{}, {}]",
+                    lo[i],
+                    hi[i],
+                    want.min[i],
+                    want.max[i]
+                );
+            }
+        }
+    }
+}

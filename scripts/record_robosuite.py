@@ -1,0 +1,252 @@
+#!/usr/bin/env python3
+"""Record robosuite 1.5.2's own behaviour as test fixtures for robosuite-rs.
+
+Run it with a Python that has robosuite 1.5.2 (and mujoco 3.3.7) installed, for example
+through scripts/record_robosuite.sh, which makes such a virtualenv. It writes, per task, one
+JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
+
+* the compiled scene's counts (nq, nv, nu, nbody, ...) and the names of every body, joint,
+  geom, site, actuator, sensor, camera and mesh, in model order;
+* rollouts: the task parameters robosuite drew (Lift's cube size, Wipe's markers, ...), the
+  state [time, qpos, qvel] right after reset, a fixed action sequence (a scripted reach,
+  grasp and lift, or seeded random actions), and after every step the state, chosen
+  observations, the reward, success and whether the robot touched anything;
+* placement: over many resets, the smallest and largest initial position of every object.
+
+Usage: record_robosuite.py [--out DIR] [--resets N] [TASK ...]  (default: every task)
+"""
+import argparse
+import json
+import os
+import sys
+
+os.environ.setdefault("MUJOCO_GL", "disable")
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+import robosuite  # noqa: E402
+import robosuite as suite  # noqa: E402
+
+OBJ = {
+    "body": mujoco.mjtObj.mjOBJ_BODY,
+    "joint": mujoco.mjtObj.mjOBJ_JOINT,
+    "geom": mujoco.mjtObj.mjOBJ_GEOM,
+    "site": mujoco.mjtObj.mjOBJ_SITE,
+    "actuator": mujoco.mjtObj.mjOBJ_ACTUATOR,
+    "sensor": mujoco.mjtObj.mjOBJ_SENSOR,
+    "camera": mujoco.mjtObj.mjOBJ_CAMERA,
+    "mesh": mujoco.mjtObj.mjOBJ_MESH,
+}
+COUNTS = {
+    "body": "nbody",
+    "joint": "njnt",
+    "geom": "ngeom",
+    "site": "nsite",
+    "actuator": "nu",
+    "sensor": "nsensor",
+    "camera": "ncam",
+    "mesh": "nmesh",
+}
+
+
+def make(task, seed, **kwargs):
+    return suite.make(
+        task,
+        robots=kwargs.pop("robots", "Panda"),
+        has_renderer=False,
+        has_offscreen_renderer=False,
+        use_camera_obs=False,
+        seed=seed,
+        **kwargs,
+    )
+
+
+def scene(env):
+    m = env.sim.model._model
+    names = {k: [mujoco.mj_id2name(m, t, i) or "" for i in range(getattr(m, COUNTS[k]))] for k, t in OBJ.items()}
+    counts = {c: int(getattr(m, c)) for c in ["nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nmesh", "nsensor", "ncam"]}
+    return counts, names
+
+
+def flat_state(env):
+    return [float(x) for x in env.sim.get_state().flatten()]
+
+
+def robot_touches(env):
+    """Whether any contact pairs a robot or gripper geom with a geom outside the robot."""
+    m, d = env.sim.model._model, env.sim.data._data
+    robot_geoms = set()
+    for r in env.robots:
+        for g in r.robot_model.contact_geoms:
+            robot_geoms.add(mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, g))
+        for gripper in r.gripper.values():
+            for g in gripper.contact_geoms:
+                robot_geoms.add(mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, g))
+    for c in d.contact[: d.ncon]:
+        a, b = int(c.geom1), int(c.geom2)
+        if (a in robot_geoms) != (b in robot_geoms):
+            return True
+    return False
+
+
+# ---------------------------------------------------------------------------------------
+# Task parameters: what robosuite drew at its hard reset that the state does not hold, in
+# the layout robosuite-rs's Task::save_state uses.
+
+
+def task_state(task, env):
+    if task == "Lift":
+        return [float(x) for x in env.cube.size]
+    return []
+
+
+# Observation keys recorded per step (beside the full state).
+def obs_keys(task, obs):
+    skip = ("-state", "_cos", "_sin", "joint_acc", "eef_quat_site", "gripper_qvel")
+    return [k for k in obs if not k.endswith(skip) and not any(s in k for s in skip)]
+
+
+# ---------------------------------------------------------------------------------------
+# Scripted policies: reach a point above a target, descend, close, lift. Targets come from
+# robosuite's own observations, so the recorded actions are robosuite's closed loop.
+
+
+def toward(eef, target, gain=10.0):
+    return np.clip((np.asarray(target) - np.asarray(eef)) * gain, -1.0, 1.0)
+
+
+def pick_policy(obj_key, lift_height=0.15, grasp_depth=-0.005):
+    state = {"phase": 0, "t": 0, "start": None}
+
+    def act(obs):
+        eef = obs["robot0_eef_pos"]
+        obj = obs[obj_key]
+        if state["start"] is None:
+            state["start"] = np.array(obj)
+        state["t"] += 1
+        grip = -1.0
+        if state["phase"] == 0:
+            target = obj + np.array([0, 0, 0.08])
+            if np.linalg.norm(target - eef) < 0.01 or state["t"] > 30:
+                state["phase"], state["t"] = 1, 0
+        elif state["phase"] == 1:
+            target = obj + np.array([0, 0, grasp_depth])
+            if np.linalg.norm(target - eef) < 0.008 or state["t"] > 20:
+                state["phase"], state["t"] = 2, 0
+        elif state["phase"] == 2:
+            target, grip = eef, 1.0
+            if state["t"] > 8:
+                state["phase"], state["t"] = 3, 0
+        else:
+            target, grip = state["start"] + np.array([0, 0, lift_height]), 1.0
+        a = np.zeros(7)
+        a[:3] = toward(eef, target)
+        a[6] = grip
+        return a
+
+    return act
+
+
+def random_policy(seed, dim):
+    rng = np.random.default_rng(seed)
+    return lambda obs: rng.uniform(-1.0, 1.0, dim)
+
+
+POLICIES = {
+    "Lift": [("scripted", lambda env: pick_policy("cube_pos"), 80), ("random", lambda env: random_policy(7, env.action_dim), 60)],
+}
+
+
+def rollout(task, seed, make_policy, steps):
+    env = make(task, seed)
+    obs = env.reset()
+    record = {
+        "task_state": task_state(task, env),
+        "init_state": flat_state(env),
+        "actions": [],
+        "steps": [],
+    }
+    keys = obs_keys(task, obs)
+    policy = make_policy(env)
+    for _ in range(steps):
+        action = np.asarray(policy(obs), dtype=np.float64)
+        obs, reward, done, _ = env.step(action)
+        record["actions"].append([float(x) for x in action])
+        record["steps"].append(
+            {
+                "state": flat_state(env),
+                "obs": {k: np.asarray(obs[k], dtype=np.float64).reshape(-1).tolist() for k in keys},
+                "reward": float(reward),
+                "success": bool(env._check_success()),
+                "robot_contact": robot_touches(env),
+            }
+        )
+        if done:
+            break
+    env.close()
+    return record
+
+
+def placement(task, resets):
+    """Smallest and largest initial position (and yaw range) of every object over resets."""
+    env = make(task, 1234)
+    m = env.sim.model._model
+    lo, hi = {}, {}
+    for _ in range(resets):
+        env.reset()
+        d = env.sim.data._data
+        for obj in env.model.mujoco_objects:
+            bid = mujoco.mj_name2id(env.sim.model._model, mujoco.mjtObj.mjOBJ_BODY, obj.root_body)
+            p = np.array(d.xpos[bid])
+            name = obj.name
+            lo[name] = np.minimum(lo.get(name, p), p)
+            hi[name] = np.maximum(hi.get(name, p), p)
+    env.close()
+    del m
+    return {"resets": resets, "objects": {k: {"min": lo[k].tolist(), "max": hi[k].tolist()} for k in lo}}
+
+
+def record(task, out, resets):
+    env = make(task, 0)
+    env.reset()
+    counts, names = scene(env)
+    env.close()
+    data = {
+        "task": task,
+        "robot": "Panda",
+        "robosuite": robosuite.__version__,
+        "mujoco": mujoco.__version__,
+        "counts": counts,
+        "names": names,
+        "rollouts": [],
+        "placement": placement(task, resets),
+    }
+    for i, (kind, make_policy, steps) in enumerate(POLICIES[task]):
+        r = rollout(task, 100 + i, make_policy, steps)
+        r["kind"] = kind
+        data["rollouts"].append(r)
+    path = os.path.join(out, f"{task}.json")
+    with open(path, "w") as f:
+        json.dump(data, f, separators=(",", ":"))
+        f.write("\n")
+    n = sum(len(r["steps"]) for r in data["rollouts"])
+    print(f"{task}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite"))
+    parser.add_argument("--resets", type=int, default=200)
+    parser.add_argument("tasks", nargs="*", default=list(POLICIES))
+    args = parser.parse_args()
+    if robosuite.__version__ != "1.5.2":
+        sys.exit(f"record_robosuite: robosuite {robosuite.__version__} is installed, 1.5.2 is needed")
+    os.makedirs(args.out, exist_ok=True)
+    for task in args.tasks:
+        if task not in POLICIES:
+            sys.exit(f"record_robosuite: unknown task {task}; known: {', '.join(POLICIES)}")
+        record(task, args.out, args.resets)
+
+
+if __name__ == "__main__":
+    main()
