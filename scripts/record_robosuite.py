@@ -9,8 +9,8 @@ JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
   geom, site, actuator, sensor, camera and mesh, in model order;
 * rollouts: the task parameters robosuite drew (Lift's cube size, Wipe's markers, ...), the
   state [time, qpos, qvel] right after reset, a fixed action sequence (a scripted reach,
-  grasp and lift, or seeded random actions), and after every step the state, chosen
-  observations, the reward, success and whether the robot touched anything;
+  grasp and lift, or seeded random actions), and after every step chosen observations (to
+  12 significant digits), the reward, success and whether the robot touched anything;
 * placement: over many resets, the smallest and largest initial position of every object.
 
 Usage: record_robosuite.py [--out DIR] [--resets N] [TASK ...]  (default: every task)
@@ -66,6 +66,11 @@ def scene(env):
     names = {k: [mujoco.mj_id2name(m, t, i) or "" for i in range(getattr(m, COUNTS[k]))] for k, t in OBJ.items()}
     counts = {c: int(getattr(m, c)) for c in ["nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nmesh", "nsensor", "ncam"]}
     return counts, names
+
+
+def short(x):
+    """A per-step figure to 12 significant digits (far below every tolerance)."""
+    return float(f"{x:.12g}")
 
 
 def flat_state(env):
@@ -174,8 +179,7 @@ def rollout(task, seed, make_policy, steps):
         record["actions"].append([float(x) for x in action])
         record["steps"].append(
             {
-                "state": flat_state(env),
-                "obs": {k: np.asarray(obs[k], dtype=np.float64).reshape(-1).tolist() for k in keys},
+                "obs": {k: [short(x) for x in np.asarray(obs[k], dtype=np.float64).reshape(-1)] for k in keys},
                 "reward": float(reward),
                 "success": bool(env._check_success()),
                 "robot_contact": robot_touches(env),
@@ -188,7 +192,7 @@ def rollout(task, seed, make_policy, steps):
 
 
 def placement(task, resets):
-    """Smallest and largest initial position (and yaw range) of every object over resets."""
+    """Smallest and largest initial position of every object's root body over resets."""
     env = make(task, 1234)
     m = env.sim.model._model
     lo, hi = {}, {}
@@ -198,12 +202,12 @@ def placement(task, resets):
         for obj in env.model.mujoco_objects:
             bid = mujoco.mj_name2id(env.sim.model._model, mujoco.mjtObj.mjOBJ_BODY, obj.root_body)
             p = np.array(d.xpos[bid])
-            name = obj.name
+            name = obj.root_body
             lo[name] = np.minimum(lo.get(name, p), p)
             hi[name] = np.maximum(hi.get(name, p), p)
     env.close()
     del m
-    return {"resets": resets, "objects": {k: {"min": lo[k].tolist(), "max": hi[k].tolist()} for k in lo}}
+    return {"resets": resets, "bodies": {k: {"min": lo[k].tolist(), "max": hi[k].tolist()} for k in lo}}
 
 
 def record(task, out, resets):

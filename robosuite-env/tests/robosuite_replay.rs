@@ -90,9 +90,8 @@ fn placement_ranges_equal_robosuites() {
         let fixture = load(&task);
         let mut env = env_for(&fixture);
         let n = fixture.placement.resets;
-        for (object, want) in &fixture.placement.objects {
-            let body = robosuite_env::sim::body_id(env.sim().model(), &format!("{object}_main"))
-                .or_else(|_| robosuite_env::sim::body_id(env.sim().model(), object))
+        for (object, want) in &fixture.placement.bodies {
+            let body = robosuite_env::sim::body_id(env.sim().model(), object)
                 .unwrap_or_else(|e| panic!("{task}: {e}"));
             let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
             for seed in 0..n as u64 {

@@ -45,8 +45,6 @@ pub struct Rollout {
 /// What robosuite reported after one step.
 #[derive(Debug, Deserialize)]
 pub struct RecordedStep {
-    /// `[time, qpos, qvel]`.
-    pub state: Vec<f64>,
     /// Chosen observations, flattened.
     pub obs: IndexMap<String, Vec<f64>>,
     /// The reward.
@@ -62,8 +60,8 @@ pub struct RecordedStep {
 pub struct Placement {
     /// The number of resets.
     pub resets: usize,
-    /// Per object (root body): smallest and largest position.
-    pub objects: IndexMap<String, Bounds>,
+    /// Per object root body: smallest and largest position.
+    pub bodies: IndexMap<String, Bounds>,
 }
 
 /// Smallest and largest position.
