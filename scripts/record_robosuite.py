@@ -13,7 +13,8 @@ JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
   12 significant digits), the reward, success and whether the robot touched anything;
 * placement: over many resets, the smallest and largest initial position of every object.
 
-Usage: record_robosuite.py [--out DIR] [--resets N] [TASK ...]  (default: every task)
+Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
+(default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
 """
 import argparse
 import json
@@ -162,8 +163,8 @@ POLICIES = {
 }
 
 
-def rollout(task, seed, make_policy, steps):
-    env = make(task, seed)
+def rollout(task, robot, seed, make_policy, steps):
+    env = make(task, seed, robots=robot)
     obs = env.reset()
     record = {
         "task_state": task_state(task, env),
@@ -191,9 +192,9 @@ def rollout(task, seed, make_policy, steps):
     return record
 
 
-def placement(task, resets):
+def placement(task, robot, resets):
     """Smallest and largest initial position of every object's root body over resets."""
-    env = make(task, 1234)
+    env = make(task, 1234, robots=robot)
     m = env.sim.model._model
     lo, hi = {}, {}
     for _ in range(resets):
@@ -210,37 +211,39 @@ def placement(task, resets):
     return {"resets": resets, "bodies": {k: {"min": lo[k].tolist(), "max": hi[k].tolist()} for k in lo}}
 
 
-def record(task, out, resets):
-    env = make(task, 0)
+def record(task, robot, out, resets):
+    env = make(task, 0, robots=robot)
     env.reset()
     counts, names = scene(env)
     env.close()
     data = {
         "task": task,
-        "robot": "Panda",
+        "robot": robot,
         "robosuite": robosuite.__version__,
         "mujoco": mujoco.__version__,
         "counts": counts,
         "names": names,
         "rollouts": [],
-        "placement": placement(task, resets),
+        "placement": placement(task, robot, resets),
     }
     for i, (kind, make_policy, steps) in enumerate(POLICIES[task]):
-        r = rollout(task, 100 + i, make_policy, steps)
+        r = rollout(task, robot, 100 + i, make_policy, steps)
         r["kind"] = kind
         data["rollouts"].append(r)
-    path = os.path.join(out, f"{task}.json")
+    stem = task if robot == "Panda" else f"{task}-{robot}"
+    path = os.path.join(out, f"{stem}.json")
     with open(path, "w") as f:
         json.dump(data, f, separators=(",", ":"))
         f.write("\n")
     n = sum(len(r["steps"]) for r in data["rollouts"])
-    print(f"{task}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
+    print(f"{stem}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite"))
     parser.add_argument("--resets", type=int, default=200)
+    parser.add_argument("--robot", default="Panda")
     parser.add_argument("tasks", nargs="*", default=list(POLICIES))
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
@@ -249,7 +252,7 @@ def main():
     for task in args.tasks:
         if task not in POLICIES:
             sys.exit(f"record_robosuite: unknown task {task}; known: {', '.join(POLICIES)}")
-        record(task, args.out, args.resets)
+        record(task, args.robot, args.out, args.resets)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 //! camera and mesh in model order — the figures to set beside robosuite's own scene.
 //! With `--xml`, prints the composed MJCF instead (robosuite's `get_xml()`).
 //!
-//! `cargo run -p robosuite-env --example scene_info -- Lift [--xml]`
+//! `cargo run -p robosuite-env --example scene_info -- Lift [--robot Sawyer] [--xml]`
 
 use mujoco_rs::wrappers::mj_model::MjtObjBase as Obj;
 
@@ -11,8 +11,13 @@ fn main() -> Result<(), gym_core::Error> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let xml = args.iter().any(|a| a == "--xml");
     args.retain(|a| a != "--xml");
+    let mut config = robosuite_env::EnvConfig::default();
+    if let Some(at) = args.iter().position(|a| a == "--robot") {
+        let robot = args.get(at + 1).cloned().unwrap_or_default();
+        config = config.with_robots([robot]);
+        args.drain(at..(at + 2).min(args.len()));
+    }
     let name = args.first().map_or("Lift", String::as_str);
-    let config = robosuite_env::EnvConfig::default();
     if xml {
         println!("{}", robosuite_env::scene_xml(name, &config)?);
         return Ok(());

@@ -41,9 +41,8 @@ impl Assets {
     /// or when no cache holds them; the message says how to fix it.
     pub fn locate() -> Result<Self> {
         if let Some(dir) = std::env::var_os(ASSETS_ENV) {
-            return Self::at(PathBuf::from(dir)).map_err(|e| {
-                Error::Model(format!("{ASSETS_ENV} is set, but {e}"))
-            });
+            return Self::at(PathBuf::from(dir))
+                .map_err(|e| Error::Model(format!("{ASSETS_ENV} is set, but {e}")));
         }
         let mut tried = Vec::new();
         for cache in cache_candidates() {
@@ -189,7 +188,12 @@ mod tests {
             assets.package().parent().unwrap().to_path_buf(),
             root.clone(),
         ] {
-            assert_eq!(Assets::at(&dir).unwrap(), assets, "layout {}", dir.display());
+            assert_eq!(
+                Assets::at(&dir).unwrap(),
+                assets,
+                "layout {}",
+                dir.display()
+            );
         }
         assert!(assets.file("robots/panda/robot.xml").is_ok());
     }
@@ -197,7 +201,10 @@ mod tests {
     #[test]
     fn missing_files_and_folders_are_errors_that_say_how_to_fix() {
         let assets = Assets::locate().unwrap();
-        let err = assets.file("robots/nope/robot.xml").unwrap_err().to_string();
+        let err = assets
+            .file("robots/nope/robot.xml")
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("robots/nope/robot.xml"), "{err}");
         assert!(err.contains("fetch_robosuite.py"), "{err}");
         let err = Assets::at("/definitely/not/here").unwrap_err().to_string();

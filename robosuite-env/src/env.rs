@@ -183,10 +183,18 @@ impl RobosuiteEnv {
     ///
     /// # Errors
     /// As [`RobosuiteEnv::from_scene_xml`]; [`Error::Model`] when the file cannot be read.
-    pub fn from_scene_file(spec: &dyn TaskSpec, path: impl AsRef<Path>, config: EnvConfig) -> Result<Self> {
+    pub fn from_scene_file(
+        spec: &dyn TaskSpec,
+        path: impl AsRef<Path>,
+        config: EnvConfig,
+    ) -> Result<Self> {
         let path = path.as_ref();
-        let xml = std::fs::read_to_string(path)
-            .map_err(|e| Error::Model(format!("cannot read the scene file {}: {e}", path.display())))?;
+        let xml = std::fs::read_to_string(path).map_err(|e| {
+            Error::Model(format!(
+                "cannot read the scene file {}: {e}",
+                path.display()
+            ))
+        })?;
         Self::from_scene_xml(spec, &xml, config)
     }
 
@@ -393,7 +401,11 @@ impl RobosuiteEnv {
     /// # Errors
     /// [`Error::InvalidArgument`] for a task state or state of the wrong length or with
     /// non-finite values (nothing is changed then); [`Error::Closed`] after `close`.
-    pub fn reset_to_state(&mut self, task_state: &[f64], state: &[f64]) -> Result<(DictValue, Info)> {
+    pub fn reset_to_state(
+        &mut self,
+        task_state: &[f64],
+        state: &[f64],
+    ) -> Result<(DictValue, Info)> {
         if self.phase == Phase::Closed {
             return Err(Error::Closed);
         }
@@ -410,10 +422,12 @@ impl RobosuiteEnv {
         self.task.load_state(&mut self.sim, task_state)?;
         self.phase = Phase::NeedsReset;
         self.sim.reset_data();
+        for robot in &mut self.robots {
+            robot.reset_to(&mut self.sim, state);
+        }
         self.task.clear_observation_cache();
         self.sim.set_state(state)?;
         for robot in &mut self.robots {
-            robot.zero_gripper_commands();
             robot.rebase(&self.sim);
         }
         self.begin_episode()
@@ -477,7 +491,8 @@ impl RobosuiteEnv {
 
     /// The reward of the current simulator state.
     pub fn reward(&self) -> f64 {
-        self.task.reward(&self.sim, &self.robots, &self.reward_config())
+        self.task
+            .reward(&self.sim, &self.robots, &self.reward_config())
     }
 
     /// Whether the task is solved in the current simulator state.

@@ -78,18 +78,22 @@ pub fn orientation_error(desired: &Matrix3<f64>, current: &Matrix3<f64>) -> Vect
 /// robosuite's `axisangle2quat`: a rotation vector to an `xyzw` quaternion (identity for
 /// an exactly zero vector).
 pub fn axisangle2quat(v: &Vector3<f64>) -> [f64; 4] {
-    let angle = v.norm();
+    // NumPy's norm sums the squares in order; the result feeds a float32 rounding, so even
+    // one ulp here can change robosuite's goal orientation.
+    let angle = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     if angle == 0.0 {
         return [0.0, 0.0, 0.0, 1.0];
     }
-    let axis = v / angle;
+    let axis = [v[0] / angle, v[1] / angle, v[2] / angle];
     let s = (angle / 2.0).sin();
     [axis[0] * s, axis[1] * s, axis[2] * s, (angle / 2.0).cos()]
 }
 
-/// robosuite's `quat2mat` for an `xyzw` quaternion, which rounds the quaternion to float32
-/// and forms the off-diagonal products in float32 (the diagonal `1 − a − b` in float64,
-/// as NumPy 1.x promotes a Python float with a float32 scalar).
+/// robosuite's `quat2mat` (numba-compiled) for an `xyzw` quaternion, to the bit: the
+/// quaternion is rounded to float32; its squared norm is BLAS `sdot`'s (float32 products
+/// summed in float64, rounded to float32); each component is scaled by `sqrt(2 / n)` in
+/// float64 and stored back as float32; the products are formed in float32, the off-diagonal
+/// sums in float32 and the diagonal `1 − a − b` in float64.
 pub fn quat2mat_f32(q_xyzw: [f64; 4]) -> Matrix3<f64> {
     let q = [
         q_xyzw[3] as f32,
@@ -97,12 +101,12 @@ pub fn quat2mat_f32(q_xyzw: [f64; 4]) -> Matrix3<f64> {
         q_xyzw[1] as f32,
         q_xyzw[2] as f32,
     ];
-    let n: f32 = q.iter().map(|v| v * v).sum();
+    let n = q.iter().fold(0.0f64, |acc, v| acc + f64::from(v * v)) as f32;
     if f64::from(n) < 4.0 * f64::EPSILON {
         return Matrix3::identity();
     }
-    let s = (2.0 / f64::from(n)).sqrt() as f32;
-    let q = q.map(|v| v * s);
+    let s = (2.0 / f64::from(n)).sqrt();
+    let q = q.map(|v| (f64::from(v) * s) as f32);
     let o = |i: usize, j: usize| q[i] * q[j];
     let d = |i: usize, j: usize| 1.0 - f64::from(o(i, i)) - f64::from(o(j, j));
     let f = |x: f32| f64::from(x);
@@ -154,7 +158,6 @@ pub fn mat2quat(m: &Matrix3<f64>) -> [f64; 4] {
     let sign = if w < 0.0 { -1.0 } else { 1.0 };
     [sign * x / n, sign * y / n, sign * z / n, sign * w / n]
 }
-
 
 /// `wxyz` → `xyzw` (MuJoCo's order to robosuite's observation order).
 pub fn xyzw(q: [f64; 4]) -> [f64; 4] {

@@ -61,7 +61,9 @@ impl<C> Clone for Observable<C> {
 
 impl<C> std::fmt::Debug for Observable<C> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Observable").field("spec", &self.spec).finish()
+        f.debug_struct("Observable")
+            .field("spec", &self.spec)
+            .finish()
     }
 }
 
@@ -232,11 +234,17 @@ impl ObsLayout {
         let mut out = DictValue::with_capacity(self.keys.len() + self.groups.len());
         for (k, at) in &self.keys {
             let values = buf[*at..*at + k.len()].to_vec();
-            out.insert(k.key.clone(), Value::Array(array(&k.shape, k.dtype, values)));
+            out.insert(
+                k.key.clone(),
+                Value::Array(array(&k.shape, k.dtype, values)),
+            );
         }
         for g in &self.groups {
             let values: Vec<f64> = self.group_values(g, buf).collect();
-            out.insert(g.key.clone(), Value::Array(array(&[g.len], DType::F64, values)));
+            out.insert(
+                g.key.clone(),
+                Value::Array(array(&[g.len], DType::F64, values)),
+            );
         }
         out
     }
@@ -335,13 +343,27 @@ mod tests {
         );
         assert_eq!(
             layout.key_names(),
-            ["robot0_a", "cube_pos", "robot0_contact", "robot0_proprio-state", "object-state"]
+            [
+                "robot0_a",
+                "cube_pos",
+                "robot0_contact",
+                "robot0_proprio-state",
+                "object-state"
+            ]
         );
         let buf = [1.0, 2.0, 3.0, 4.0, 5.0, -1.0, -1.0, 1.0];
         let d = layout.to_dict(&buf);
-        let proprio = d.get("robot0_proprio-state").unwrap().as_array().unwrap().to_f64_vec();
+        let proprio = d
+            .get("robot0_proprio-state")
+            .unwrap()
+            .as_array()
+            .unwrap()
+            .to_f64_vec();
         assert_eq!(proprio, [1.0, 2.0, 1.0]);
-        assert_eq!(d.get("robot0_contact").unwrap().as_array().unwrap().dtype(), DType::I8);
+        assert_eq!(
+            d.get("robot0_contact").unwrap().as_array().unwrap().dtype(),
+            DType::I8
+        );
         let mut out = d.clone();
         let buf2 = [9.0, 8.0, 7.0, 6.0, 5.0, -1.0, -1.0, 0.0];
         layout.write_dict(&buf2, &mut out);

@@ -4,7 +4,10 @@
 //! Tolerances (MuJoCo 3.17.0 here, 3.3.7 in the recording): robot joints and grip site in
 //! free motion within 1e-5 (rad / m); every position within 2 mm over the rollout once the
 //! robot touches something, and objects (which rest and slide on tables) within 2 mm
-//! throughout; success equal at every step; rewards within 1e-3.
+//! throughout; success equal at every step; rewards within 1e-3. Where robosuite itself,
+//! run on MuJoCo 3.17.0, already differs from its 3.3.7 recording by more (the rollout's
+//! `floor`, `scripts/mujoco_floor.py`), the tolerance is that floor plus 10 %: the part of
+//! the difference MuJoCo's version causes is not robosuite-rs's to remove.
 
 mod common;
 
@@ -20,7 +23,10 @@ const REWARD_TOL: f64 = 1e-3;
 fn every_registered_task_has_a_fixture() {
     let recorded = recorded_tasks();
     for name in robosuite_env::ENV_NAMES {
-        assert!(recorded.iter().any(|r| r == name), "{name} has no recording");
+        assert!(
+            recorded.iter().any(|r| r == name),
+            "{name} has no recording"
+        );
     }
 }
 
@@ -74,12 +80,20 @@ fn rollouts_replay_within_tolerance() {
             let e = replay(&mut env, rollout);
             let what = format!("{task} {} rollout: {e:?}", rollout.kind);
             println!("{what}");
+            if std::env::var_os("REPLAY_REPORT").is_some() {
+                continue;
+            }
+            let floor = rollout.floor.unwrap_or_default();
+            let tol = |base: f64, floor: f64| base.max(1.1 * floor);
             assert_eq!(e.steps, rollout.steps.len(), "{what}");
-            assert!(e.free_arm <= FREE_ARM_TOL, "{what}");
-            assert!(e.contact_arm <= CONTACT_TOL, "{what}");
-            assert!(e.objects <= CONTACT_TOL, "{what}");
-            assert_eq!(e.success_mismatches, 0, "{what}");
-            assert!(e.reward <= REWARD_TOL, "{what}");
+            assert!(e.free_arm <= tol(FREE_ARM_TOL, floor.free_arm), "{what}");
+            assert!(
+                e.contact_arm <= tol(CONTACT_TOL, floor.contact_arm),
+                "{what}"
+            );
+            assert!(e.objects <= tol(CONTACT_TOL, floor.objects), "{what}");
+            assert!(e.success_mismatches <= floor.success_mismatches, "{what}");
+            assert!(e.reward <= tol(REWARD_TOL, floor.reward), "{what}");
         }
     }
 }

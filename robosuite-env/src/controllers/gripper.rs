@@ -43,16 +43,29 @@ impl GripController {
         match self.action {
             GripAction::None => {}
             GripAction::SignIntegrator { signs, speed } => {
-                let a = action.first().copied().unwrap_or(0.0);
-                let sign = if a > 0.0 {
-                    1.0
-                } else if a < 0.0 {
-                    -1.0
-                } else {
-                    0.0
-                };
+                let sign = sign_of(action.first().copied().unwrap_or(0.0));
                 for (c, s) in self.command.iter_mut().zip(signs) {
                     *c = (*c + s * speed * sign).clamp(-1.0, 1.0);
+                }
+            }
+            GripAction::ValueIntegrator {
+                speed,
+                shared,
+                tail,
+            } => {
+                let a = action.first().copied().unwrap_or(0.0);
+                let c = (self.command.first().copied().unwrap_or(0.0) + speed * a).clamp(-1.0, 1.0);
+                for (i, cmd) in self.command.iter_mut().enumerate() {
+                    *cmd = if i < shared {
+                        c
+                    } else {
+                        tail.get(i - shared).copied().unwrap_or(0.0)
+                    };
+                }
+            }
+            GripAction::PerActuator { sign, speed, .. } => {
+                for (c, a) in self.command.iter_mut().zip(action) {
+                    *c = (*c + sign * speed * sign_of(*a)).clamp(-1.0, 1.0);
                 }
             }
         }
@@ -80,10 +93,23 @@ impl GripController {
     }
 }
 
+/// NumPy's `sign`: −1, 0 or 1.
+fn sign_of(a: f64) -> f64 {
+    if a > 0.0 {
+        1.0
+    } else if a < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::models::grippers::PANDA_GRIPPER;
+    use crate::models::grippers::{
+        JACO_THREE_FINGER_DEXTEROUS_GRIPPER, PANDA_GRIPPER, ROBOTIQ_THREE_FINGER_GRIPPER,
+    };
 
     #[test]
     fn panda_integrator_saturates_after_five_steps() {
@@ -104,5 +130,34 @@ mod tests {
         assert_eq!((g.ctrl(0), g.ctrl(1)), (0.04, -0.04));
         g.reset();
         assert_eq!(g.command(), [0.0, 0.0]);
+    }
+
+    #[test]
+    fn robotiq_three_finger_integrates_the_value_and_holds_the_scissor_open() {
+        let r = [0.0, 1.2217];
+        let mut g = GripController::new(
+            ROBOTIQ_THREE_FINGER_GRIPPER.action,
+            vec![r, r, r, [-0.29, 0.29]],
+        );
+        g.set_goal(&[0.5]);
+        assert_eq!(g.command(), [0.1, 0.1, 0.1, -1.0]);
+        g.set_goal(&[-0.25]);
+        assert!((g.command()[0] - 0.05).abs() < 1e-15);
+        for _ in 0..20 {
+            g.set_goal(&[1.0]);
+        }
+        assert_eq!(g.command(), [1.0, 1.0, 1.0, -1.0]);
+        assert_eq!(g.ctrl(3), -0.29);
+    }
+
+    #[test]
+    fn dexterous_jaco_moves_each_finger_by_its_own_sign() {
+        let mut g = GripController::new(
+            JACO_THREE_FINGER_DEXTEROUS_GRIPPER.action,
+            vec![[0.0, 1.51]; 3],
+        );
+        assert_eq!(g.action_dim(), 3);
+        g.set_goal(&[1.0, 0.0, -3.0]);
+        assert_eq!(g.command(), [-0.01, 0.0, 0.01]);
     }
 }

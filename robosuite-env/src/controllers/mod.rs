@@ -43,6 +43,13 @@ pub trait ArmController: Send + Sync + std::fmt::Debug {
     /// The action bounds `(low, high)` (robosuite's `control_limits`).
     fn action_limits(&self) -> (Vec<f64>, Vec<f64>);
 
+    /// Records what robosuite's controller caches when robosuite creates it during a reset:
+    /// the state after the arm's posture is written and before the gripper's is (its
+    /// `update(force=True)`). robosuite's first torque computation after the reset reuses
+    /// that cache (its `new_update` flag is still down), so the first substep here does too.
+    /// `sim` must be forwarded.
+    fn capture_reset(&mut self, sim: &Sim);
+
     /// Re-bases the controller on the current (forwarded) state after a reset: robosuite
     /// creates its controllers anew at every reset.
     fn reset(&mut self, sim: &Sim);

@@ -18,8 +18,10 @@ use nalgebra::{Cholesky, DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
 ///   `quat2mat`).
 /// * `compute` (every substep, from the state after `mj_step1`):
 ///   `τ = Jᵀ[Λp·F; Λo·T] + h + Nᵀ·M·(k_n(q₀ − q) − 2√k_n·q̇)` with
-///   `F = kp∘e_p − kd∘v`, `T = kp∘e_o − kd∘ω`, `Λ = pinv(J M⁻¹ Jᵀ)` (and its position and
-///   orientation blocks), `N = I − M⁻¹JᵀΛJ`.
+///   `F = kp∘e_p − kd∘(v − v_b)`, `T = kp∘e_o − kd∘(ω − ω_b)` (`v_b`, `ω_b`: the velocity of
+///   the base-frame site, which moves on robots whose `{arm}_center` site sits on a moving
+///   link, such as the IIWA's), `Λ = pinv(J M⁻¹ Jᵀ)` (and its position and orientation
+///   blocks), `N = I − M⁻¹JᵀΛJ`.
 ///
 /// Every matrix lives in a buffer allocated at construction: the substep loop does not
 /// allocate.
@@ -33,7 +35,13 @@ pub struct OscPose {
     bind: ArmBinding,
     jacp: Vec<f64>,
     jacr: Vec<f64>,
+    base_jacp: Vec<f64>,
+    base_jacr: Vec<f64>,
     full_m: Vec<f64>,
+    /// The arm's mass matrix as robosuite's controller cached it at creation.
+    reset_mass: DMatrix<f64>,
+    /// Whether the next torque computation is robosuite's first after a reset.
+    first_after_reset: bool,
     work: Work,
     goal_pos: Vector3<f64>,
     goal_ori: Matrix3<f64>,
@@ -102,7 +110,11 @@ impl OscPose {
             in_offset,
             jacp: vec![0.0; 3 * nv],
             jacr: vec![0.0; 3 * nv],
+            base_jacp: vec![0.0; 3 * nv],
+            base_jacr: vec![0.0; 3 * nv],
             full_m: vec![0.0; nv * nv],
+            reset_mass: DMatrix::zeros(n, n),
+            first_after_reset: false,
             work: Work::new(n),
             goal_pos: Vector3::zeros(),
             goal_ori: Matrix3::identity(),
@@ -194,7 +206,24 @@ impl ArmController for OscPose {
     }
 
     fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
-        (vec![self.config.input_min; 6], vec![self.config.input_max; 6])
+        (
+            vec![self.config.input_min; 6],
+            vec![self.config.input_max; 6],
+        )
+    }
+
+    fn capture_reset(&mut self, sim: &Sim) {
+        let nv = self.bind.nv;
+        let (m_ptr, d_ptr) = sim.raw();
+        // SAFETY: m/d are live; full_m holds nv·nv values.
+        unsafe { mj_fullM(m_ptr, d_ptr, self.full_m.as_mut_ptr()) };
+        let dofs = &self.bind.dofs;
+        for (r, &dr) in dofs.iter().enumerate() {
+            for (c, &dc) in dofs.iter().enumerate() {
+                self.reset_mass[(r, c)] = self.full_m[dr * nv + dc];
+            }
+        }
+        self.first_after_reset = true;
     }
 
     fn reset(&mut self, sim: &Sim) {
@@ -224,7 +253,8 @@ impl ArmController for OscPose {
         let n = self.bind.dofs.len();
         let (m_ptr, d_ptr) = sim.raw();
         let site = i32::try_from(self.bind.site).unwrap_or(i32::MAX);
-        // SAFETY: m/d are live; jacp/jacr hold 3·nv and full_m nv·nv values.
+        let base_site = i32::try_from(self.bind.base_site).unwrap_or(i32::MAX);
+        // SAFETY: m/d are live; the Jacobian buffers hold 3·nv and full_m nv·nv values.
         unsafe {
             mj_jacSite(
                 m_ptr,
@@ -232,6 +262,13 @@ impl ArmController for OscPose {
                 self.jacp.as_mut_ptr(),
                 self.jacr.as_mut_ptr(),
                 site,
+            );
+            mj_jacSite(
+                m_ptr,
+                d_ptr,
+                self.base_jacp.as_mut_ptr(),
+                self.base_jacr.as_mut_ptr(),
+                base_site,
             );
             mj_fullM(m_ptr, d_ptr, self.full_m.as_mut_ptr());
         }
@@ -248,21 +285,29 @@ impl ArmController for OscPose {
                 w.jac[(r + 3, c)] = self.jacr[r * nv + dofs[c]];
             }
             for r in 0..n {
-                w.mass[(r, c)] = self.full_m[dofs[r] * nv + dofs[c]];
+                w.mass[(r, c)] = if self.first_after_reset {
+                    self.reset_mass[(r, c)]
+                } else {
+                    self.full_m[dofs[r] * nv + dofs[c]]
+                };
             }
             w.q[c] = qpos[self.bind.qpos[c]];
             w.qd[c] = qvel[dofs[c]];
         }
+        // v − v_b and ω − ω_b: the grip site's velocity relative to the base-frame site's.
+        self.first_after_reset = false;
         let mut v = Vector3::zeros();
         let mut om = Vector3::zeros();
         for r in 0..3 {
-            let (mut sv, mut sw) = (0.0, 0.0);
+            let (mut sv, mut sw, mut bv, mut bw) = (0.0, 0.0, 0.0, 0.0);
             for (k, qd) in qvel.iter().enumerate() {
                 sv += self.jacp[r * nv + k] * qd;
                 sw += self.jacr[r * nv + k] * qd;
+                bv += self.base_jacp[r * nv + k] * qd;
+                bw += self.base_jacr[r * nv + k] * qd;
             }
-            v[r] = sv;
-            om[r] = sw;
+            v[r] = sv - bv;
+            om[r] = sw - bw;
         }
 
         // Pose error in the world frame.
@@ -305,7 +350,10 @@ impl ArmController for OscPose {
             let fo = lambda_o * torque;
             Vector6::new(fp[0], fp[1], fp[2], fo[0], fo[1], fo[2])
         } else {
-            lambda * Vector6::new(force[0], force[1], force[2], torque[0], torque[1], torque[2])
+            lambda
+                * Vector6::new(
+                    force[0], force[1], force[2], torque[0], torque[1], torque[2],
+                )
         };
         // τ = Jᵀ wrench + h
         for c in 0..n {
@@ -345,25 +393,36 @@ impl ArmController for OscPose {
         torques.copy_from_slice(w.tau.as_slice());
     }
 
+    /// `[goal_pos (3), goal_ori (9, column-major), q₀ (n), first-after-reset flag (1),
+    /// creation-time mass matrix (n·n)]`.
     fn state(&self) -> Vec<f64> {
-        let mut out = Vec::with_capacity(12 + self.q0.len());
+        let n = self.q0.len();
+        let mut out = Vec::with_capacity(13 + n + n * n);
         out.extend(self.goal_pos.iter());
         out.extend(self.goal_ori.iter());
         out.extend(self.q0.iter());
+        out.push(f64::from(u8::from(self.first_after_reset)));
+        out.extend(self.reset_mass.iter());
         out
     }
 
     fn set_state(&mut self, state: &[f64]) -> Result<()> {
         let n = self.q0.len();
-        if state.len() != 12 + n || state.iter().any(|v| !v.is_finite()) {
+        let len = 13 + n + n * n;
+        if state.len() != len || state.iter().any(|v| !v.is_finite()) {
             return Err(Error::invalid_argument(
                 "controller state",
-                format!("expected {} finite values for OSC_POSE, got {}", 12 + n, state.len()),
+                format!(
+                    "expected {len} finite values for OSC_POSE, got {}",
+                    state.len()
+                ),
             ));
         }
         self.goal_pos = Vector3::from_column_slice(&state[..3]);
         self.goal_ori = Matrix3::from_column_slice(&state[3..12]);
-        self.q0.copy_from_slice(&state[12..]);
+        self.q0.copy_from_slice(&state[12..12 + n]);
+        self.first_after_reset = state[12 + n] != 0.0;
+        self.reset_mass.copy_from_slice(&state[13 + n..]);
         Ok(())
     }
 

@@ -78,10 +78,7 @@ impl MjcfDoc {
             }
         }
         inline_defaults(&mut root, path)?;
-        let folder = path
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
+        let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let folder = std::path::absolute(&folder).unwrap_or(folder);
         if let Some(asset) = tree::child_mut(&mut root, "asset") {
             for node in children_mut(asset) {
@@ -178,7 +175,8 @@ impl MjcfDoc {
                 continue;
             };
             let name = attr(&asset, "name");
-            let present = tree::find(self.section("asset"), &asset.name, &[("name", name)]).is_some();
+            let present =
+                tree::find(self.section("asset"), &asset.name, &[("name", name)]).is_some();
             if !present {
                 append(self.section_mut("asset"), asset);
             }
@@ -279,8 +277,10 @@ mod tests {
 
     #[test]
     fn merge_appends_bodies_and_deduplicates_assets() {
-        let mut a = doc(r#"<mujoco><asset><texture type="skybox"/><mesh name="x" file="/x"/></asset>
-            <worldbody><body name="hand"/></worldbody></mujoco>"#)
+        let mut a = doc(
+            r#"<mujoco><asset><texture type="skybox"/><mesh name="x" file="/x"/></asset>
+            <worldbody><body name="hand"/></worldbody></mujoco>"#,
+        )
         .unwrap();
         let b = doc(r#"<mujoco><asset><texture type="2d"/><mesh name="x" file="/y"/><mesh name="z" file="/z"/></asset>
             <worldbody><body name="finger"/></worldbody><actuator><position joint="j"/></actuator></mujoco>"#)

@@ -40,7 +40,15 @@ impl ElementNames {
         let mut names = Self::default();
         let mut roots = Vec::new();
         let mut counters = [0usize; 2];
-        sort(root, None, name_geoms, &mut counters, &mut names, &mut roots, what)?;
+        sort(
+            root,
+            None,
+            name_geoms,
+            &mut counters,
+            &mut names,
+            &mut roots,
+            what,
+        )?;
         match roots.as_slice() {
             [one] => names.root_body = one.clone(),
             other => {
@@ -65,9 +73,9 @@ fn sort(
     what: &str,
 ) -> Result<()> {
     let named = |e: &Element| {
-        attr(e, "name").map(str::to_owned).ok_or_else(|| {
-            Error::Model(format!("{what}: a <{}> has no name", e.name))
-        })
+        attr(e, "name")
+            .map(str::to_owned)
+            .ok_or_else(|| Error::Model(format!("{what}: a <{}> has no name", e.name)))
     };
     if parent == Some("actuator") {
         out.actuators.push(named(e)?);

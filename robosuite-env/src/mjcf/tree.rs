@@ -181,7 +181,11 @@ pub fn at_path_mut<'a>(root: &'a mut Element, path: &[usize]) -> &'a mut Element
 }
 
 /// robosuite's `find_elements(root, tags, attribs, return_first=True)`.
-pub fn find<'a>(root: &'a Element, tag: &str, attrs: &[(&str, Option<&str>)]) -> Option<&'a Element> {
+pub fn find<'a>(
+    root: &'a Element,
+    tag: &str,
+    attrs: &[(&str, Option<&str>)],
+) -> Option<&'a Element> {
     find_path(root, &|e| matches(e, tag, attrs)).map(|p| at_path(root, &p))
 }
 
@@ -249,7 +253,11 @@ pub fn add_prefix(root: &mut Element, prefix: &str, exclude: &dyn Fn(&str) -> bo
 
 /// robosuite's `recolor_collision_geoms`: every geom of group 0 (or without a group) gets
 /// `rgba` and loses its material, unless `exclude` holds for it.
-pub fn recolor_collision_geoms(root: &mut Element, rgba: &[f64; 4], exclude: &dyn Fn(&Element) -> bool) {
+pub fn recolor_collision_geoms(
+    root: &mut Element,
+    rgba: &[f64; 4],
+    exclude: &dyn Fn(&Element) -> bool,
+) {
     let rgba = array_to_string(rgba);
     visit_mut(root, &mut |e| {
         if e.name == "geom" && matches!(attr(e, "group"), None | Some("0")) && !exclude(e) {
@@ -321,9 +329,25 @@ mod tests {
 
     #[test]
     fn numbers_round_trip_exactly() {
-        for v in [0.0, -0.0, 1.0, 0.1, -0.56, 0.912, 1.0 / 3.0, 1e-8, 5.0 / 7.0, 123456.789, 2.5e-5] {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            -0.56,
+            0.912,
+            1.0 / 3.0,
+            1e-8,
+            5.0 / 7.0,
+            123456.789,
+            2.5e-5,
+        ] {
             let s = array_to_string(&[v]);
-            assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{v} -> {s}");
+            assert_eq!(
+                s.parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{v} -> {s}"
+            );
         }
         assert_eq!(array_to_string(&[0.0, 0.5, 1.0]), "0 0.5 1");
         assert_eq!(parse_array(" 1  2 3.5 ").unwrap(), vec![1.0, 2.0, 3.5]);
@@ -355,8 +379,12 @@ mod tests {
 
     #[test]
     fn recolor_touches_group_zero_geoms_only() {
-        let mut e = parse(r#"<b><geom material="m"/><geom group="1" material="m"/><geom group="0" name="floor"/></b>"#);
-        recolor_collision_geoms(&mut e, &[0.5, 0.0, 0.0, 1.0], &|g| attr(g, "name") == Some("floor"));
+        let mut e = parse(
+            r#"<b><geom material="m"/><geom group="1" material="m"/><geom group="0" name="floor"/></b>"#,
+        );
+        recolor_collision_geoms(&mut e, &[0.5, 0.0, 0.0, 1.0], &|g| {
+            attr(g, "name") == Some("floor")
+        });
         let geoms: Vec<_> = children(&e).collect();
         assert_eq!(attr(geoms[0], "rgba"), Some("0.5 0 0 1"));
         assert_eq!(attr(geoms[0], "material"), None);

@@ -38,7 +38,10 @@ pub struct Arena {
 /// (`left_eef_target`, `right_eef_target`). Collision geoms are recoloured by [`finish`].
 fn load(assets: &Assets, file: &str) -> Result<MjcfDoc> {
     let mut doc = MjcfDoc::load(&assets.file(file)?)?;
-    for (side, rgb) in [("left", "0.898 0.420 0.435"), ("right", "0.208 0.314 0.439")] {
+    for (side, rgb) in [
+        ("left", "0.898 0.420 0.435"),
+        ("right", "0.208 0.314 0.439"),
+    ] {
         let mut body = element(
             "body",
             &[
@@ -73,11 +76,9 @@ fn load(assets: &Assets, file: &str) -> Result<MjcfDoc> {
 /// The end of robosuite's `Arena.__init__`: every collision geom but the floor takes the
 /// environment collision colour.
 fn finish(doc: &mut MjcfDoc) {
-    tree::recolor_collision_geoms(
-        doc.worldbody_mut(),
-        &ENVIRONMENT_COLLISION_COLOR,
-        &|e| attr(e, "name") == Some("floor"),
-    );
+    tree::recolor_collision_geoms(doc.worldbody_mut(), &ENVIRONMENT_COLLISION_COLOR, &|e| {
+        attr(e, "name") == Some("floor")
+    });
 }
 
 fn floor_at_origin(doc: &mut MjcfDoc) -> Result<()> {

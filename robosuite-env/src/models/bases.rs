@@ -51,15 +51,19 @@ pub const MOUNTS: &[MountInfo] = &[RETHINK_MOUNT, RETHINK_MINIMAL_MOUNT, NULL_MO
 /// # Errors
 /// [`Error::InvalidArgument`] (argument `base_types`) listing the valid names.
 pub fn mount_info(name: &str) -> Result<MountInfo> {
-    MOUNTS.iter().find(|m| m.name == name).copied().ok_or_else(|| {
-        Error::invalid_argument(
-            "base_types",
-            format!(
-                "unknown mount `{name}`; valid: {}",
-                MOUNTS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
-            ),
-        )
-    })
+    MOUNTS
+        .iter()
+        .find(|m| m.name == name)
+        .copied()
+        .ok_or_else(|| {
+            Error::invalid_argument(
+                "base_types",
+                format!(
+                    "unknown mount `{name}`; valid: {}",
+                    MOUNTS.iter().map(|m| m.name).collect::<Vec<_>>().join(", ")
+                ),
+            )
+        })
 }
 
 /// A mount's model file prepared as robosuite's `MountModel` (prefix `fixed_mount{robot}_`).

@@ -23,6 +23,27 @@ pub enum GripAction {
         /// The change per env step.
         speed: f64,
     },
+    /// One action whose *value* moves one shared integrator, `c ← clip(c + speed · a, −1, 1)`,
+    /// driving the first `shared` actuators; the remaining actuators get the fixed
+    /// commands `tail` (robosuite's `RobotiqThreeFingerGripper`: `[c, c, c, -1]`).
+    ValueIntegrator {
+        /// The change per env step per unit of action.
+        speed: f64,
+        /// How many actuators follow the integrator.
+        shared: usize,
+        /// The fixed commands of the other actuators.
+        tail: &'static [f64],
+    },
+    /// One action per actuator, each moving its own integrator by its sign:
+    /// `c_i ← clip(c_i + sign · speed · sign(a_i), −1, 1)` (the dexterous variants).
+    PerActuator {
+        /// The direction commands move for a positive action.
+        sign: f64,
+        /// The change per env step.
+        speed: f64,
+        /// The number of actions (and actuators).
+        dof: usize,
+    },
 }
 
 impl GripAction {
@@ -30,7 +51,8 @@ impl GripAction {
     pub fn dof(&self) -> usize {
         match self {
             Self::None => 0,
-            Self::SignIntegrator { .. } => 1,
+            Self::SignIntegrator { .. } | Self::ValueIntegrator { .. } => 1,
+            Self::PerActuator { dof, .. } => *dof,
         }
     }
 }
@@ -105,8 +127,209 @@ pub const NULL_GRIPPER: GripperInfo = GripperInfo {
     corners: &[],
 };
 
-/// Every gripper [`gripper_info`] knows, by robosuite's class name.
-pub const GRIPPERS: &[GripperInfo] = &[PANDA_GRIPPER, WIPING_GRIPPER];
+/// robosuite's `RethinkGripper` (Sawyer's two-finger parallel jaw).
+pub const RETHINK_GRIPPER: GripperInfo = GripperInfo {
+    name: "RethinkGripper",
+    file: "grippers/rethink_gripper.xml",
+    init_qpos: Some(&[0.020833, -0.020833]),
+    action: GripAction::SignIntegrator {
+        signs: &[1.0, -1.0],
+        speed: 0.2,
+    },
+    left_fingerpad: &["l_fingerpad_g0"],
+    right_fingerpad: &["r_fingerpad_g0"],
+    left_finger: &[
+        "l_finger_g0",
+        "l_finger_g1",
+        "l_fingertip_g0",
+        "l_fingerpad_g0",
+    ],
+    right_finger: &[
+        "r_finger_g0",
+        "r_finger_g1",
+        "r_fingertip_g0",
+        "r_fingerpad_g0",
+    ],
+    corners: &[],
+};
+
+/// The finger geoms of both Robotiq parallel grippers.
+const ROBOTIQ_LEFT_FINGER: &[&str] = &[
+    "left_outer_finger_collision",
+    "left_inner_finger_collision",
+    "left_fingertip_collision",
+    "left_fingerpad_collision",
+];
+const ROBOTIQ_RIGHT_FINGER: &[&str] = &[
+    "right_outer_finger_collision",
+    "right_inner_finger_collision",
+    "right_fingertip_collision",
+    "right_fingerpad_collision",
+];
+
+/// robosuite's `Robotiq85Gripper` (UR5e's and Kinova3's).
+pub const ROBOTIQ85_GRIPPER: GripperInfo = GripperInfo {
+    name: "Robotiq85Gripper",
+    file: "grippers/robotiq_gripper_85.xml",
+    init_qpos: Some(&[-0.026, -0.267, -0.200, -0.026, -0.267, -0.200]),
+    action: GripAction::SignIntegrator {
+        signs: &[1.0, 1.0],
+        speed: 0.2,
+    },
+    left_fingerpad: &["left_fingerpad_collision"],
+    right_fingerpad: &["right_fingerpad_collision"],
+    left_finger: ROBOTIQ_LEFT_FINGER,
+    right_finger: ROBOTIQ_RIGHT_FINGER,
+    corners: &[],
+};
+
+/// robosuite's `Robotiq140Gripper` (IIWA's).
+pub const ROBOTIQ140_GRIPPER: GripperInfo = GripperInfo {
+    name: "Robotiq140Gripper",
+    file: "grippers/robotiq_gripper_140.xml",
+    init_qpos: Some(&[0.012, 0.065, 0.065, -0.012, 0.065, 0.065]),
+    action: GripAction::SignIntegrator {
+        signs: &[1.0, -1.0],
+        speed: 0.2,
+    },
+    left_fingerpad: &["left_fingerpad_collision"],
+    right_fingerpad: &["right_fingerpad_collision"],
+    left_finger: ROBOTIQ_LEFT_FINGER,
+    right_finger: ROBOTIQ_RIGHT_FINGER,
+    corners: &[],
+};
+
+/// The figures both Jaco three-finger grippers share.
+const JACO_THREE_FINGER: GripperInfo = GripperInfo {
+    name: "JacoThreeFingerGripper",
+    file: "grippers/jaco_three_finger_gripper.xml",
+    init_qpos: Some(&[0.5, 0.0, 0.5, 0.0, 0.5, 0.0]),
+    action: GripAction::SignIntegrator {
+        signs: &[-1.0, -1.0, -1.0],
+        speed: 0.01,
+    },
+    left_fingerpad: &["index_pad_collision", "pinky_pad_collision"],
+    right_fingerpad: &["thumb_pad_collision"],
+    left_finger: &[
+        "index_proximal_collision",
+        "index_distal_collision",
+        "index_tip_collision",
+        "pinky_proximal_collision",
+        "pinky_distal_collision",
+        "pinky_tip_collision",
+        "index_tip_collision",
+        "pinky_pad_collision",
+    ],
+    right_finger: &[
+        "thumb_proximal_collision",
+        "thumb_distal_collision",
+        "thumb_tip_collision",
+        "thumb_pad_collision",
+    ],
+    corners: &[],
+};
+
+/// robosuite's `JacoThreeFingerGripper` (Jaco's; one action closes all three fingers).
+pub const JACO_THREE_FINGER_GRIPPER: GripperInfo = JACO_THREE_FINGER;
+
+/// robosuite's `JacoThreeFingerDexterousGripper` (one action per finger).
+pub const JACO_THREE_FINGER_DEXTEROUS_GRIPPER: GripperInfo = GripperInfo {
+    name: "JacoThreeFingerDexterousGripper",
+    action: GripAction::PerActuator {
+        sign: -1.0,
+        speed: 0.01,
+        dof: 3,
+    },
+    ..JACO_THREE_FINGER
+};
+
+/// The figures both Robotiq three-finger grippers share.
+const ROBOTIQ_THREE_FINGER: GripperInfo = GripperInfo {
+    name: "RobotiqThreeFingerGripper",
+    file: "grippers/robotiq_gripper_s.xml",
+    init_qpos: Some(&[0.0; 11]),
+    action: GripAction::ValueIntegrator {
+        speed: 0.2,
+        shared: 3,
+        tail: &[-1.0],
+    },
+    left_fingerpad: &["f1_pad_collision", "f2_pad_collision"],
+    right_fingerpad: &["finger_middle_pad_collision"],
+    left_finger: &[
+        "f1_l0",
+        "f1_l1",
+        "f1_l2",
+        "f1_l3",
+        "f2_l0",
+        "f2_l1",
+        "f2_l2",
+        "f2_l3",
+        "f1_tip_collision",
+        "f2_tip_collision",
+        "f1_pad_collision",
+        "f2_pad_collision",
+    ],
+    right_finger: &[
+        "f3_l0",
+        "f3_l1",
+        "f3_l2",
+        "f3_l3",
+        "finger_middle_tip_collision",
+        "finger_middle_pad_collision",
+    ],
+    corners: &[],
+};
+
+/// robosuite's `RobotiqThreeFingerGripper` (one action for the three fingers; the scissor
+/// joint held open).
+pub const ROBOTIQ_THREE_FINGER_GRIPPER: GripperInfo = ROBOTIQ_THREE_FINGER;
+
+/// robosuite's `RobotiqThreeFingerDexterousGripper` (one action per finger and the scissor).
+pub const ROBOTIQ_THREE_FINGER_DEXTEROUS_GRIPPER: GripperInfo = GripperInfo {
+    name: "RobotiqThreeFingerDexterousGripper",
+    action: GripAction::PerActuator {
+        sign: 1.0,
+        speed: 0.2,
+        dof: 4,
+    },
+    ..ROBOTIQ_THREE_FINGER
+};
+
+/// robosuite's `XArm7Gripper`.
+///
+/// robosuite 1.5.2 names its finger pads `finger1_pad_collision` / `finger2_pad_collision`,
+/// geoms its model file does not have (the pads are `left_finger_pad_1`, ...); its
+/// name-based contact check therefore never reports a grasp with this gripper. The pad
+/// groups are empty here, which reproduces that.
+pub const XARM7_GRIPPER: GripperInfo = GripperInfo {
+    name: "XArm7Gripper",
+    file: "grippers/xarm7_gripper.xml",
+    init_qpos: Some(&[0.02, 0.0, 0.0, -0.02, 0.0, 0.0]),
+    action: GripAction::SignIntegrator {
+        signs: &[1.0],
+        speed: 0.2,
+    },
+    left_fingerpad: &[],
+    right_fingerpad: &[],
+    left_finger: &[],
+    right_finger: &[],
+    corners: &[],
+};
+
+/// Every gripper [`gripper_info`] knows, by robosuite's class name (with `None`, robosuite
+/// attaches [`NULL_GRIPPER`]).
+pub const GRIPPERS: &[GripperInfo] = &[
+    PANDA_GRIPPER,
+    RETHINK_GRIPPER,
+    ROBOTIQ85_GRIPPER,
+    ROBOTIQ140_GRIPPER,
+    JACO_THREE_FINGER_GRIPPER,
+    JACO_THREE_FINGER_DEXTEROUS_GRIPPER,
+    ROBOTIQ_THREE_FINGER_GRIPPER,
+    ROBOTIQ_THREE_FINGER_DEXTEROUS_GRIPPER,
+    XARM7_GRIPPER,
+    WIPING_GRIPPER,
+];
 
 /// The gripper robosuite names `name`.
 ///

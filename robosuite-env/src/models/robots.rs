@@ -2,13 +2,13 @@
 //! grippers, prepared and composed as robosuite's `RobotModel`, `ManipulatorModel` and
 //! `Robot.load_model` prepare and compose them.
 
+use super::ROBOT_COLLISION_COLOR;
 use super::bases::{MountInfo, MountModel, RETHINK_MOUNT};
 use super::grippers::{GripperInfo, GripperModel, NULL_GRIPPER, gripper_info};
-use super::ROBOT_COLLISION_COLOR;
 use crate::assets::Assets;
+use crate::math::euler_xyz_to_quat_wxyz;
 use crate::mjcf::tree::{self, array_to_string, attr, set_attr};
 use crate::mjcf::{MergeBody, MjcfDoc, XmlModel};
-use crate::math::{euler_xyz_to_quat_wxyz};
 use gym_core::{Error, Result};
 use std::f64::consts::PI;
 
@@ -70,12 +70,28 @@ pub struct RobotInfo {
     pub horizontal_radius: f64,
 }
 
-/// robosuite's `Panda`.
+/// The fields every single-arm robot of robosuite shares: one right arm with its gripper on
+/// `right_hand`, the Rethink mount, robosuite's single-arm base offsets, top offset 1 m,
+/// horizontal radius 0.5.
+const SINGLE_ARM: RobotInfo = RobotInfo {
+    name: "",
+    file: "",
+    arms: &["right"],
+    eef_bodies: &["right_hand"],
+    init_qpos: &[],
+    damping: None,
+    default_mount: RETHINK_MOUNT,
+    default_grippers: &[],
+    default_controller: &[],
+    base_offsets: BaseOffsets::SINGLE_ARM,
+    top_offset: [0.0, 0.0, 1.0],
+    horizontal_radius: 0.5,
+};
+
+/// robosuite's `Panda` (Franka Emika Panda, 7 joints).
 pub const PANDA: RobotInfo = RobotInfo {
     name: "Panda",
     file: "robots/panda/robot.xml",
-    arms: &["right"],
-    eef_bodies: &["right_hand"],
     init_qpos: &[
         0.0,
         PI / 16.0,
@@ -86,16 +102,74 @@ pub const PANDA: RobotInfo = RobotInfo {
         PI / 4.0,
     ],
     damping: Some(&[0.1, 0.1, 0.1, 0.1, 0.1, 0.01, 0.01]),
-    default_mount: RETHINK_MOUNT,
     default_grippers: &["PandaGripper"],
     default_controller: &["default_panda"],
-    base_offsets: BaseOffsets::SINGLE_ARM,
-    top_offset: [0.0, 0.0, 1.0],
-    horizontal_radius: 0.5,
+    ..SINGLE_ARM
+};
+
+/// robosuite's `Sawyer` (Rethink Robotics, 7 joints).
+pub const SAWYER: RobotInfo = RobotInfo {
+    name: "Sawyer",
+    file: "robots/sawyer/robot.xml",
+    init_qpos: &[0.0, -1.18, 0.00, 2.18, 0.00, 0.57, -1.57],
+    default_grippers: &["RethinkGripper"],
+    default_controller: &["default_sawyer"],
+    ..SINGLE_ARM
+};
+
+/// robosuite's `IIWA` (KUKA LBR iiwa, 7 joints).
+pub const IIWA: RobotInfo = RobotInfo {
+    name: "IIWA",
+    file: "robots/iiwa/robot.xml",
+    init_qpos: &[0.000, 0.650, 0.000, -1.890, 0.000, 0.600, 0.000],
+    default_grippers: &["Robotiq140Gripper"],
+    default_controller: &["default_iiwa"],
+    ..SINGLE_ARM
+};
+
+/// robosuite's `Jaco` (Kinova Jaco, 7 joints).
+pub const JACO: RobotInfo = RobotInfo {
+    name: "Jaco",
+    file: "robots/jaco/robot.xml",
+    init_qpos: &[3.192, 3.680, -0.000, 1.170, 0.050, 3.760, 3.142],
+    default_grippers: &["JacoThreeFingerGripper"],
+    default_controller: &["default_jaco"],
+    ..SINGLE_ARM
+};
+
+/// robosuite's `Kinova3` (Kinova Gen3, 7 joints).
+pub const KINOVA3: RobotInfo = RobotInfo {
+    name: "Kinova3",
+    file: "robots/kinova3/robot.xml",
+    init_qpos: &[0.000, 0.650, 0.000, 1.890, 0.000, 0.600, -PI / 2.0],
+    default_grippers: &["Robotiq85Gripper"],
+    default_controller: &["osc_pose"],
+    ..SINGLE_ARM
+};
+
+/// robosuite's `UR5e` (Universal Robots, 6 joints).
+pub const UR5E: RobotInfo = RobotInfo {
+    name: "UR5e",
+    file: "robots/ur5e/robot.xml",
+    init_qpos: &[-0.470, -1.735, 2.480, -2.275, -1.590, -1.991],
+    default_grippers: &["Robotiq85Gripper"],
+    default_controller: &["default_ur5e"],
+    ..SINGLE_ARM
+};
+
+/// robosuite's `XArm7` (UFactory xArm 7, 7 joints).
+pub const XARM7: RobotInfo = RobotInfo {
+    name: "XArm7",
+    file: "robots/xarm7/robot.xml",
+    init_qpos: &[0.0, 0.0, 0.0, 0.39 * PI, 0.0, 0.39 * PI, 0.0],
+    damping: Some(&[0.1, 0.1, 0.1, 0.1, 0.1, 0.01, 0.01]),
+    default_grippers: &["XArm7Gripper"],
+    default_controller: &["default_xarm7"],
+    ..SINGLE_ARM
 };
 
 /// Every robot [`robot_info`] knows.
-pub const ROBOTS: &[RobotInfo] = &[PANDA];
+pub const ROBOTS: &[RobotInfo] = &[PANDA, SAWYER, IIWA, JACO, KINOVA3, UR5E, XARM7];
 
 /// The names of [`ROBOTS`].
 pub fn robot_names() -> Vec<&'static str> {
@@ -107,12 +181,19 @@ pub fn robot_names() -> Vec<&'static str> {
 /// # Errors
 /// [`Error::InvalidArgument`] (argument `robots`) listing the valid names.
 pub fn robot_info(name: &str) -> Result<RobotInfo> {
-    ROBOTS.iter().find(|r| r.name == name).copied().ok_or_else(|| {
-        Error::invalid_argument(
-            "robots",
-            format!("unknown robot `{name}`; valid: {}", robot_names().join(", ")),
-        )
-    })
+    ROBOTS
+        .iter()
+        .find(|r| r.name == name)
+        .copied()
+        .ok_or_else(|| {
+            Error::invalid_argument(
+                "robots",
+                format!(
+                    "unknown robot `{name}`; valid: {}",
+                    robot_names().join(", ")
+                ),
+            )
+        })
 }
 
 /// Which gripper an arm carries: robosuite's `gripper_types` entry.
@@ -178,7 +259,12 @@ impl RobotModel {
     /// # Errors
     /// [`Error::Model`] when a file is missing or malformed; [`Error::InvalidArgument`] for
     /// a wrong number of gripper choices or an unknown gripper.
-    pub fn build(assets: &Assets, info: RobotInfo, idn: usize, grippers: &[GripperChoice]) -> Result<Self> {
+    pub fn build(
+        assets: &Assets,
+        info: RobotInfo,
+        idn: usize,
+        grippers: &[GripperChoice],
+    ) -> Result<Self> {
         if grippers.len() != info.arms.len() {
             return Err(Error::invalid_argument(
                 "gripper_types",
@@ -242,7 +328,11 @@ impl RobotModel {
     /// its bodies into the robot's root body.
     fn add_mount(&mut self, mut mount: MountModel) -> Result<()> {
         let offset = sub(self.xml.base_offset, mount.info.top_offset);
-        set_attr(mount.xml.root_body_element_mut(), "pos", array_to_string(&offset));
+        set_attr(
+            mount.xml.root_body_element_mut(),
+            "pos",
+            array_to_string(&offset),
+        );
         let root = self.xml.root_body();
         self.xml
             .doc
@@ -254,7 +344,10 @@ impl RobotModel {
     /// From the root body to the bottom of the mount (robosuite's `bottom_offset`).
     pub fn bottom_offset(&self) -> [f64; 3] {
         match &self.mount {
-            Some(m) => add(sub(m.bottom_offset(), m.info.top_offset), self.xml.base_offset),
+            Some(m) => add(
+                sub(m.bottom_offset(), m.info.top_offset),
+                self.xml.base_offset,
+            ),
             None => self.xml.base_offset,
         }
     }
@@ -262,13 +355,21 @@ impl RobotModel {
     /// robosuite's `set_base_xpos`: puts the bottom of the robot (its mount) at `pos`.
     pub fn set_base_xpos(&mut self, pos: [f64; 3]) {
         let at = sub(pos, self.bottom_offset());
-        set_attr(self.xml.root_body_element_mut(), "pos", array_to_string(&at));
+        set_attr(
+            self.xml.root_body_element_mut(),
+            "pos",
+            array_to_string(&at),
+        );
     }
 
     /// robosuite's `set_base_ori`: rotates the robot by the x-y-z Euler angles `rot`.
     pub fn set_base_ori(&mut self, rot: [f64; 3]) {
         let q = euler_xyz_to_quat_wxyz(rot);
-        set_attr(self.xml.root_body_element_mut(), "quat", array_to_string(&q));
+        set_attr(
+            self.xml.root_body_element_mut(),
+            "quat",
+            array_to_string(&q),
+        );
     }
 
     /// The robot's joints, prefixed (robosuite's `robot_model.joints`).
@@ -302,7 +403,12 @@ impl RobotModel {
 
 /// robosuite's `set_joint_attribute`: sets `attrib` of every robot joint (in order) to its
 /// value, keeping values the file sets unless `force`.
-fn set_joint_attribute(xml: &mut XmlModel, attrib: &str, values: &[f64], force: bool) -> Result<()> {
+fn set_joint_attribute(
+    xml: &mut XmlModel,
+    attrib: &str,
+    values: &[f64],
+    force: bool,
+) -> Result<()> {
     let joints = xml.names_of(&xml.names.joints);
     if values.len() != joints.len() {
         return Err(Error::Model(format!(

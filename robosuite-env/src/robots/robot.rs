@@ -3,10 +3,10 @@
 
 use super::noise::InitNoise;
 use crate::controllers::{ArmBinding, ArmController, GripController, OscConfig, OscPose};
-use crate::math::{mat2quat, mat_from_row_major, xyzw};
+use crate::math::{mat_from_row_major, mat2quat, xyzw};
 use crate::models::grippers::GripperInfo;
 use crate::models::robots::RobotModel;
-use crate::observables::{Observable, ObsSpec, observe_all, specs};
+use crate::observables::{ObsSpec, Observable, observe_all, specs};
 use crate::sim::{GeomSet, Sim, actuator_id, body_id, geom_id, joint_id, site_id};
 use gym_core::{DType, EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
@@ -242,7 +242,8 @@ impl Robot {
                 ga.push(id);
                 granges.push(model.actuator_ctrlrange()[id]);
             }
-            let named = |list: &[&str]| -> Vec<String> { list.iter().map(|n| g.xml.name(n)).collect() };
+            let named =
+                |list: &[&str]| -> Vec<String> { list.iter().map(|n| g.xml.name(n)).collect() };
             let gripper = Gripper {
                 info: g.info,
                 has_gripper: arm.has_gripper,
@@ -332,19 +333,31 @@ impl Robot {
             } else {
                 pf.clone()
             };
-            obs.push(Observable::f64(format!("{apf}eef_pos"), 3, m, move |r: &Robot, sim, out| {
-                out.copy_from_slice(&sim.data().site_xpos()[r.arms[i].eef_site]);
-            }));
-            obs.push(Observable::f64(format!("{apf}eef_quat"), 4, m, move |r: &Robot, sim, out| {
-                out.copy_from_slice(&xyzw(sim.data().xquat()[r.arms[i].eef_body]));
-            }));
+            obs.push(Observable::f64(
+                format!("{apf}eef_pos"),
+                3,
+                m,
+                move |r: &Robot, sim, out| {
+                    out.copy_from_slice(&sim.data().site_xpos()[r.arms[i].eef_site]);
+                },
+            ));
+            obs.push(Observable::f64(
+                format!("{apf}eef_quat"),
+                4,
+                m,
+                move |r: &Robot, sim, out| {
+                    out.copy_from_slice(&xyzw(sim.data().xquat()[r.arms[i].eef_body]));
+                },
+            ));
             obs.push(Observable::new(
                 format!("{apf}eef_quat_site"),
                 &[4],
                 DType::F32,
                 m,
                 move |r: &Robot, sim, out| {
-                    let q = mat2quat(&mat_from_row_major(&sim.data().site_xmat()[r.arms[i].eef_site]));
+                    let q = mat2quat(&mat_from_row_major(
+                        &sim.data().site_xmat()[r.arms[i].eef_site],
+                    ));
                     for (o, v) in out.iter_mut().zip(q) {
                         *o = f64::from(v as f32);
                     }
@@ -352,16 +365,26 @@ impl Robot {
             ));
             if arm.gripper.has_gripper {
                 let ng = arm.gripper.qpos.len();
-                obs.push(Observable::f64(format!("{apf}gripper_qpos"), ng, m, move |r: &Robot, sim, out| {
-                    for (o, &a) in out.iter_mut().zip(&r.arms[i].gripper.qpos) {
-                        *o = sim.data().qpos()[a];
-                    }
-                }));
-                obs.push(Observable::f64(format!("{apf}gripper_qvel"), ng, m, move |r: &Robot, sim, out| {
-                    for (o, &a) in out.iter_mut().zip(&r.arms[i].gripper.dofs) {
-                        *o = sim.data().qvel()[a];
-                    }
-                }));
+                obs.push(Observable::f64(
+                    format!("{apf}gripper_qpos"),
+                    ng,
+                    m,
+                    move |r: &Robot, sim, out| {
+                        for (o, &a) in out.iter_mut().zip(&r.arms[i].gripper.qpos) {
+                            *o = sim.data().qpos()[a];
+                        }
+                    },
+                ));
+                obs.push(Observable::f64(
+                    format!("{apf}gripper_qvel"),
+                    ng,
+                    m,
+                    move |r: &Robot, sim, out| {
+                        for (o, &a) in out.iter_mut().zip(&r.arms[i].gripper.dofs) {
+                            *o = sim.data().qvel()[a];
+                        }
+                    },
+                ));
             }
         }
         obs
@@ -453,13 +476,15 @@ impl Robot {
     /// The reset posture: `init_qpos` plus noise (one draw per joint from `rng`), the
     /// grippers' initial positions, and zeroed gripper commands. Call after
     /// `mj_resetData`; [`Robot::rebase`] after the next `mj_forward`.
+    ///
+    /// As robosuite, the controllers take their creation-time cache (see
+    /// [`ArmController::capture_reset`]) after the arm's posture is written (with a forward
+    /// pass) and before the grippers' is.
     pub fn reset(&mut self, sim: &mut Sim, rng: &mut EnvRng) {
         self.qpos_buf.copy_from_slice(&self.init_qpos);
         self.noise.perturb(rng, &mut self.qpos_buf);
+        self.start_at_posture(sim);
         let qpos = sim.data_mut().qpos_mut();
-        for (&a, &v) in self.joint_qpos.iter().zip(&self.qpos_buf) {
-            qpos[a] = v;
-        }
         for arm in &mut self.arms {
             let g = &mut arm.gripper;
             if g.has_gripper
@@ -471,6 +496,31 @@ impl Robot {
             }
             g.controller.reset();
         }
+    }
+
+    /// Writes `qpos_buf` as the robot's joint positions, forwards, and lets the controllers
+    /// take their creation-time cache (robosuite's controller construction during a reset).
+    fn start_at_posture(&mut self, sim: &mut Sim) {
+        let qpos = sim.data_mut().qpos_mut();
+        for (&a, &v) in self.joint_qpos.iter().zip(&self.qpos_buf) {
+            qpos[a] = v;
+        }
+        sim.forward();
+        for arm in &mut self.arms {
+            arm.controller.capture_reset(sim);
+        }
+    }
+
+    /// The controller part of a reset to a recorded state: the robot's joints take their
+    /// values in `state` (`[time, qpos, qvel]`) on a freshly reset simulator, as robosuite
+    /// builds its controllers before the grippers and objects are placed; the caller then
+    /// sets the whole state and calls [`Robot::rebase`]. Gripper commands are zeroed.
+    pub fn reset_to(&mut self, sim: &mut Sim, state: &[f64]) {
+        for (v, &a) in self.qpos_buf.iter_mut().zip(&self.joint_qpos) {
+            *v = state[1 + a];
+        }
+        self.start_at_posture(sim);
+        self.zero_gripper_commands();
     }
 
     /// Zeroes every gripper command (robosuite's `current_action` at reset).

@@ -2,7 +2,7 @@
 //! robosuite's single-object modes and its object-pose sensors.
 
 use super::RewardConfig;
-use crate::math::{conj, mat2quat, mat_from_row_major, quat_mul, quat_rotate, xyzw};
+use crate::math::{conj, mat_from_row_major, mat2quat, quat_mul, quat_rotate, xyzw};
 use crate::models::objects::ObjectModel;
 use crate::observables::Observable;
 use crate::robots::{Gripper, Robot};
@@ -218,7 +218,11 @@ impl ObjectSensors {
         if values.len() != 7 * self.poses.len() {
             return Err(Error::invalid_argument(
                 "task state",
-                format!("expected {} cached pose values, got {}", 7 * self.poses.len(), values.len()),
+                format!(
+                    "expected {} cached pose values, got {}",
+                    7 * self.poses.len(),
+                    values.len()
+                ),
             ));
         }
         self.previous = Some(
@@ -265,9 +269,14 @@ impl ObjectSensors {
         quat_dtype: DType,
     ) -> Vec<Observable<T>> {
         vec![
-            Observable::f64(format!("{name}_to_robot0_eef_pos"), 3, "object", move |t: &T, sim, out| {
-                out.copy_from_slice(&get(t).relative(sim, i).0);
-            }),
+            Observable::f64(
+                format!("{name}_to_robot0_eef_pos"),
+                3,
+                "object",
+                move |t: &T, sim, out| {
+                    out.copy_from_slice(&get(t).relative(sim, i).0);
+                },
+            ),
             Observable::new(
                 format!("{name}_to_robot0_eef_quat"),
                 &[4],
@@ -275,9 +284,14 @@ impl ObjectSensors {
                 "object",
                 move |t: &T, sim, out| out.copy_from_slice(&get(t).relative(sim, i).1),
             ),
-            Observable::f64(format!("{name}_pos"), 3, "object", move |t: &T, sim, out| {
-                out.copy_from_slice(&get(t).poses[i].pose(sim).0);
-            }),
+            Observable::f64(
+                format!("{name}_pos"),
+                3,
+                "object",
+                move |t: &T, sim, out| {
+                    out.copy_from_slice(&get(t).poses[i].pose(sim).0);
+                },
+            ),
             Observable::new(
                 format!("{name}_quat"),
                 &[4],

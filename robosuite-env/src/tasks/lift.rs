@@ -74,7 +74,11 @@ fn redwood(assets: &Assets) -> Result<CustomMaterial> {
         "redwood",
         "redwood_mat",
         &[("type", "cube")],
-        &[("texrepeat", "1 1"), ("specular", "0.4"), ("shininess", "0.1")],
+        &[
+            ("texrepeat", "1 1"),
+            ("specular", "0.4"),
+            ("shininess", "0.1"),
+        ],
         false,
     )
 }
@@ -241,7 +245,10 @@ impl Task for Lift {
         let half: [f64; 3] = state.try_into().map_err(|_| {
             Error::invalid_argument(
                 "task state",
-                format!("Lift's state is the 3 cube half-extents, got {} values", state.len()),
+                format!(
+                    "Lift's state is the 3 cube half-extents, got {} values",
+                    state.len()
+                ),
             )
         })?;
         if half != self.half {

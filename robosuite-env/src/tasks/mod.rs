@@ -59,7 +59,12 @@ pub trait TaskSpec: Send + Sync + std::fmt::Debug {
     ///
     /// # Errors
     /// [`gym_core::Error::InvalidArgument`] naming what the task needs.
-    fn gripper(&self, _robot: usize, _arm: usize, configured: &GripperChoice) -> Result<GripperChoice> {
+    fn gripper(
+        &self,
+        _robot: usize,
+        _arm: usize,
+        configured: &GripperChoice,
+    ) -> Result<GripperChoice> {
         Ok(configured.clone())
     }
 
@@ -172,7 +177,11 @@ pub trait Task: Send + std::fmt::Debug {
         } else {
             Err(gym_core::Error::invalid_argument(
                 "task state",
-                format!("{} has no task state, got {} values", self.name(), state.len()),
+                format!(
+                    "{} has no task state, got {} values",
+                    self.name(),
+                    state.len()
+                ),
             ))
         }
     }

@@ -4,10 +4,10 @@
 #![allow(dead_code)]
 
 use gym_core::{DictValue, Env};
-use std::collections::BTreeMap as IndexMap;
 use ndarray::{ArrayD, IxDyn};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
 use serde::Deserialize;
+use std::collections::BTreeMap as IndexMap;
 use std::path::PathBuf;
 
 /// One task's fixture.
@@ -40,6 +40,25 @@ pub struct Rollout {
     pub actions: Vec<Vec<f64>>,
     /// After each action.
     pub steps: Vec<RecordedStep>,
+    /// What robosuite itself differs by from this recording when it runs on MuJoCo 3.17.0
+    /// (`scripts/mujoco_floor.py`): the part of any difference MuJoCo's version causes.
+    #[serde(default)]
+    pub floor: Option<Floor>,
+}
+
+/// The MuJoCo-version floor of a rollout's differences, as [`ReplayErrors`] measures them.
+#[derive(Debug, Clone, Copy, Default, Deserialize)]
+pub struct Floor {
+    /// Robot joints and grip site before the first touch.
+    pub free_arm: f64,
+    /// Robot joints and grip site after it.
+    pub contact_arm: f64,
+    /// Object positions.
+    pub objects: f64,
+    /// Rewards.
+    pub reward: f64,
+    /// Steps whose success differs.
+    pub success_mismatches: usize,
 }
 
 /// What robosuite reported after one step.
@@ -131,7 +150,10 @@ pub fn values(obs: &DictValue, key: &str) -> Vec<f64> {
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 /// Position keys of a robot (compared at the arm tolerance).
@@ -141,7 +163,10 @@ fn is_arm_key(key: &str) -> bool {
 
 /// Object position keys (world positions of objects).
 fn is_object_pos_key(key: &str) -> bool {
-    !key.starts_with("robot") && key.ends_with("_pos") && !key.contains("_to_") && !key.starts_with("gripper")
+    !key.starts_with("robot")
+        && key.ends_with("_pos")
+        && !key.contains("_to_")
+        && !key.starts_with("gripper")
 }
 
 /// An environment for `fixture` with robosuite's defaults.

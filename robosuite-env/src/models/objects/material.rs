@@ -73,15 +73,25 @@ impl CustomMaterial {
                     "texture",
                     format!(
                         "unknown texture `{texture}`; valid: {}",
-                        TEXTURE_FILES.iter().map(|(k, _)| *k).collect::<Vec<_>>().join(", ")
+                        TEXTURE_FILES
+                            .iter()
+                            .map(|(k, _)| *k)
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     ),
                 )
             })?;
         let path = assets.file(&format!("textures/{file}"))?;
-        let mut tex: Vec<_> = tex_attrib.iter().map(|(k, v)| (*k, (*v).to_owned())).collect();
+        let mut tex: Vec<_> = tex_attrib
+            .iter()
+            .map(|(k, v)| (*k, (*v).to_owned()))
+            .collect();
         tex.push(("name", tex_name.to_owned()));
         tex.push(("file", path.to_string_lossy().into_owned()));
-        let mut mat: Vec<_> = mat_attrib.iter().map(|(k, v)| (*k, (*v).to_owned())).collect();
+        let mut mat: Vec<_> = mat_attrib
+            .iter()
+            .map(|(k, v)| (*k, (*v).to_owned()))
+            .collect();
         mat.push(("name", mat_name.to_owned()));
         mat.push(("texture", tex_name.to_owned()));
         Ok(Self {

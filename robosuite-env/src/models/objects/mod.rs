@@ -103,12 +103,20 @@ impl ObjectModel {
 
     /// The contact geoms' full names.
     pub fn contact_geoms(&self) -> Vec<String> {
-        self.names.contact_geoms.iter().map(|g| self.name_of(g)).collect()
+        self.names
+            .contact_geoms
+            .iter()
+            .map(|g| self.name_of(g))
+            .collect()
     }
 
     /// The visual geoms' full names.
     pub fn visual_geoms(&self) -> Vec<String> {
-        self.names.visual_geoms.iter().map(|g| self.name_of(g)).collect()
+        self.names
+            .visual_geoms
+            .iter()
+            .map(|g| self.name_of(g))
+            .collect()
     }
 
     /// The sites' full names.

@@ -63,7 +63,10 @@ impl Primitive {
         if size.iter().any(|v| !v.is_finite() || *v <= 0.0) {
             return Err(Error::invalid_argument(
                 "size",
-                format!("{} size must be positive and finite, got {size:?}", self.name),
+                format!(
+                    "{} size must be positive and finite, got {size:?}",
+                    self.name
+                ),
             ));
         }
         let cylinder = matches!(self.shape, Shape::Cylinder(_));
@@ -97,7 +100,10 @@ impl Primitive {
             tree::add_prefix(&mut assets, &prefix, &exclude);
         }
 
-        let mut body = element("body", &[("name", "main".to_owned()), ("pos", "0 0 0".to_owned())]);
+        let mut body = element(
+            "body",
+            &[("name", "main".to_owned()), ("pos", "0 0 0".to_owned())],
+        );
         let size = array_to_string(&size);
         if matches!(self.obj_type, ObjType::Collision | ObjType::All) {
             let mut attrs = vec![

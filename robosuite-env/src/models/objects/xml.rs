@@ -66,14 +66,23 @@ pub fn xml_object(
     let obj_idx = outer
         .children
         .iter()
-        .position(|n| n.as_element().is_some_and(|c| c.name == "body" && attr(c, "name") == Some("object")))
+        .position(|n| {
+            n.as_element()
+                .is_some_and(|c| c.name == "body" && attr(c, "name") == Some("object"))
+        })
         .expect("found above");
     let XMLNode::Element(mut obj) = outer.children.remove(obj_idx) else {
         unreachable!("found as an element")
     };
     set_attr(&mut obj, "name", "main");
     let mut counter = 0;
-    filter_geoms(&mut obj, obj_type, duplicate_collision_geoms, &mut counter, &path)?;
+    filter_geoms(
+        &mut obj,
+        obj_type,
+        duplicate_collision_geoms,
+        &mut counter,
+        &path,
+    )?;
     for joint in joints.elements() {
         append(&mut obj, joint);
     }
