@@ -61,7 +61,6 @@ _FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
     "render_gpu_device_id": (-1,),
     "lite_physics": (True,),
     "env_configuration": ("default",),
-    "gripper_types": ("default", "PandaGripper"),
     "base_types": ("default",),
     "mount_types": ("default",),
     "placement_initializer": (None,),
@@ -89,7 +88,7 @@ _RENDER_ONLY_KWARGS = (
 
 #: Every keyword argument :func:`make` accepts.
 SUPPORTED_KWARGS: tuple[str, ...] = (
-    ("robots", "controller_configs", "initialization_noise", "model_xml")
+    ("robots", "gripper_types", "controller_configs", "initialization_noise", "model_xml")
     + _DIRECT_KWARGS
     + tuple(_FIXED_KWARGS)
     + _RENDER_ONLY_KWARGS
@@ -197,6 +196,11 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
                 raise ValueError(f"{env_name}: {key}={value!r} is not supported by robosuite_rs ({hint})")
         elif key in _RENDER_ONLY_KWARGS:
             continue
+        elif key == "gripper_types":
+            choices = value if isinstance(value, (list, tuple)) else [value] * len(robots_list)
+            if len(choices) != len(robots_list):
+                raise ValueError(f"gripper_types: give one per robot ({len(robots_list)}), got {len(choices)}")
+            config["gripper_types"] = ",".join("None" if c is None else str(c) for c in choices)
         elif key == "controller_configs":
             config.update(_controller_kwargs(value))
         elif key == "initialization_noise":

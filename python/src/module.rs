@@ -24,7 +24,7 @@ fn build(
     match model_xml {
         None => robosuite_env::make_with(env_name, config),
         Some(path) => {
-            RobosuiteEnv::from_scene_file(robosuite_env::make_task(env_name)?, path, config)
+            RobosuiteEnv::from_scene_file(robosuite_env::make_task(env_name)?.as_ref(), path, config)
         }
     }
 }

@@ -145,10 +145,10 @@ impl PyRobosuiteEnv {
         self.lock().config().reward_scale
     }
 
-    /// Whether rewards are shaped.
+    /// Whether rewards are shaped (the task's default unless set).
     #[getter]
     fn reward_shaping(&self) -> bool {
-        self.lock().config().reward_shaping
+        self.lock().config().reward_shaping.unwrap_or(false)
     }
 
     /// Whether the horizon is ignored.
