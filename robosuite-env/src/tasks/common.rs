@@ -135,6 +135,9 @@ pub enum PoseRef {
     Geom(usize),
     /// A site's `site_xpos` / `site_xmat` (quaternion through robosuite's `mat2quat`).
     Site(usize),
+    /// A body's `xpos` / `xmat` (quaternion through robosuite's `mat2quat`: ToolHang's
+    /// body query).
+    BodyFrame(usize),
 }
 
 impl PoseRef {
@@ -151,6 +154,7 @@ impl PoseRef {
                 d.site_xpos()[s],
                 mat2quat(&mat_from_row_major(&d.site_xmat()[s])),
             ),
+            Self::BodyFrame(b) => (d.xpos()[b], mat2quat(&mat_from_row_major(&d.xmat()[b]))),
         }
     }
 }
@@ -190,10 +194,12 @@ impl ObjectSensors {
         self.previous = None;
     }
 
-    /// Caches the objects' current poses (after every observation pass).
+    /// Caches the objects' current poses (after every observation pass). Reuses the cache's
+    /// buffer: only the first pass after [`ObjectSensors::clear`] allocates.
     pub fn remember(&mut self, sim: &Sim) {
-        let poses = self.poses.iter().map(|p| p.pose(sim)).collect();
-        self.previous = Some(poses);
+        let previous = self.previous.get_or_insert_with(Vec::new);
+        previous.clear();
+        previous.extend(self.poses.iter().map(|p| p.pose(sim)));
     }
 
     /// The cache as flat numbers (for snapshots): empty when cleared.
