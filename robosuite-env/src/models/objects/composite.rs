@@ -392,6 +392,25 @@ impl CompositeObject {
         }
     }
 
+    /// A composite object whose geom locations are from the centre of its bounding box,
+    /// with this density and these solver figures (how robosuite's composite classes call
+    /// their base class).
+    pub fn centred(
+        name: &str,
+        total_size: [f64; 3],
+        density: f64,
+        solref: [f64; 2],
+        solimp: [f64; 3],
+    ) -> Self {
+        Self {
+            density: Some(density),
+            solref,
+            solimp,
+            locations_relative_to_center: true,
+            ..Self::new(name, total_size)
+        }
+    }
+
     fn validate(&self) -> Result<()> {
         check_name(&self.name)?;
         check_finite("total_size", &self.total_size)?;
@@ -517,6 +536,73 @@ impl GeneratedObject for super::primitive::Primitive {
             Shape::Box(s) => s,
             Shape::Cylinder([r, h]) => [r, r, h],
         }
+    }
+}
+
+/// The figures robosuite's shell-like composites (`HollowCylinderObject`, `ConeObject`)
+/// give each of their geoms, with those classes' defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShellStyle {
+    /// Colour of the visual geoms (`None`: none).
+    pub rgba: Option<[f64; 4]>,
+    /// Material of the visual geoms (appended to the assets).
+    pub material: Option<CustomMaterial>,
+    /// Density (default 1000).
+    pub density: f64,
+    /// Solref (default `(0.02, 1.0)`).
+    pub solref: [f64; 2],
+    /// Solimp (default `(0.9, 0.95, 0.001)`).
+    pub solimp: [f64; 3],
+    /// Friction (`None`: MuJoCo's default).
+    pub friction: Option<[f64; 3]>,
+}
+
+impl Default for ShellStyle {
+    fn default() -> Self {
+        Self {
+            rgba: None,
+            material: None,
+            density: 1000.0,
+            solref: [0.02, 1.0],
+            solimp: [0.9, 0.95, 0.001],
+            friction: None,
+        }
+    }
+}
+
+impl ShellStyle {
+    /// A geom named `name` as these classes add it: the style's colour, material and
+    /// friction, condim 4.
+    pub fn geom(&self, geom: CompositeGeom, name: String) -> CompositeGeom {
+        let mut g = geom.named(name);
+        g.rgba = self.rgba;
+        g.material = self.material.as_ref().map(|m| m.material_name().to_owned());
+        g.friction = self.friction;
+        g.condim = Some(4);
+        g
+    }
+
+    /// The composite object these classes make of `geoms`: locations from the centre, the
+    /// style's density and solver figures, the red site `center` at the origin, the material
+    /// appended.
+    pub fn composite(
+        &self,
+        name: &str,
+        total_size: [f64; 3],
+        geoms: Vec<CompositeGeom>,
+    ) -> CompositeObject {
+        let mut c =
+            CompositeObject::centred(name, total_size, self.density, self.solref, self.solimp);
+        c.geoms = geoms;
+        c.sites = vec![
+            SiteSpec::named("center")
+                .with("pos", "0 0 0")
+                .with("size", "0.002")
+                .with("rgba", "1 0 0 1")
+                .with("type", "sphere"),
+        ];
+        c.materials = self.material.iter().cloned().collect();
+        c
     }
 }
 
@@ -835,16 +921,16 @@ mod tests {
         hc.height = 0.01;
         hc.ngeoms = 6;
         hc.make_half = true;
-        hc.material = Some(wood(&assets));
-        hc.friction = Some([0.9, 0.1, 0.01]);
-        hc.rgba = Some([0.2, 0.2, 0.2, 1.0]);
+        hc.style.material = Some(wood(&assets));
+        hc.style.friction = Some([0.9, 0.1, 0.01]);
+        hc.style.rgba = Some([0.2, 0.2, 0.2, 1.0]);
         check("hollow", &hc);
         let mut cone = Cone::new("cone");
         cone.outer_radius = 0.02;
         cone.inner_radius = 0.005;
         cone.height = 0.03;
         cone.ngeoms = 4;
-        cone.rgba = Some([0.5, 0.5, 0.5, 1.0]);
+        cone.style.rgba = Some([0.5, 0.5, 0.5, 1.0]);
         check("cone", &cone);
     }
 
@@ -857,7 +943,7 @@ mod tests {
         ring.inner_radius = 0.015;
         ring.height = 0.005;
         ring.ngeoms = 4;
-        ring.material = Some(wood(assets));
+        ring.style.material = Some(wood(assets));
         (b, ring)
     }
 

@@ -1,8 +1,8 @@
 //! robosuite's `ConeObject` (`models/objects/composite/cone.py`): a cone approximated by a
 //! stack of cylinders or boxes.
 
-use super::composite::{CompositeGeom, CompositeObject, GeneratedObject, GeomType, SiteSpec};
-use super::{CustomMaterial, ObjectModel};
+use super::ObjectModel;
+use super::composite::{CompositeGeom, CompositeObject, GeneratedObject, GeomType, ShellStyle};
 use gym_core::{Error, Result};
 
 /// The figures of a cone (robosuite's constructor arguments and defaults).
@@ -20,18 +20,8 @@ pub struct Cone {
     pub ngeoms: usize,
     /// Boxes instead of cylinders (a square pyramid).
     pub use_box: bool,
-    /// Colour of the visual geoms (`None`: none).
-    pub rgba: Option<[f64; 4]>,
-    /// Material of the visual geoms.
-    pub material: Option<CustomMaterial>,
-    /// Density (default 1000).
-    pub density: f64,
-    /// Solref (default `(0.02, 1.0)`).
-    pub solref: [f64; 2],
-    /// Solimp (default `(0.9, 0.95, 0.001)`).
-    pub solimp: [f64; 3],
-    /// Friction (`None`: MuJoCo's default).
-    pub friction: Option<[f64; 3]>,
+    /// Colour, material, density, solver figures and friction of the slices.
+    pub style: ShellStyle,
 }
 
 impl Cone {
@@ -44,12 +34,7 @@ impl Cone {
             height: 0.05,
             ngeoms: 8,
             use_box: false,
-            rgba: None,
-            material: None,
-            density: 1000.0,
-            solref: [0.02, 1.0],
-            solimp: [0.9, 0.95, 0.001],
-            friction: None,
+            style: ShellStyle::default(),
         }
     }
 
@@ -101,14 +86,9 @@ impl Cone {
             .zip(sizes)
             .enumerate()
             .map(|(i, (k, size))| {
-                let mut g =
-                    CompositeGeom::new(geom_type, &size, [0.0, 0.0, k as f64 * unit_height * 2.0])
-                        .named(format!("c_{i}"));
-                g.rgba = self.rgba;
-                g.material = self.material.as_ref().map(|m| m.material_name().to_owned());
-                g.friction = self.friction;
-                g.condim = Some(4);
-                g
+                let at = [0.0, 0.0, k as f64 * unit_height * 2.0];
+                self.style
+                    .geom(CompositeGeom::new(geom_type, &size, at), format!("c_{i}"))
             })
             .collect())
     }
@@ -118,24 +98,8 @@ impl Cone {
     /// # Errors
     /// As [`Cone::geoms`].
     pub fn composite(&self) -> Result<CompositeObject> {
-        let mut c = CompositeObject::new(
-            &self.name,
-            [self.outer_radius, self.outer_radius, self.height / 2.0],
-        );
-        c.locations_relative_to_center = true;
-        c.density = Some(self.density);
-        c.solref = self.solref;
-        c.solimp = self.solimp;
-        c.geoms = self.geoms()?;
-        c.sites = vec![
-            SiteSpec::named("center")
-                .with("pos", "0 0 0")
-                .with("size", "0.002")
-                .with("rgba", "1 0 0 1")
-                .with("type", "sphere"),
-        ];
-        c.materials = self.material.iter().cloned().collect();
-        Ok(c)
+        let half = [self.outer_radius, self.outer_radius, self.height / 2.0];
+        Ok(self.style.composite(&self.name, half, self.geoms()?))
     }
 }
 

@@ -1,8 +1,8 @@
 //! robosuite's `HollowCylinderObject` (`models/objects/composite/hollow_cylinder.py`): a
 //! cylindrical shell approximated by a ring of boxes.
 
-use super::composite::{CompositeGeom, CompositeObject, GeneratedObject, GeomType, SiteSpec};
-use super::{CustomMaterial, ObjectModel};
+use super::ObjectModel;
+use super::composite::{CompositeGeom, CompositeObject, GeneratedObject, GeomType, ShellStyle};
 use gym_core::{Error, Result};
 use std::f64::consts::PI;
 
@@ -19,20 +19,10 @@ pub struct HollowCylinder {
     pub height: f64,
     /// Boxes around the full ring (default 8).
     pub ngeoms: usize,
-    /// Colour of the visual geoms (`None`: none).
-    pub rgba: Option<[f64; 4]>,
-    /// Material of the visual geoms.
-    pub material: Option<CustomMaterial>,
-    /// Density (default 1000).
-    pub density: f64,
-    /// Solref (default `(0.02, 1.0)`).
-    pub solref: [f64; 2],
-    /// Solimp (default `(0.9, 0.95, 0.001)`).
-    pub solimp: [f64; 3],
-    /// Friction (`None`: MuJoCo's default).
-    pub friction: Option<[f64; 3]>,
     /// Only the first `ngeoms / 2 + 1` boxes (half a shell).
     pub make_half: bool,
+    /// Colour, material, density, solver figures and friction of the boxes.
+    pub style: ShellStyle,
 }
 
 impl HollowCylinder {
@@ -44,13 +34,8 @@ impl HollowCylinder {
             inner_radius: 0.03,
             height: 0.05,
             ngeoms: 8,
-            rgba: None,
-            material: None,
-            density: 1000.0,
-            solref: [0.02, 1.0],
-            solimp: [0.9, 0.95, 0.001],
-            friction: None,
             make_half: false,
+            style: ShellStyle::default(),
         }
     }
 
@@ -87,37 +72,21 @@ impl HollowCylinder {
             self.ngeoms
         };
         let step = 2.0 * PI / n;
-        let mut c = CompositeObject::new(&self.name, [r2, r2, self.height]);
-        c.locations_relative_to_center = true;
-        c.density = Some(self.density);
-        c.solref = self.solref;
-        c.solimp = self.solimp;
-        c.geoms = (0..n_make)
+        let geoms = (0..n_make)
             .map(|i| {
                 let angle = PI - i as f64 * step;
-                let mut g = CompositeGeom::new(
+                let g = CompositeGeom::new(
                     GeomType::Box,
                     &[height, width, self.height],
                     [int_r * angle.cos(), int_r * angle.sin(), 0.0],
                 )
-                .quat([(angle / 2.0).cos(), 0.0, 0.0, (angle / 2.0).sin()])
-                .named(format!("hc_{i}"));
-                g.rgba = self.rgba;
-                g.material = self.material.as_ref().map(|m| m.material_name().to_owned());
-                g.friction = self.friction;
-                g.condim = Some(4);
-                g
+                .quat([(angle / 2.0).cos(), 0.0, 0.0, (angle / 2.0).sin()]);
+                self.style.geom(g, format!("hc_{i}"))
             })
             .collect();
-        c.sites = vec![
-            SiteSpec::named("center")
-                .with("pos", "0 0 0")
-                .with("size", "0.002")
-                .with("rgba", "1 0 0 1")
-                .with("type", "sphere"),
-        ];
-        c.materials = self.material.iter().cloned().collect();
-        Ok(c)
+        Ok(self
+            .style
+            .composite(&self.name, [r2, r2, self.height], geoms))
     }
 }
 

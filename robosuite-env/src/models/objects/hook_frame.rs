@@ -201,10 +201,10 @@ impl HookFrame {
             cone.height = tip.cone_height;
             cone.ngeoms = 50;
             cone.use_box = true;
-            cone.density = self.density;
-            cone.solref = self.solref;
-            cone.solimp = self.solimp;
-            cone.friction = self.friction;
+            cone.style.density = self.density;
+            cone.style.solref = self.solref;
+            cone.style.solimp = self.solimp;
+            cone.style.friction = self.friction;
             let slices = cone.geoms()?;
             let cylinder = [(fl - ft) / 2.0, 0.0, -fh / 2.0 - tip.cylinder_half_height];
             let offset = [
@@ -260,11 +260,13 @@ impl HookFrame {
                 "1 0 0 1",
             ));
         }
-        let mut c = CompositeObject::new(&self.name, self.size().map(|v| v / 2.0));
-        c.locations_relative_to_center = true;
-        c.density = Some(self.density);
-        c.solref = self.solref;
-        c.solimp = self.solimp;
+        let mut c = CompositeObject::centred(
+            &self.name,
+            self.size().map(|v| v / 2.0),
+            self.density,
+            self.solref,
+            self.solimp,
+        );
         c.geoms = geoms;
         c.sites = sites;
         c.materials = vec![self.brass.clone()];

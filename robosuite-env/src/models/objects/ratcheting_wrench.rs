@@ -1,7 +1,7 @@
 //! robosuite's `RatchetingWrenchObject` (`models/objects/composite_body/ratcheting_wrench.py`):
 //! a handle between two rings, with an optional grip, as a composite body (ToolHang's tool).
 
-use super::composite::{BodyPart, CompositeBodyObject, GeneratedObject};
+use super::composite::{BodyPart, CompositeBodyObject, GeneratedObject, ShellStyle};
 use super::hollow_cylinder::HollowCylinder;
 use super::primitive::Primitive;
 use super::stand_with_mount::tool_material;
@@ -71,11 +71,14 @@ impl RatchetingWrench {
         ring.inner_radius = self.inner_radii[i];
         ring.height = self.heights[i];
         ring.ngeoms = self.ngeoms;
-        ring.material = Some(self.steel.clone());
-        ring.density = self.density;
-        ring.solref = self.solref;
-        ring.solimp = self.solimp;
-        ring.friction = self.friction;
+        ring.style = ShellStyle {
+            rgba: None,
+            material: Some(self.steel.clone()),
+            density: self.density,
+            solref: self.solref,
+            solimp: self.solimp,
+            friction: self.friction,
+        };
         ring
     }
 

@@ -184,11 +184,13 @@ impl StandWithMount {
             rim.obj_type = ObjType::Visual;
             geoms.push(rim);
         }
-        let mut c = CompositeObject::new(&self.name, s.map(|v| v / 2.0));
-        c.locations_relative_to_center = true;
-        c.density = Some(self.density);
-        c.solref = self.solref;
-        c.solimp = self.solimp;
+        let mut c = CompositeObject::centred(
+            &self.name,
+            s.map(|v| v / 2.0),
+            self.density,
+            self.solref,
+            self.solimp,
+        );
         c.geoms = geoms;
         c.sites = vec![
             SiteSpec::named("mount_site")
