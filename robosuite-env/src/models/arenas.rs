@@ -241,7 +241,10 @@ impl Arena {
             }
             None => append(
                 self.doc.worldbody_mut(),
-                element("camera", &[("name", name.to_owned()), ("pos", pos), ("quat", quat)]),
+                element(
+                    "camera",
+                    &[("name", name.to_owned()), ("pos", pos), ("quat", quat)],
+                ),
             ),
         }
         Ok(())
