@@ -103,6 +103,10 @@ def robot_touches(env):
 def task_state(task, env):
     if task == "Lift":
         return [float(x) for x in env.cube.size]
+    if task == "ToolHang":
+        # No drawn model parameters; the state is ToolHang's observation cache, which a
+        # replay restarts from the recorded reset state.
+        return []
     return []
 
 
@@ -153,6 +157,53 @@ def pick_policy(obj_key, lift_height=0.15, grasp_depth=-0.005):
     return act
 
 
+def wrap_angle(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def bar_grasp_policy(obj_name, lift_height=0.1):
+    """Grasp a bar lying along its object's x axis (ToolHang's tool grip): reach 20 cm above
+    it while yawing the hand so the fingers close across the bar, descend, close, lift."""
+    import robosuite.utils.transform_utils as T
+
+    state = {"phase": 0, "t": 0, "start": None}
+
+    def act(obs):
+        eef = obs["robot0_eef_pos"]
+        obj = np.asarray(obs[f"{obj_name}_pos"])
+        if state["start"] is None:
+            state["start"] = obj.copy()
+        state["t"] += 1
+        finger = T.quat2mat(obs["robot0_eef_quat"])[:, 1]
+        bar = T.quat2mat(obs[f"{obj_name}_quat"])[:, 0]
+        err = wrap_angle(np.arctan2(bar[1], bar[0]) + np.pi / 2 - np.arctan2(finger[1], finger[0]))
+        if abs(err) > np.pi / 2:
+            err = wrap_angle(err + np.pi)
+        grip = -1.0
+        if state["phase"] == 0:
+            # high enough to pass over ToolHang's stand
+            target = obj + np.array([0, 0, 0.2])
+            if (np.linalg.norm(target - eef) < 0.01 and abs(err) < 0.03) or state["t"] > 40:
+                state["phase"], state["t"] = 1, 0
+        elif state["phase"] == 1:
+            target = obj
+            if np.linalg.norm(target - eef) < 0.006 or state["t"] > 30:
+                state["phase"], state["t"] = 2, 0
+        elif state["phase"] == 2:
+            target, grip = eef, 1.0
+            if state["t"] > 10:
+                state["phase"], state["t"] = 3, 0
+        else:
+            target, grip = state["start"] + np.array([0, 0, lift_height]), 1.0
+        a = np.zeros(7)
+        a[:3] = toward(eef, target)
+        a[5] = np.clip(err * 4.0, -1.0, 1.0) if state["phase"] < 2 else 0.0
+        a[6] = grip
+        return a
+
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -160,6 +211,7 @@ def random_policy(seed, dim):
 
 POLICIES = {
     "Lift": [("scripted", lambda env: pick_policy("cube_pos"), 80), ("random", lambda env: random_policy(7, env.action_dim), 60)],
+    "ToolHang": [("scripted", lambda env: bar_grasp_policy("tool"), 120), ("random", lambda env: random_policy(3, env.action_dim), 60)],
 }
 
 

@@ -174,6 +174,21 @@ pub fn quat_mul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
     ]
 }
 
+/// robosuite's `quat_multiply(q1, q0)` on `xyzw` quaternions: the product `q1·q0` formed
+/// in float64 in robosuite's term order and returned rounded to float32 (robosuite returns
+/// a float32 array).
+pub fn quat_multiply_f32(q1: [f64; 4], q0: [f64; 4]) -> [f64; 4] {
+    let [x0, y0, z0, w0] = q0;
+    let [x1, y1, z1, w1] = q1;
+    [
+        x1 * w0 + y1 * z0 - z1 * y0 + w1 * x0,
+        -x1 * z0 + y1 * w0 + z1 * x0 + w1 * y0,
+        x1 * y0 - y1 * x0 + z1 * w0 + w1 * z0,
+        -x1 * x0 - y1 * y0 - z1 * z0 + w1 * w0,
+    ]
+    .map(|v| f64::from(v as f32))
+}
+
 /// Conjugate of a quaternion (`wxyz`; the inverse of a unit quaternion).
 pub fn conj(q: [f64; 4]) -> [f64; 4] {
     [q[0], -q[1], -q[2], -q[3]]

@@ -79,7 +79,9 @@ macro_rules! task_tests {
     };
 }
 
-task_tests! {}
+task_tests! {
+    tool_hang_passes_check_env, tool_hang_passes_the_property_suite => "ToolHang";
+}
 
 #[test]
 fn every_task_reports_success_in_info() {

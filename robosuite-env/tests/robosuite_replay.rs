@@ -50,7 +50,7 @@ fn scene_names_and_counts_equal_robosuites() {
             ("ncam", f.ncam),
         ];
         for (k, v) in ours {
-            assert_eq!(i64::from(v), fixture.counts[k], "{task}: {k}");
+            assert_eq!(v, fixture.counts[k], "{task}: {k}");
         }
         for (kind, obj) in [
             ("body", Obj::mjOBJ_BODY),

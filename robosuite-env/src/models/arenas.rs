@@ -220,6 +220,36 @@ impl Arena {
         Ok(())
     }
 
+    /// robosuite's `Arena.set_camera(camera_name, pos, quat)`: the first camera named
+    /// `name` in the world body gets this `pos` and `quat` (wxyz); when there is none, a
+    /// camera with them is appended to the world body.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a non-finite value.
+    pub fn set_camera(&mut self, name: &str, pos: [f64; 3], quat: [f64; 4]) -> Result<()> {
+        if pos.iter().chain(&quat).any(|v| !v.is_finite()) {
+            return Err(Error::invalid_argument(
+                "camera",
+                format!("`{name}` needs a finite pose, got pos {pos:?}, quat {quat:?}"),
+            ));
+        }
+        let (pos, quat) = (array_to_string(&pos), array_to_string(&quat));
+        match tree::find_mut(self.doc.worldbody_mut(), "camera", &[("name", Some(name))]) {
+            Some(camera) => {
+                set_attr(camera, "pos", pos);
+                set_attr(camera, "quat", quat);
+            }
+            None => append(
+                self.doc.worldbody_mut(),
+                element(
+                    "camera",
+                    &[("name", name.to_owned()), ("pos", pos), ("quat", quat)],
+                ),
+            ),
+        }
+        Ok(())
+    }
+
     /// The table's body, for tasks that put things on it (Wipe's markers).
     ///
     /// # Errors

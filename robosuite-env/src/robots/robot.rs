@@ -34,6 +34,7 @@ pub struct Gripper {
     left_pads: GeomSet,
     right_pads: GeomSet,
     geoms: GeomSet,
+    fingers: GeomSet,
     corners: Vec<usize>,
 }
 
@@ -62,6 +63,12 @@ impl Gripper {
     /// Every contact geom of the gripper.
     pub fn contact_geoms(&self) -> &GeomSet {
         &self.geoms
+    }
+
+    /// Every geom of robosuite's `important_geoms` groups: both fingers and both finger
+    /// pads (what ToolHang checks the tool against).
+    pub fn finger_geoms(&self) -> &GeomSet {
+        &self.fingers
     }
 
     /// The ids of the gripper's named corner geoms (the wiping tool's).
@@ -254,6 +261,18 @@ impl Robot {
                 left_pads: geom_set(model, &named(g.info.left_fingerpad))?,
                 right_pads: geom_set(model, &named(g.info.right_fingerpad))?,
                 geoms: geom_set(model, &g.xml.names_of(&g.xml.names.contact_geoms))?,
+                fingers: geom_set(
+                    model,
+                    &named(
+                        &[
+                            g.info.left_finger,
+                            g.info.right_finger,
+                            g.info.left_fingerpad,
+                            g.info.right_fingerpad,
+                        ]
+                        .concat(),
+                    ),
+                )?,
                 corners: named(g.info.corners)
                     .iter()
                     .map(|n| geom_id(model, n))

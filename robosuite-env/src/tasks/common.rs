@@ -131,10 +131,19 @@ pub fn scale_reward(reward: f64, scale: Option<f64>, max: f64) -> f64 {
 pub enum PoseRef {
     /// A body's `xpos` / `xquat`.
     Body(usize),
-    /// A geom's `geom_xpos` / `geom_xmat` (quaternion through robosuite's `mat2quat`).
+    /// A geom's `geom_xpos` / `geom_xmat` (quaternion through robosuite's `mat2quat`, which
+    /// returns float32).
     Geom(usize),
     /// A site's `site_xpos` / `site_xmat` (quaternion through robosuite's `mat2quat`).
     Site(usize),
+    /// A body's `xpos` / `xmat` (quaternion through robosuite's `mat2quat`: ToolHang's
+    /// body query).
+    BodyFrame(usize),
+}
+
+/// robosuite's `mat2quat` of a MuJoCo frame matrix: `xyzw`, `w ≥ 0`, float32 values.
+fn frame_quat(xmat: &[f64; 9]) -> [f64; 4] {
+    mat2quat(&mat_from_row_major(xmat)).map(|v| f64::from(v as f32))
 }
 
 impl PoseRef {
@@ -143,14 +152,9 @@ impl PoseRef {
         let d = sim.data();
         match self {
             Self::Body(b) => (d.xpos()[b], xyzw(d.xquat()[b])),
-            Self::Geom(g) => (
-                d.geom_xpos()[g],
-                mat2quat(&mat_from_row_major(&d.geom_xmat()[g])),
-            ),
-            Self::Site(s) => (
-                d.site_xpos()[s],
-                mat2quat(&mat_from_row_major(&d.site_xmat()[s])),
-            ),
+            Self::Geom(g) => (d.geom_xpos()[g], frame_quat(&d.geom_xmat()[g])),
+            Self::Site(s) => (d.site_xpos()[s], frame_quat(&d.site_xmat()[s])),
+            Self::BodyFrame(b) => (d.xpos()[b], frame_quat(&d.xmat()[b])),
         }
     }
 }
@@ -190,10 +194,12 @@ impl ObjectSensors {
         self.previous = None;
     }
 
-    /// Caches the objects' current poses (after every observation pass).
+    /// Caches the objects' current poses (after every observation pass). Reuses the cache's
+    /// buffer: only the first pass after [`ObjectSensors::clear`] allocates.
     pub fn remember(&mut self, sim: &Sim) {
-        let poses = self.poses.iter().map(|p| p.pose(sim)).collect();
-        self.previous = Some(poses);
+        let previous = self.previous.get_or_insert_with(Vec::new);
+        previous.clear();
+        previous.extend(self.poses.iter().map(|p| p.pose(sim)));
     }
 
     /// The cache as flat numbers (for snapshots): empty when cleared.
@@ -261,7 +267,8 @@ impl ObjectSensors {
     /// The four observables of object `i` named `name`, in robosuite's order:
     /// `{name}_to_robot0_eef_pos`, `{name}_to_robot0_eef_quat`, `{name}_pos`, `{name}_quat`
     /// (modality `object`). `get` finds the sensors in the task; `quat_dtype` is the dtype
-    /// robosuite gives the quaternions.
+    /// robosuite gives `{name}_quat` (float32 where it reads a frame's matrix, as ToolHang's
+    /// sensors do); the relative quaternion is always float64.
     pub fn observables<T: 'static>(
         get: fn(&T) -> &ObjectSensors,
         i: usize,
@@ -280,7 +287,7 @@ impl ObjectSensors {
             Observable::new(
                 format!("{name}_to_robot0_eef_quat"),
                 &[4],
-                quat_dtype,
+                DType::F64,
                 "object",
                 move |t: &T, sim, out| out.copy_from_slice(&get(t).relative(sim, i).1),
             ),

@@ -10,8 +10,10 @@
 pub mod common;
 mod lift;
 pub mod placement;
+mod tool_hang;
 
 pub use lift::{Lift, LiftSpec};
+pub use tool_hang::{ToolHang, ToolHangSpec};
 
 use crate::assets::Assets;
 use crate::models::arenas::Arena;

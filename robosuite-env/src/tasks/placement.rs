@@ -41,6 +41,14 @@ pub struct PlacedObject {
 /// A sampled pose: position and quaternion (wxyz).
 pub type Pose = ([f64; 3], [f64; 4]);
 
+/// What robosuite's `UniformRandomSampler` makes of a sampled quaternion for an object with
+/// an `init_quat` (xyzw; ToolHang's stand and frame, the hammer):
+/// `quat_multiply(sampled, init_quat)`, which takes the sampled `wxyz` quaternion as if it
+/// were `xyzw`, returns float32, and whose result is used as `wxyz`.
+pub fn with_init_quat(sampled: [f64; 4], init_quat: [f64; 4]) -> [f64; 4] {
+    crate::math::quat_multiply_f32(sampled, init_quat)
+}
+
 /// robosuite's `UniformRandomSampler`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct UniformRandomSampler {

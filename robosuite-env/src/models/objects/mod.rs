@@ -3,10 +3,20 @@
 //! Every object becomes an [`ObjectModel`]: a prefixed body subtree with its assets, its
 //! element names and the extent the placement samplers use. They are made from robosuite's
 //! object files ([`xml_object`]: can, milk, bread, cereal, nuts, door, ...) or generated
-//! from figures as robosuite generates them ([`primitive`]: boxes and cylinders).
+//! from figures as robosuite generates them ([`primitive`]: boxes and cylinders;
+//! [`composite`]: robosuite's composite objects and composite bodies, with ToolHang's
+//! [`stand_with_mount`], [`hook_frame`] and [`ratcheting_wrench`] built on them).
 
+pub mod composite;
+pub mod cone;
+pub mod hollow_cylinder;
+pub mod hook_frame;
 mod material;
 pub mod primitive;
+pub mod ratcheting_wrench;
+#[cfg(test)]
+mod robosuite_expected;
+pub mod stand_with_mount;
 mod xml;
 
 pub use material::CustomMaterial;
