@@ -23,9 +23,11 @@ fn build(
 ) -> gym_core::Result<RobosuiteEnv> {
     match model_xml {
         None => robosuite_env::make_with(env_name, config),
-        Some(path) => {
-            RobosuiteEnv::from_scene_file(robosuite_env::make_task(env_name)?.as_ref(), path, config)
-        }
+        Some(path) => RobosuiteEnv::from_scene_file(
+            robosuite_env::make_task(env_name)?.as_ref(),
+            path,
+            config,
+        ),
     }
 }
 

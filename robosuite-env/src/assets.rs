@@ -90,6 +90,11 @@ impl Assets {
         &self.package
     }
 
+    /// robosuite's controller configuration folder, `.../robosuite/controllers/config`.
+    pub fn controller_config_dir(&self) -> PathBuf {
+        self.package.join("controllers/config")
+    }
+
     /// The model folder, `.../robosuite/models/assets` (robosuite's `assets_root`).
     pub fn root(&self) -> PathBuf {
         self.package.join("models/assets")

@@ -1,6 +1,8 @@
 //! Environment configuration (robosuite's constructor arguments) with validation.
 
-use crate::controllers::OscConfig;
+use crate::assets::Assets;
+use crate::controllers::ControllerConfig;
+use crate::controllers::config::load_part_controller_config;
 use crate::models::grippers::gripper_info;
 use crate::models::robots::{GripperChoice, robot_info};
 use crate::robots::{InitNoise, NoiseKind};
@@ -23,8 +25,9 @@ pub struct EnvConfig {
     /// Grippers, one choice per robot applied to each of its arms (robosuite's
     /// `gripper_types`); empty: every robot's default gripper.
     pub gripper_types: Vec<GripperChoice>,
-    /// The arm controller (`OSC_POSE` defaults).
-    pub controller: OscConfig,
+    /// robosuite's `controller_configs`: empty for each robot's default
+    /// (`default_{robot}.json`: `OSC_POSE`), one config for every robot, or one per robot.
+    pub controller_configs: Vec<ControllerConfig>,
     /// Episode length in env steps (default 1000); reaching it truncates the episode.
     pub horizon: u64,
     /// Control frequency in Hz (default 20, i.e. 25 physics substeps of 2 ms).
@@ -48,7 +51,7 @@ impl Default for EnvConfig {
         Self {
             robots: vec!["Panda".to_owned()],
             gripper_types: Vec::new(),
-            controller: OscConfig::default(),
+            controller_configs: Vec::new(),
             horizon: 1000,
             control_freq: 20.0,
             reward_scale: Some(1.0),
@@ -74,10 +77,8 @@ pub const CONFIG_KEYS: &[&str] = &[
     "seed",
     "initialization_noise_magnitude",
     "initialization_noise_type",
-    "controller_kp",
-    "controller_damping_ratio",
-    "controller_output_max_pos",
-    "controller_output_max_ori",
+    "controller_configs",
+    "controller",
 ];
 
 impl EnvConfig {
@@ -100,11 +101,38 @@ impl EnvConfig {
         self.gripper_types.get(robot).cloned().unwrap_or_default()
     }
 
-    /// Sets the arm controller configuration.
+    /// Sets one controller configuration for every robot (a composite config, or a part
+    /// config robosuite puts on every arm).
     #[must_use]
-    pub fn with_controller(mut self, controller: OscConfig) -> Self {
-        self.controller = controller;
+    pub fn with_controller(mut self, controller: impl Into<ControllerConfig>) -> Self {
+        self.controller_configs = vec![controller.into()];
         self
+    }
+
+    /// Sets robosuite's `controller_configs`: one for every robot, or one per robot.
+    #[must_use]
+    pub fn with_controller_configs(
+        mut self,
+        configs: impl IntoIterator<Item = ControllerConfig>,
+    ) -> Self {
+        self.controller_configs = configs.into_iter().collect();
+        self
+    }
+
+    /// The controller configuration of robot `robot` (`None`: its default) and the name
+    /// errors give it.
+    pub fn controller_config(&self, robot: usize) -> (Option<&ControllerConfig>, String) {
+        match self.controller_configs.len() {
+            0 => (None, "controller_configs".to_owned()),
+            1 => (
+                self.controller_configs.first(),
+                "controller_configs".to_owned(),
+            ),
+            _ => (
+                self.controller_configs.get(robot),
+                format!("controller_configs[{robot}]"),
+            ),
+        }
     }
 
     /// Sets the horizon.
@@ -222,8 +250,17 @@ impl EnvConfig {
                 format!("must be finite or None, got {s}"),
             ));
         }
-        self.initialization_noise.validate()?;
-        self.controller.validate()
+        let n = self.controller_configs.len();
+        if n > 1 && n != self.robots.len() {
+            return Err(Error::invalid_argument(
+                "controller_configs",
+                format!(
+                    "give one config for every robot or one per robot ({}), got {n}",
+                    self.robots.len()
+                ),
+            ));
+        }
+        self.initialization_noise.validate()
     }
 
     /// A configuration from keyword arguments (the registry's `make(id, kwargs)`), starting
@@ -254,7 +291,6 @@ impl EnvConfig {
             )),
             other => Err(kind(key, "a non-negative integer", other)),
         };
-        let (mut out_pos, mut out_ori) = (c.controller.output_max[0], c.controller.output_max[3]);
         for (key, v) in kwargs.iter() {
             match key {
                 "robots" => match v {
@@ -323,12 +359,30 @@ impl EnvConfig {
                     }
                     other => return Err(kind(key, "\"gaussian\", \"uniform\" or \"none\"", other)),
                 },
-                "controller_kp" => c.controller = c.controller.with_kp(float(key, v)?),
-                "controller_damping_ratio" => {
-                    c.controller = c.controller.with_damping_ratio(float(key, v)?)
-                }
-                "controller_output_max_pos" => out_pos = float(key, v)?,
-                "controller_output_max_ori" => out_ori = float(key, v)?,
+                "controller_configs" => match v {
+                    InfoValue::Str(s) => c.controller_configs = parse_controller_configs(s)?,
+                    other => {
+                        return Err(kind(
+                            key,
+                            "robosuite's controller config (a dict, or a list of one per robot) as JSON text",
+                            other,
+                        ));
+                    }
+                },
+                "controller" => match v {
+                    InfoValue::Str(name) => {
+                        let part = load_part_controller_config(&Assets::locate()?, name)?;
+                        c.controller_configs =
+                            vec![ControllerConfig::from_value(&part, "controller_configs")?];
+                    }
+                    other => {
+                        return Err(kind(
+                            key,
+                            "a controller type such as \"OSC_POSITION\"",
+                            other,
+                        ));
+                    }
+                },
                 other => {
                     return Err(Error::UnknownKey {
                         key: other.to_owned(),
@@ -337,8 +391,25 @@ impl EnvConfig {
                 }
             }
         }
-        c.controller = c.controller.with_output_limits(out_pos, out_ori);
         c.validate()?;
         Ok(c)
+    }
+}
+
+/// `controller_configs` as JSON text: one config (composite or part) or a list of them.
+fn parse_controller_configs(text: &str) -> Result<Vec<ControllerConfig>> {
+    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+        Error::invalid_argument("controller_configs", format!("not valid JSON: {e}"))
+    })?;
+    match &value {
+        serde_json::Value::Array(list) => list
+            .iter()
+            .enumerate()
+            .map(|(i, v)| ControllerConfig::from_value(v, &format!("controller_configs[{i}]")))
+            .collect(),
+        single => Ok(vec![ControllerConfig::from_value(
+            single,
+            "controller_configs",
+        )?]),
     }
 }

@@ -3,6 +3,8 @@
 
 use crate::assets::Assets;
 use crate::config::EnvConfig;
+use crate::controllers::config::robot_default;
+use crate::controllers::{CompositeControllerConfig, Timing};
 use crate::models::robots::{RobotModel, robot_info};
 use crate::models::scene::{Scene, compile_cached};
 use crate::observables::{ObsLayout, ObsSpec, total_len};
@@ -101,6 +103,7 @@ pub struct RobosuiteEnv {
 /// The robots and task scene composed for a configuration, before compiling.
 struct Composed {
     robots: Vec<RobotModel>,
+    controllers: Vec<(CompositeControllerConfig, String)>,
     task_scene: TaskScene,
     scene: Scene,
 }
@@ -128,8 +131,15 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
         ));
     }
     let mut robots = Vec::with_capacity(need);
+    let mut controllers = Vec::with_capacity(need);
     for (i, name) in config.robots.iter().enumerate() {
         let info = robot_info(name)?;
+        let (given, path) = config.controller_config(i);
+        let resolved = match given {
+            Some(c) => c.for_robot(assets, info.name, info.arms, &path)?,
+            None => robot_default(assets, info.name)?.fit_to(info.name, info.arms, &path)?,
+        };
+        controllers.push((resolved, path));
         let grippers = (0..info.arms.len())
             .map(|arm| spec.gripper(i, arm, &config.gripper_choice(i, arm)))
             .collect::<Result<Vec<_>>>()?;
@@ -139,6 +149,7 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
     let scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
     Ok(Composed {
         robots,
+        controllers,
         task_scene,
         scene,
     })
@@ -226,10 +237,17 @@ impl RobosuiteEnv {
                 ),
             ));
         }
+        let timing = Timing {
+            timestep,
+            control_freq: config.control_freq,
+        };
         let robots = composed
             .robots
             .iter()
-            .map(|r| Robot::bind(&model, r, &config.controller, config.initialization_noise))
+            .zip(&composed.controllers)
+            .map(|(r, (c, path))| {
+                Robot::bind(&model, r, c, timing, config.initialization_noise, path)
+            })
             .collect::<Result<Vec<_>>>()?;
         let task = spec.bind(&composed.task_scene, &model, &robots)?;
 
@@ -427,9 +445,6 @@ impl RobosuiteEnv {
         }
         self.task.clear_observation_cache();
         self.sim.set_state(state)?;
-        for robot in &mut self.robots {
-            robot.rebase(&self.sim);
-        }
         self.begin_episode()
     }
 
@@ -658,9 +673,6 @@ impl gym_core::Env for RobosuiteEnv {
         self.task.clear_observation_cache();
         self.task.place_objects(&mut self.sim, &mut self.rng)?;
         self.sim.forward();
-        for robot in &mut self.robots {
-            robot.rebase(&self.sim);
-        }
         self.begin_episode()
     }
 

@@ -159,6 +159,66 @@ pub fn mat2quat(m: &Matrix3<f64>) -> [f64; 4] {
     [sign * x / n, sign * y / n, sign * z / n, sign * w / n]
 }
 
+/// SciPy's `Rotation.from_rotvec(v).as_matrix()` (robosuite's absolute `OSC_POSE` goal):
+/// the quaternion with SciPy's small-angle series below 1e-3 rad, then its matrix.
+pub fn rotvec_to_matrix(v: &Vector3<f64>) -> Matrix3<f64> {
+    let angle = v.norm();
+    let scale = if angle <= 1e-3 {
+        let a2 = angle * angle;
+        0.5 - a2 / 48.0 + a2 * a2 / 3840.0
+    } else {
+        (angle / 2.0).sin() / angle
+    };
+    let (x, y, z, w) = (
+        v[0] * scale,
+        v[1] * scale,
+        v[2] * scale,
+        (angle / 2.0).cos(),
+    );
+    let (x2, y2, z2, w2) = (x * x, y * y, z * z, w * w);
+    let (xy, zw, xz, yw, yz, xw) = (x * y, z * w, x * z, y * w, y * z, x * w);
+    Matrix3::new(
+        x2 - y2 - z2 + w2,
+        2.0 * (xy - zw),
+        2.0 * (xz + yw),
+        2.0 * (xy + zw),
+        -x2 + y2 - z2 + w2,
+        2.0 * (yz - xw),
+        2.0 * (xz - yw),
+        2.0 * (yz + xw),
+        -x2 - y2 + z2 + w2,
+    )
+}
+
+/// robosuite's `clip_translation`: scales `dpos` down to norm `limit` when longer.
+pub fn clip_translation(dpos: &Vector3<f64>, limit: f64) -> Vector3<f64> {
+    let norm = dpos.norm();
+    if norm > limit {
+        dpos * (limit / norm)
+    } else {
+        *dpos
+    }
+}
+
+/// robosuite's `clip_rotation`: limits the angle of an `xyzw` rotation to `limit` radians.
+pub fn clip_rotation(quat: [f64; 4], limit: f64) -> [f64; 4] {
+    let n = (quat[0] * quat[0] + quat[1] * quat[1] + quat[2] * quat[2] + quat[3] * quat[3]).sqrt();
+    let q = quat.map(|v| v / n);
+    let den = (1.0 - q[3] * q[3]).max(0.0).sqrt();
+    if den == 0.0 {
+        return q;
+    }
+    let (x, y, z) = (q[0] / den, q[1] / den, q[2] / den);
+    let a = 2.0 * q[3].clamp(-1.0, 1.0).acos();
+    if a.abs() > limit {
+        let half = limit * a.signum() / 2.0;
+        let (sa, ca) = half.sin_cos();
+        [x * sa, y * sa, z * sa, ca]
+    } else {
+        q
+    }
+}
+
 /// `wxyz` → `xyzw` (MuJoCo's order to robosuite's observation order).
 pub fn xyzw(q: [f64; 4]) -> [f64; 4] {
     [q[1], q[2], q[3], q[0]]

@@ -485,7 +485,9 @@ fn configuration_errors_list_valid_values() {
         ),
         Err(Error::InvalidArgument { .. })
     ));
-    let ctrl = robosuite_env::controllers::OscConfig::default().with_kp(f64::NAN);
+    let ctrl = robosuite_env::controllers::ArmControllerConfig::OscPose(
+        robosuite_env::controllers::config::OscConfig::default().with_kp(f64::NAN),
+    );
     assert!(matches!(
         make_with("Lift", EnvConfig::default().with_controller(ctrl)),
         Err(Error::InvalidArgument { .. })

@@ -13,16 +13,20 @@ use crate::models::grippers::GripAction;
 pub struct GripController {
     action: GripAction,
     ranges: Vec<[f64; 2]>,
+    scaling: bool,
     command: Vec<f64>,
 }
 
 impl GripController {
-    /// A controller for actuators with the given ctrlranges.
-    pub fn new(action: GripAction, ranges: Vec<[f64; 2]>) -> Self {
+    /// A controller for actuators with the given ctrlranges; `scaling` maps commands
+    /// onto the ctrlrange (robosuite's `use_action_scaling`, default true), otherwise the
+    /// command is the actuator target.
+    pub fn new(action: GripAction, ranges: Vec<[f64; 2]>, scaling: bool) -> Self {
         let n = ranges.len();
         Self {
             action,
             ranges,
+            scaling,
             command: vec![0.0; n],
         }
     }
@@ -84,9 +88,12 @@ impl GripController {
         }
     }
 
-    /// The target of actuator `i` for the current command.
+    /// The target of actuator `i` for the current command, clipped to its ctrlrange.
     pub fn ctrl(&self, i: usize) -> f64 {
         let [lo, hi] = self.ranges[i];
+        if !self.scaling {
+            return self.command[i].clamp(lo, hi);
+        }
         let bias = 0.5 * (hi + lo);
         let weight = 0.5 * (hi - lo);
         (bias + weight * self.command[i].clamp(-1.0, 1.0)).clamp(lo, hi)
@@ -113,7 +120,8 @@ mod tests {
 
     #[test]
     fn panda_integrator_saturates_after_five_steps() {
-        let mut g = GripController::new(PANDA_GRIPPER.action, vec![[0.0, 0.04], [-0.04, 0.0]]);
+        let mut g =
+            GripController::new(PANDA_GRIPPER.action, vec![[0.0, 0.04], [-0.04, 0.0]], true);
         assert_eq!(g.action_dim(), 1);
         assert_eq!((g.ctrl(0), g.ctrl(1)), (0.02, -0.02));
         for _ in 0..5 {
@@ -138,6 +146,7 @@ mod tests {
         let mut g = GripController::new(
             ROBOTIQ_THREE_FINGER_GRIPPER.action,
             vec![r, r, r, [-0.29, 0.29]],
+            true,
         );
         g.set_goal(&[0.5]);
         assert_eq!(g.command(), [0.1, 0.1, 0.1, -1.0]);
@@ -155,6 +164,7 @@ mod tests {
         let mut g = GripController::new(
             JACO_THREE_FINGER_DEXTEROUS_GRIPPER.action,
             vec![[0.0, 1.51]; 3],
+            true,
         );
         assert_eq!(g.action_dim(), 3);
         g.set_goal(&[1.0, 0.0, -3.0]);

@@ -1,24 +1,39 @@
-//! Controllers: the arm controller abstraction ([`ArmController`]) with robosuite's
-//! `OSC_POSE` ([`OscPose`]), and the `GRIP` gripper controller ([`GripController`]).
+//! Controllers: robosuite's arm part controllers behind one abstraction
+//! ([`ArmController`], for an arm of any number of joints) — `OSC_POSE` and
+//! `OSC_POSITION` ([`Osc`]), `IK_POSE` ([`InverseKinematics`]), `JOINT_POSITION`
+//! ([`JointPosition`]), `JOINT_VELOCITY` ([`JointVelocity`]) and `JOINT_TORQUE`
+//! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), and robosuite's
+//! controller configurations ([`config`]).
 //!
-//! An arm controller turns its slice of the action into joint torques for an arm of any
-//! number of joints: the goal is set on the first substep of each env step, the torques are
-//! computed on every substep from the state after `mj_step1`; the arm clips them to its
-//! motors' ctrlrange.
+//! Per env step an arm controller takes its slice of the action on the first substep
+//! ([`ArmController::set_goal`]) and computes joint torques on every substep
+//! ([`ArmController::compute`]) from the state after `mj_step1`; the arm clips them to its
+//! motors' ctrlrange. None of them allocates in the substep loop.
 
-mod config;
+pub mod config;
 mod gripper;
+mod ik;
+mod interpolator;
+mod joint_position;
+mod joint_torque;
+mod joint_velocity;
 mod osc;
+mod state;
 
-pub use config::OscConfig;
+pub use config::{ArmControllerConfig, ArmPartConfig, CompositeControllerConfig, ControllerConfig};
 pub use gripper::GripController;
-pub use osc::OscPose;
+pub use ik::InverseKinematics;
+pub use interpolator::{InterpolationKind, LinearInterpolator};
+pub use joint_position::JointPosition;
+pub use joint_torque::JointTorque;
+pub use joint_velocity::JointVelocity;
+pub use osc::Osc;
 
 use crate::sim::Sim;
-use gym_core::Result;
+use gym_core::{Error, Result};
 
-/// Where an arm controller reads in the model.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Where an arm controller reads and writes in the model.
+#[derive(Debug, Clone, PartialEq)]
 pub struct ArmBinding {
     /// The controlled site (the gripper's grip site).
     pub site: usize,
@@ -30,6 +45,18 @@ pub struct ArmBinding {
     pub dofs: Vec<usize>,
     /// The model's number of dofs.
     pub nv: usize,
+    /// The ctrlrange of each arm motor (robosuite's `actuator_range`).
+    pub ctrlrange: Vec<[f64; 2]>,
+}
+
+/// The rates a controller runs at.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timing {
+    /// The physics timestep in seconds (robosuite's `model_timestep`, 0.002).
+    pub timestep: f64,
+    /// The env steps per second (robosuite's `control_freq`, the controllers'
+    /// `policy_freq`).
+    pub control_freq: f64,
 }
 
 /// A robosuite arm part controller.
@@ -43,15 +70,10 @@ pub trait ArmController: Send + Sync + std::fmt::Debug {
     /// The action bounds `(low, high)` (robosuite's `control_limits`).
     fn action_limits(&self) -> (Vec<f64>, Vec<f64>);
 
-    /// Records what robosuite's controller caches when robosuite creates it during a reset:
-    /// the state after the arm's posture is written and before the gripper's is (its
-    /// `update(force=True)`). robosuite's first torque computation after the reset reuses
-    /// that cache (its `new_update` flag is still down), so the first substep here does too.
-    /// `sim` must be forwarded.
-    fn capture_reset(&mut self, sim: &Sim);
-
-    /// Re-bases the controller on the current (forwarded) state after a reset: robosuite
-    /// creates its controllers anew at every reset.
+    /// What robosuite does at every reset: creates the controller (reading the arm's state:
+    /// `sim` must be forwarded, with the arm at its reset posture and the grippers not yet
+    /// at theirs) and resets its goal to that state. Gains set by actions return to the
+    /// configured ones.
     fn reset(&mut self, sim: &Sim);
 
     /// Sets the goal from this controller's slice of the action (first substep of an env
@@ -59,17 +81,18 @@ pub trait ArmController: Send + Sync + std::fmt::Debug {
     fn set_goal(&mut self, sim: &Sim, action: &[f64]);
 
     /// Computes the joint torques for the current state into `torques` (one per arm joint,
-    /// before clipping), without allocating.
+    /// before the arm clips them to the motors' ctrlrange), without allocating.
     fn compute(&mut self, sim: &Sim, torques: &mut [f64]);
 
-    /// The controller's internal state (goals, targets), for snapshots.
+    /// The controller's internal state (goals, gains, interpolators, cached arm state), for
+    /// snapshots.
     fn state(&self) -> Vec<f64>;
 
     /// Restores a state from [`ArmController::state`].
     ///
     /// # Errors
-    /// [`gym_core::Error::InvalidArgument`] for a state of the wrong length or with a
-    /// non-finite value; the controller is then unchanged.
+    /// [`Error::InvalidArgument`] for a state of the wrong length or with a non-finite
+    /// value; the controller is then unchanged.
     fn set_state(&mut self, state: &[f64]) -> Result<()>;
 
     /// A boxed copy.
@@ -80,4 +103,145 @@ impl Clone for Box<dyn ArmController> {
     fn clone(&self) -> Self {
         self.clone_box()
     }
+}
+
+/// Builds the controller `config` describes for the arm of `bind`; `path` names the config
+/// in errors (such as `controller_configs.body_parts.right`).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming the key for a value that does not fit the arm (a list
+/// of the wrong length) or is out of range (negative or non-finite gains, limits with low
+/// above high, ...).
+pub fn build_arm_controller(
+    config: &ArmControllerConfig,
+    bind: ArmBinding,
+    timing: Timing,
+    path: &str,
+) -> Result<Box<dyn ArmController>> {
+    Ok(match config {
+        ArmControllerConfig::OscPose(c) => Box::new(Osc::new(c, true, bind, timing, path)?),
+        ArmControllerConfig::OscPosition(c) => Box::new(Osc::new(c, false, bind, timing, path)?),
+        ArmControllerConfig::IkPose(c) => Box::new(InverseKinematics::new(c, bind, timing, path)?),
+        ArmControllerConfig::JointPosition(c) => {
+            Box::new(JointPosition::new(c, bind, timing, path)?)
+        }
+        ArmControllerConfig::JointVelocity(c) => {
+            Box::new(JointVelocity::new(c, bind, timing, path)?)
+        }
+        ArmControllerConfig::JointTorque(c) => Box::new(JointTorque::new(c, bind, timing, path)?),
+    })
+}
+
+/// robosuite's `scale_action`: inputs clipped to `[input_min, input_max]` and mapped
+/// affinely onto `[output_min, output_max]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActionScale {
+    input_min: Vec<f64>,
+    input_max: Vec<f64>,
+    scale: Vec<f64>,
+    in_offset: Vec<f64>,
+    out_offset: Vec<f64>,
+}
+
+impl ActionScale {
+    /// The scaling from the resolved limits (`dim` values each); `path` names them in
+    /// errors.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for non-finite limits or `input_min >= input_max`.
+    pub fn new(
+        input: (Vec<f64>, Vec<f64>),
+        output: (Vec<f64>, Vec<f64>),
+        path: &str,
+    ) -> Result<Self> {
+        let (input_min, input_max) = input;
+        let (output_min, output_max) = output;
+        for i in 0..input_min.len() {
+            let (lo, hi) = (input_min[i], input_max[i]);
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                return Err(Error::invalid_argument(
+                    config::join(path, "input_min/input_max"),
+                    format!(
+                        "need finite input_min < input_max on every axis, got [{lo}, {hi}] on axis {i}"
+                    ),
+                ));
+            }
+            let (lo, hi) = (output_min[i], output_max[i]);
+            if !(lo.is_finite() && hi.is_finite()) {
+                return Err(Error::invalid_argument(
+                    config::join(path, "output_min/output_max"),
+                    format!("need finite outputs, got [{lo}, {hi}] on axis {i}"),
+                ));
+            }
+        }
+        let n = input_min.len();
+        Ok(Self {
+            scale: (0..n)
+                .map(|i| {
+                    (output_max[i] - output_min[i]).abs() / (input_max[i] - input_min[i]).abs()
+                })
+                .collect(),
+            in_offset: (0..n)
+                .map(|i| (input_max[i] + input_min[i]) / 2.0)
+                .collect(),
+            out_offset: (0..n)
+                .map(|i| (output_max[i] + output_min[i]) / 2.0)
+                .collect(),
+            input_min,
+            input_max,
+        })
+    }
+
+    /// The number of axes.
+    pub fn dim(&self) -> usize {
+        self.scale.len()
+    }
+
+    /// The input bounds.
+    pub fn input_limits(&self) -> (&[f64], &[f64]) {
+        (&self.input_min, &self.input_max)
+    }
+
+    /// Scales axis `i` of an input.
+    pub fn apply(&self, i: usize, a: f64) -> f64 {
+        let a = a.clamp(self.input_min[i], self.input_max[i]);
+        (a - self.in_offset[i]) * self.scale[i] + self.out_offset[i]
+    }
+}
+
+/// Checks gains: finite and `>= 0`.
+pub(crate) fn check_gains(values: &[f64], key: &str) -> Result<()> {
+    match values.iter().find(|v| !v.is_finite() || **v < 0.0) {
+        Some(v) => Err(Error::invalid_argument(
+            key,
+            format!("must be finite and >= 0, got {v}"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Checks a ramp ratio for linear interpolation: in `(0, 1]`.
+pub(crate) fn check_ramp_ratio(ratio: f64, key: &str) -> Result<()> {
+    if ratio.is_finite() && ratio > 0.0 && ratio <= 1.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid_argument(
+            key,
+            format!("must be in (0, 1], got {ratio}"),
+        ))
+    }
+}
+
+/// The error for a controller state of the wrong length or with a non-finite value.
+pub(crate) fn check_state(state: &[f64], len: usize, name: &str) -> Result<()> {
+    if state.len() != len || state.iter().any(|v| !v.is_finite()) {
+        return Err(Error::invalid_argument(
+            "controller state",
+            format!(
+                "expected {len} finite values for {name}, got {}",
+                state.len()
+            ),
+        ));
+    }
+    Ok(())
 }

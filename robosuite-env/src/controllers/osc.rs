@@ -1,65 +1,80 @@
-//! robosuite's `OSC_POSE` operational-space controller (`controllers/parts/arm/osc.py`) for
-//! an arm of any number of joints.
+//! robosuite's operational-space controller (`controllers/parts/arm/osc.py`): `OSC_POSE`
+//! and `OSC_POSITION` for an arm of any number of joints.
 
-use super::config::OscConfig;
-use super::{ArmBinding, ArmController};
-use crate::math::{PsdPinv, axisangle2quat, mat_from_row_major, orientation_error, quat2mat_f32};
+use super::config::{ImpedanceMode, InputRefFrame, InputType, Interpolation, OscConfig, join};
+use super::interpolator::{InterpolationKind, LinearInterpolator};
+use super::state::{ArmState, Needs};
+use super::{
+    ActionScale, ArmBinding, ArmController, Timing, check_gains, check_ramp_ratio, check_state,
+};
+use crate::controllers::interpolator::mat2euler_f32;
+use crate::math::{
+    PsdPinv, axisangle2quat, euler2mat, mat_from_row_major, orientation_error, quat2mat_f32,
+    rotvec_to_matrix,
+};
 use crate::sim::Sim;
 use gym_core::{Error, Result};
-use mujoco_rs::mujoco_c::{mj_fullM, mj_jacSite};
+use mujoco_rs::mujoco_c::mj_jacSite;
 use nalgebra::{Cholesky, DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
+use std::f64::consts::PI;
 
-/// The `OSC_POSE` controller of one arm.
+/// The operational-space controller of one arm (`OSC_POSE`, or `OSC_POSITION` which holds
+/// the orientation).
 ///
-/// * `set_goal` (first substep of each env step): the input is clipped to
-///   `[input_min, input_max]`, scaled to a delta (±0.05 m, ±0.5 rad by default) in the base
-///   frame (the `{robot}{arm}_center` site) and applied to the *achieved* pose:
-///   `goal_p = R_bᵀ(x − p_b) + δp`, `goal_R = Rot(δr)·R_bᵀR` (with robosuite's float32
-///   `quat2mat`).
-/// * `compute` (every substep, from the state after `mj_step1`):
-///   `τ = Jᵀ[Λp·F; Λo·T] + h + Nᵀ·M·(k_n(q₀ − q) − 2√k_n·q̇)` with
-///   `F = kp∘e_p − kd∘(v − v_b)`, `T = kp∘e_o − kd∘(ω − ω_b)` (`v_b`, `ω_b`: the velocity of
-///   the base-frame site, which moves on robots whose `{arm}_center` site sits on a moving
-///   link, such as the IIWA's), `Λ = pinv(J M⁻¹ Jᵀ)` (and its position and orientation
-///   blocks), `N = I − M⁻¹JᵀΛJ`.
-///
-/// Every matrix lives in a buffer allocated at construction: the substep loop does not
-/// allocate.
+/// * `set_goal`: in the `variable` impedance mode the action starts with 6 damping ratios
+///   and 6 stiffnesses (clipped to their limits), in `variable_kp` with 6 stiffnesses
+///   (critically damped). A `delta` input is clipped to `[input_min, input_max]`, scaled
+///   (±0.05 m, ±0.5 rad by default) and applied to the *achieved* pose in the input frame
+///   (`base`: the `{robot}{arm}_center` site; `world`):
+///   `goal_p = R_bᵀ(x − p_b) + δp`, `goal_R = Rot(δr)·R_bᵀR` (robosuite's float32 `quat2mat`).
+///   An `absolute` input is the goal itself (position, then rotation vector), unclipped.
+///   `position_limits` / `orientation_limits` clip the goal (robosuite raises
+///   `NotImplementedError` for them).
+/// * `compute`: `τ = Jᵀ[Λp·F; Λo·T] + h + Nᵀ·M·(10(q₀ − q) − 2√10·q̇)` with
+///   `F = kp∘e_p − kd∘(v − v_b)`, `T = kp∘e_o − kd∘(ω − ω_b)` (`v_b`, `ω_b`: the base-frame
+///   site's velocity), `Λ = pinv(J M⁻¹ Jᵀ)` (or its position and orientation blocks when
+///   `uncouple_pos_ori`), `N = I − M⁻¹JᵀΛJ`, `q₀` the posture at the reset.
+/// * `interpolation: "linear"` ramps the goal position and the orientation error as
+///   robosuite's `LinearInterpolator`s do. robosuite feeds a base-frame goal to the position
+///   interpolator and uses its output as a world position (with the default base frame a
+///   zero action then moves the hand about 40 cm); here the interpolated goal is mapped
+///   from the input frame to the world, so both frames behave as robosuite's world frame.
 #[derive(Debug, Clone)]
-pub struct OscPose {
-    config: OscConfig,
+pub struct Osc {
+    use_ori: bool,
+    impedance: ImpedanceMode,
+    input_type: InputType,
+    frame: InputRefFrame,
+    uncouple: bool,
+    scale: ActionScale,
+    config_kp: [f64; 6],
+    config_kd: [f64; 6],
+    kp: [f64; 6],
     kd: [f64; 6],
-    scale: [f64; 6],
-    out_offset: [f64; 6],
-    in_offset: f64,
-    bind: ArmBinding,
-    jacp: Vec<f64>,
-    jacr: Vec<f64>,
+    kp_limits: ([f64; 6], [f64; 6]),
+    damping_limits: ([f64; 6], [f64; 6]),
+    position_limits: Option<([f64; 3], [f64; 3])>,
+    orientation_limits: Option<([f64; 3], [f64; 3])>,
+    interp_pos: Option<LinearInterpolator>,
+    interp_ori: Option<LinearInterpolator>,
+    ori_ref: Matrix3<f64>,
+    arm: ArmState,
     base_jacp: Vec<f64>,
     base_jacr: Vec<f64>,
-    full_m: Vec<f64>,
-    /// The arm's mass matrix as robosuite's controller cached it at creation.
-    reset_mass: DMatrix<f64>,
-    /// Whether the next torque computation is robosuite's first after a reset.
-    first_after_reset: bool,
-    work: Work,
     goal_pos: Vector3<f64>,
     goal_ori: Matrix3<f64>,
-    q0: DVector<f64>,
+    initial_joint: DVector<f64>,
+    work: Work,
 }
 
 /// The controller's n-sized buffers.
 #[derive(Debug, Clone)]
 struct Work {
-    jac: DMatrix<f64>,
-    mass: DMatrix<f64>,
     m_inv: DMatrix<f64>,
     chol: Option<DMatrix<f64>>,
     j_minv: DMatrix<f64>,
     jbar: DMatrix<f64>,
     null: DMatrix<f64>,
-    q: DVector<f64>,
-    qd: DVector<f64>,
     posture: DVector<f64>,
     posture_m: DVector<f64>,
     tau: DVector<f64>,
@@ -68,15 +83,11 @@ struct Work {
 impl Work {
     fn new(n: usize) -> Self {
         Self {
-            jac: DMatrix::zeros(6, n),
-            mass: DMatrix::zeros(n, n),
             m_inv: DMatrix::zeros(n, n),
             chol: Some(DMatrix::zeros(n, n)),
             j_minv: DMatrix::zeros(6, n),
             jbar: DMatrix::zeros(n, 6),
             null: DMatrix::zeros(n, n),
-            q: DVector::zeros(n),
-            qd: DVector::zeros(n),
             posture: DVector::zeros(n),
             posture_m: DVector::zeros(n),
             tau: DVector::zeros(n),
@@ -84,92 +95,221 @@ impl Work {
     }
 }
 
-impl OscPose {
-    /// A controller for the arm described by `bind`.
+/// robosuite's nullspace stiffness (`nullspace_torques`' `joint_kp`).
+const NULLSPACE_KP: f64 = 10.0;
+
+fn six(v: Vec<f64>) -> [f64; 6] {
+    std::array::from_fn(|i| v[i])
+}
+
+fn three(v: Vec<f64>) -> [f64; 3] {
+    std::array::from_fn(|i| v[i])
+}
+
+impl Osc {
+    /// The controller for `config` (`OSC_POSE` when `use_ori`, else `OSC_POSITION`) on the
+    /// arm of `bind`.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] when the configuration is invalid
-    /// ([`OscConfig::validate`]).
-    pub fn new(config: OscConfig, bind: ArmBinding) -> Result<Self> {
-        config.validate()?;
+    /// [`Error::InvalidArgument`] naming the key (under `path`) for a list of the wrong
+    /// length or a value out of range.
+    pub fn new(
+        config: &OscConfig,
+        use_ori: bool,
+        bind: ArmBinding,
+        timing: Timing,
+        path: &str,
+    ) -> Result<Self> {
+        let dim = if use_ori { 6 } else { 3 };
+        let key = |k: &str| join(path, k);
+        let default_out = [0.05, 0.05, 0.05, 0.5, 0.5, 0.5];
+        let output_max = match &config.output_max {
+            Some(v) => v.resolve(dim, &key("output_max"))?,
+            None => default_out[..dim].to_vec(),
+        };
+        let output_min = match &config.output_min {
+            Some(v) => v.resolve(dim, &key("output_min"))?,
+            None => default_out[..dim].iter().map(|v| -v).collect(),
+        };
+        let scale = ActionScale::new(
+            (
+                config.input_min.resolve(dim, &key("input_min"))?,
+                config.input_max.resolve(dim, &key("input_max"))?,
+            ),
+            (output_min, output_max),
+            path,
+        )?;
+        let kp = config.kp.resolve(6, &key("kp"))?;
+        check_gains(&kp, &key("kp"))?;
+        let damping = config.damping_ratio.resolve(6, &key("damping_ratio"))?;
+        check_gains(&damping, &key("damping_ratio"))?;
+        let (kp_lo, kp_hi) = config.kp_limits.resolve(6, &key("kp_limits"))?;
+        check_gains(&kp_lo, &key("kp_limits"))?;
+        let (dr_lo, dr_hi) = config
+            .damping_ratio_limits
+            .resolve(6, &key("damping_ratio_limits"))?;
+        check_gains(&dr_lo, &key("damping_ratio_limits"))?;
+        let position_limits = match &config.position_limits {
+            Some(b) => {
+                let (lo, hi) = b.resolve(3, &key("position_limits"))?;
+                Some((three(lo), three(hi)))
+            }
+            None => None,
+        };
+        let orientation_limits = match &config.orientation_limits {
+            Some(b) => {
+                let at = key("orientation_limits");
+                let lo = b.0.resolve(3, &at)?;
+                let hi = b.1.resolve(3, &at)?;
+                if let Some(v) = lo.iter().chain(&hi).find(|v| !v.is_finite()) {
+                    return Err(Error::invalid_argument(
+                        at,
+                        format!("must be finite Euler angles, got {v}"),
+                    ));
+                }
+                Some((three(lo), three(hi)))
+            }
+            None => None,
+        };
+        let interp = config.interpolation == Interpolation::Linear;
+        if interp {
+            check_ramp_ratio(config.ramp_ratio, &key("ramp_ratio"))?;
+        }
+        let make = |kind| {
+            LinearInterpolator::new(
+                3,
+                kind,
+                timing.timestep,
+                timing.control_freq,
+                config.ramp_ratio,
+            )
+        };
+        let kp = six(kp);
+        let kd: [f64; 6] = std::array::from_fn(|i| 2.0 * kp[i].sqrt() * damping[i]);
         let n = bind.dofs.len();
         let nv = bind.nv;
-        let kd = config.kd();
-        let scale = std::array::from_fn(|i| {
-            (config.output_max[i] - config.output_min[i]).abs()
-                / (config.input_max - config.input_min).abs()
-        });
-        let out_offset =
-            std::array::from_fn(|i| (config.output_max[i] + config.output_min[i]) / 2.0);
-        let in_offset = (config.input_max + config.input_min) / 2.0;
         Ok(Self {
-            config,
-            kd,
+            use_ori,
+            impedance: config.impedance_mode,
+            input_type: config.input_type,
+            frame: config.input_ref_frame,
+            uncouple: config.uncouple_pos_ori,
             scale,
-            out_offset,
-            in_offset,
-            jacp: vec![0.0; 3 * nv],
-            jacr: vec![0.0; 3 * nv],
+            config_kp: kp,
+            config_kd: kd,
+            kp,
+            kd,
+            kp_limits: (six(kp_lo), six(kp_hi)),
+            damping_limits: (six(dr_lo), six(dr_hi)),
+            position_limits,
+            orientation_limits,
+            interp_pos: interp.then(|| make(InterpolationKind::Values)),
+            interp_ori: (interp && use_ori).then(|| make(InterpolationKind::Euler)),
+            ori_ref: Matrix3::identity(),
+            arm: ArmState::new(
+                bind,
+                Needs {
+                    site: true,
+                    mass: true,
+                },
+            ),
             base_jacp: vec![0.0; 3 * nv],
             base_jacr: vec![0.0; 3 * nv],
-            full_m: vec![0.0; nv * nv],
-            reset_mass: DMatrix::zeros(n, n),
-            first_after_reset: false,
-            work: Work::new(n),
             goal_pos: Vector3::zeros(),
             goal_ori: Matrix3::identity(),
-            q0: DVector::zeros(n),
-            bind,
+            initial_joint: DVector::zeros(n),
+            work: Work::new(n),
         })
-    }
-
-    /// The configuration.
-    pub fn config(&self) -> &OscConfig {
-        &self.config
     }
 
     /// The model binding.
     pub fn binding(&self) -> &ArmBinding {
-        &self.bind
+        self.arm.binding()
     }
 
-    /// The goal position in the base frame.
+    /// The goal position in the input frame.
     pub fn goal_pos(&self) -> Vector3<f64> {
         self.goal_pos
     }
 
-    /// The goal orientation in the base frame.
+    /// The goal orientation in the input frame.
     pub fn goal_ori(&self) -> Matrix3<f64> {
         self.goal_ori
     }
 
-    /// The nullspace target `q₀` (the arm posture at the last reset).
-    pub fn initial_joints(&self) -> &[f64] {
-        self.q0.as_slice()
+    /// The current stiffness per task axis.
+    pub fn kp(&self) -> [f64; 6] {
+        self.kp
     }
 
-    fn site_pose(sim: &Sim, site: usize) -> (Vector3<f64>, Matrix3<f64>) {
+    /// The current damping gains per task axis.
+    pub fn kd(&self) -> [f64; 6] {
+        self.kd
+    }
+
+    /// The nullspace target `q₀` (the arm posture at the last reset).
+    pub fn initial_joints(&self) -> &[f64] {
+        self.initial_joint.as_slice()
+    }
+
+    /// The base-frame site's pose (robosuite's `origin_pos`, `origin_ori`), read live.
+    fn origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
         let d = sim.data();
+        let s = self.arm.binding().base_site;
         (
-            Vector3::from(d.site_xpos()[site]),
-            mat_from_row_major(&d.site_xmat()[site]),
+            Vector3::from(d.site_xpos()[s]),
+            mat_from_row_major(&d.site_xmat()[s]),
         )
     }
 
-    /// Scales a raw input to the delta robosuite applies (`scale_action`).
-    pub fn scale_action(&self, action: &[f64]) -> [f64; 6] {
-        std::array::from_fn(|i| {
-            let a = action[i].clamp(self.config.input_min, self.config.input_max);
-            (a - self.in_offset) * self.scale[i] + self.out_offset[i]
-        })
+    /// The achieved position and orientation in the input frame.
+    fn achieved(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
+        match self.frame {
+            InputRefFrame::World => (self.arm.pos, self.arm.ori),
+            InputRefFrame::Base => {
+                let (p_b, r_b) = self.origin(sim);
+                (
+                    r_b.transpose() * (self.arm.pos - p_b),
+                    r_b.transpose() * self.arm.ori,
+                )
+            }
+        }
+    }
+
+    /// The goal orientation in the world.
+    fn world_goal_ori(&self, r_b: &Matrix3<f64>) -> Matrix3<f64> {
+        match self.frame {
+            InputRefFrame::World => self.goal_ori,
+            InputRefFrame::Base => r_b * self.goal_ori,
+        }
+    }
+
+    fn clip_goal(&mut self) {
+        if let Some((lo, hi)) = &self.position_limits {
+            for i in 0..3 {
+                self.goal_pos[i] = self.goal_pos[i].clamp(lo[i], hi[i]);
+            }
+        }
+        if let Some((lo, hi)) = &self.orientation_limits {
+            let mut euler = mat2euler_f32(&self.goal_ori);
+            let mut limited = false;
+            for i in 0..3 {
+                if clip_angle(&mut euler[i], lo[i], hi[i]) {
+                    limited = true;
+                }
+            }
+            if limited {
+                self.goal_ori = euler2mat(euler);
+            }
+        }
     }
 
     /// `M⁻¹` of the arm's mass matrix into `work.m_inv` (robosuite: `np.linalg.inv`):
     /// Cholesky in place when positive definite, LU otherwise.
-    fn invert_mass(work: &mut Work) {
-        let n = work.mass.nrows();
+    fn invert_mass(mass: &DMatrix<f64>, work: &mut Work) {
+        let n = mass.nrows();
         let mut buf = work.chol.take().unwrap_or_else(|| DMatrix::zeros(n, n));
-        buf.copy_from(&work.mass);
+        buf.copy_from(mass);
         let chol = Cholesky::new_unchecked(buf);
         let l = chol.l_dirty();
         let definite = (0..n).all(|i| l[(i, i)].is_finite() && l[(i, i)] > 0.0);
@@ -181,11 +321,10 @@ impl OscPose {
             // Not positive definite (a degenerate model): the general inverse, or the
             // pseudo-inverse when singular. Rare, so it may allocate.
             work.chol = Some(chol.unpack_dirty());
-            match work.mass.clone().try_inverse() {
+            match mass.clone().try_inverse() {
                 Some(inv) => work.m_inv.copy_from(&inv),
                 None => {
-                    let pinv = work
-                        .mass
+                    let pinv = mass
                         .clone()
                         .pseudo_inverse(1e-15)
                         .unwrap_or_else(|_| DMatrix::zeros(n, n));
@@ -194,143 +333,210 @@ impl OscPose {
             }
         }
     }
-}
 
-impl ArmController for OscPose {
-    fn name(&self) -> &'static str {
-        "OSC_POSE"
-    }
-
-    fn action_dim(&self) -> usize {
-        6
-    }
-
-    fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
-        (
-            vec![self.config.input_min; 6],
-            vec![self.config.input_max; 6],
-        )
-    }
-
-    fn capture_reset(&mut self, sim: &Sim) {
-        let nv = self.bind.nv;
+    /// The base-frame site's linear and angular velocity (robosuite's
+    /// `get_site_xvelp/xvelr` of `{robot}{arm}_center`), read live.
+    fn base_velocity(&mut self, sim: &Sim) -> (Vector3<f64>, Vector3<f64>) {
+        let nv = self.arm.binding().nv;
         let (m_ptr, d_ptr) = sim.raw();
-        // SAFETY: m/d are live; full_m holds nv·nv values.
-        unsafe { mj_fullM(m_ptr, d_ptr, self.full_m.as_mut_ptr()) };
-        let dofs = &self.bind.dofs;
-        for (r, &dr) in dofs.iter().enumerate() {
-            for (c, &dc) in dofs.iter().enumerate() {
-                self.reset_mass[(r, c)] = self.full_m[dr * nv + dc];
-            }
-        }
-        self.first_after_reset = true;
-    }
-
-    fn reset(&mut self, sim: &Sim) {
-        let qpos = sim.data().qpos();
-        for (i, &a) in self.bind.qpos.iter().enumerate() {
-            self.q0[i] = qpos[a];
-        }
-        let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
-        let (x, r) = Self::site_pose(sim, self.bind.site);
-        self.goal_pos = r_b.transpose() * (x - p_b);
-        self.goal_ori = r_b.transpose() * r;
-    }
-
-    fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
-        let delta = self.scale_action(action);
-        let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
-        let (x, r) = Self::site_pose(sim, self.bind.site);
-        let dp = Vector3::new(delta[0], delta[1], delta[2]);
-        let dr = Vector3::new(delta[3], delta[4], delta[5]);
-        self.goal_pos = r_b.transpose() * (x - p_b) + dp;
-        let rot = quat2mat_f32(axisangle2quat(&dr));
-        self.goal_ori = rot * (r_b.transpose() * r);
-    }
-
-    fn compute(&mut self, sim: &Sim, torques: &mut [f64]) {
-        let nv = self.bind.nv;
-        let n = self.bind.dofs.len();
-        let (m_ptr, d_ptr) = sim.raw();
-        let site = i32::try_from(self.bind.site).unwrap_or(i32::MAX);
-        let base_site = i32::try_from(self.bind.base_site).unwrap_or(i32::MAX);
-        // SAFETY: m/d are live; the Jacobian buffers hold 3·nv and full_m nv·nv values.
+        let site = i32::try_from(self.arm.binding().base_site).unwrap_or(i32::MAX);
+        // SAFETY: m/d are live; the buffers hold 3·nv values each.
         unsafe {
-            mj_jacSite(
-                m_ptr,
-                d_ptr,
-                self.jacp.as_mut_ptr(),
-                self.jacr.as_mut_ptr(),
-                site,
-            );
             mj_jacSite(
                 m_ptr,
                 d_ptr,
                 self.base_jacp.as_mut_ptr(),
                 self.base_jacr.as_mut_ptr(),
-                base_site,
+                site,
             );
-            mj_fullM(m_ptr, d_ptr, self.full_m.as_mut_ptr());
         }
-        let d = sim.data();
-        let (qpos, qvel, bias) = (d.qpos(), d.qvel(), d.qfrc_bias());
-        let dofs = &self.bind.dofs;
-        let w = &mut self.work;
-
-        // Task Jacobian on the arm dofs; end-effector velocity over all dofs (robosuite's
-        // get_site_xvelp / xvelr = Jacobian × full qvel).
-        for c in 0..n {
-            for r in 0..3 {
-                w.jac[(r, c)] = self.jacp[r * nv + dofs[c]];
-                w.jac[(r + 3, c)] = self.jacr[r * nv + dofs[c]];
+        let qvel = sim.data().qvel();
+        let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
+        for r in 0..3 {
+            for (k, qd) in qvel.iter().enumerate() {
+                v[r] += self.base_jacp[r * nv + k] * qd;
+                w[r] += self.base_jacr[r * nv + k] * qd;
             }
-            for r in 0..n {
-                w.mass[(r, c)] = if self.first_after_reset {
-                    self.reset_mass[(r, c)]
+        }
+        (v, w)
+    }
+}
+
+/// Clips an Euler angle to `[lo, hi]` (an inverted sector when `lo > hi`), to the nearer
+/// bound by wrapped angular distance; returns whether it was clipped.
+fn clip_angle(angle: &mut f64, lo: f64, hi: f64) -> bool {
+    let inside = if lo < hi {
+        lo < *angle && *angle < hi
+    } else {
+        lo < *angle || *angle < hi
+    };
+    if inside {
+        return false;
+    }
+    let wrap = |d: f64| {
+        if d > PI {
+            d - 2.0 * PI
+        } else if d < -PI {
+            d + 2.0 * PI
+        } else {
+            d
+        }
+    };
+    *angle = if wrap(*angle - lo).abs() <= wrap(*angle - hi).abs() {
+        lo
+    } else {
+        hi
+    };
+    true
+}
+
+impl ArmController for Osc {
+    fn name(&self) -> &'static str {
+        if self.use_ori {
+            "OSC_POSE"
+        } else {
+            "OSC_POSITION"
+        }
+    }
+
+    fn action_dim(&self) -> usize {
+        self.scale.dim() + 6 * self.impedance.gain_vectors()
+    }
+
+    fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
+        let (mut lo, mut hi) = (Vec::new(), Vec::new());
+        if self.impedance == ImpedanceMode::Variable {
+            lo.extend(self.damping_limits.0);
+            hi.extend(self.damping_limits.1);
+        }
+        if self.impedance != ImpedanceMode::Fixed {
+            lo.extend(self.kp_limits.0);
+            hi.extend(self.kp_limits.1);
+        }
+        let (l, h) = self.scale.input_limits();
+        lo.extend(l);
+        hi.extend(h);
+        (lo, hi)
+    }
+
+    fn reset(&mut self, sim: &Sim) {
+        self.arm.restart(sim);
+        self.initial_joint.copy_from(&self.arm.q);
+        self.kp = self.config_kp;
+        self.kd = self.config_kd;
+        let (p, r) = self.achieved(sim);
+        self.goal_pos = p;
+        self.goal_ori = r;
+        if let Some(ip) = &mut self.interp_pos {
+            ip.clear();
+            ip.set_goal(self.goal_pos.as_slice());
+        }
+        self.ori_ref = self.arm.ori;
+        if let Some(io) = &mut self.interp_ori {
+            io.clear();
+            io.set_goal(&[0.0; 3]);
+        }
+    }
+
+    fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
+        self.arm.update(sim, false);
+        let gains = 6 * self.impedance.gain_vectors();
+        match self.impedance {
+            ImpedanceMode::Variable => {
+                for i in 0..6 {
+                    let kp = action[6 + i].clamp(self.kp_limits.0[i], self.kp_limits.1[i]);
+                    let dr = action[i].clamp(self.damping_limits.0[i], self.damping_limits.1[i]);
+                    self.kp[i] = kp;
+                    self.kd[i] = 2.0 * kp.sqrt() * dr;
+                }
+            }
+            ImpedanceMode::VariableKp => {
+                for i in 0..6 {
+                    let kp = action[i].clamp(self.kp_limits.0[i], self.kp_limits.1[i]);
+                    self.kp[i] = kp;
+                    self.kd[i] = 2.0 * kp.sqrt();
+                }
+            }
+            ImpedanceMode::Fixed => {}
+        }
+        let input = &action[gains..];
+        match self.input_type {
+            InputType::Delta => {
+                let (pos, ori) = self.achieved(sim);
+                let d = |i: usize| self.scale.apply(i, input[i]);
+                self.goal_pos = pos + Vector3::new(d(0), d(1), d(2));
+                self.goal_ori = if self.use_ori {
+                    quat2mat_f32(axisangle2quat(&Vector3::new(d(3), d(4), d(5)))) * ori
                 } else {
-                    self.full_m[dofs[r] * nv + dofs[c]]
+                    ori
                 };
             }
-            w.q[c] = qpos[self.bind.qpos[c]];
-            w.qd[c] = qvel[dofs[c]];
-        }
-        // v − v_b and ω − ω_b: the grip site's velocity relative to the base-frame site's.
-        self.first_after_reset = false;
-        let mut v = Vector3::zeros();
-        let mut om = Vector3::zeros();
-        for r in 0..3 {
-            let (mut sv, mut sw, mut bv, mut bw) = (0.0, 0.0, 0.0, 0.0);
-            for (k, qd) in qvel.iter().enumerate() {
-                sv += self.jacp[r * nv + k] * qd;
-                sw += self.jacr[r * nv + k] * qd;
-                bv += self.base_jacp[r * nv + k] * qd;
-                bw += self.base_jacr[r * nv + k] * qd;
+            InputType::Absolute => {
+                self.goal_pos = Vector3::new(input[0], input[1], input[2]);
+                self.goal_ori = if self.use_ori {
+                    rotvec_to_matrix(&Vector3::new(input[3], input[4], input[5]))
+                } else {
+                    self.achieved(sim).1
+                };
             }
-            v[r] = sv - bv;
-            om[r] = sw - bw;
         }
+        self.clip_goal();
+        if let Some(ip) = &mut self.interp_pos {
+            ip.set_goal(self.goal_pos.as_slice());
+        }
+        if self.interp_ori.is_some() {
+            let (_, r_b) = self.origin(sim);
+            self.ori_ref = self.arm.ori;
+            let err = orientation_error(&self.world_goal_ori(&r_b), &self.ori_ref);
+            if let Some(io) = &mut self.interp_ori {
+                io.set_goal(err.as_slice());
+            }
+        }
+    }
 
-        // Pose error in the world frame.
-        let (p_b, r_b) = Self::site_pose(sim, self.bind.base_site);
-        let (x, r) = Self::site_pose(sim, self.bind.site);
-        let x_d = p_b + r_b * self.goal_pos;
-        let r_d = r_b * self.goal_ori;
-        let e_p = x_d - x;
-        let e_o = orientation_error(&r_d, &r);
-        let kp = &self.config.kp;
-        let kd = &self.kd;
+    fn compute(&mut self, sim: &Sim, torques: &mut [f64]) {
+        self.arm.update(sim, false);
+        let (p_b, r_b) = self.origin(sim);
+        let goal_pos = match &mut self.interp_pos {
+            Some(ip) => {
+                let mut g = [0.0; 3];
+                ip.next(&mut g);
+                Vector3::from(g)
+            }
+            None => self.goal_pos,
+        };
+        let desired_pos = match self.frame {
+            InputRefFrame::World => goal_pos,
+            InputRefFrame::Base => p_b + r_b * goal_pos,
+        };
+        let e_o = match &mut self.interp_ori {
+            Some(io) => {
+                let mut e = [0.0; 3];
+                io.next(&mut e);
+                Vector3::from(e)
+            }
+            None => orientation_error(&self.world_goal_ori(&r_b), &self.arm.ori),
+        };
+        let e_p = desired_pos - self.arm.pos;
+        let (bv, bw) = self.base_velocity(sim);
+        let v = self.arm.vel - bv;
+        let om = self.arm.angvel - bw;
+        let (kp, kd) = (&self.kp, &self.kd);
         let force = Vector3::from_fn(|i, _| e_p[i] * kp[i] + (-v[i]) * kd[i]);
         let torque = Vector3::from_fn(|i, _| e_o[i] * kp[3 + i] + (-om[i]) * kd[3 + i]);
 
         // Operational-space matrices (control_utils.opspace_matrices).
-        Self::invert_mass(w);
+        let n = self.arm.joints();
+        let (jac, mass) = (&self.arm.jac, &self.arm.mass);
+        let w = &mut self.work;
+        Self::invert_mass(mass, w);
         // Small products by hand: nalgebra's dynamic matrix products allocate packing
         // buffers.
         for r in 0..6 {
             for c in 0..n {
                 let mut s = 0.0;
                 for k in 0..n {
-                    s += w.jac[(r, k)] * w.m_inv[(k, c)];
+                    s += jac[(r, k)] * w.m_inv[(k, c)];
                 }
                 w.j_minv[(r, c)] = s;
             }
@@ -338,12 +544,12 @@ impl ArmController for OscPose {
         let lambda_inv = Matrix6::from_fn(|r, c| {
             let mut s = 0.0;
             for k in 0..n {
-                s += w.j_minv[(r, k)] * w.jac[(c, k)];
+                s += w.j_minv[(r, k)] * jac[(c, k)];
             }
             s
         });
         let lambda = lambda_inv.pinv_psd();
-        let wrench: Vector6<f64> = if self.config.uncouple_pos_ori {
+        let wrench: Vector6<f64> = if self.uncouple {
             let lambda_p = lambda_inv.fixed_view::<3, 3>(0, 0).into_owned().pinv_psd();
             let lambda_o = lambda_inv.fixed_view::<3, 3>(3, 3).into_owned().pinv_psd();
             let fp = lambda_p * force;
@@ -356,14 +562,15 @@ impl ArmController for OscPose {
                 )
         };
         // τ = Jᵀ wrench + h
+        let bias = sim.data().qfrc_bias();
+        let dofs = &self.arm.binding().dofs;
         for c in 0..n {
             let mut s = 0.0;
             for r in 0..6 {
-                s += w.jac[(r, c)] * wrench[r];
+                s += jac[(r, c)] * wrench[r];
             }
             w.tau[c] = s + bias[dofs[c]];
         }
-
         // Nullspace posture term (control_utils.nullspace_torques): N = I − M⁻¹Jᵀ Λ J.
         for rr in 0..n {
             for c in 0..6 {
@@ -378,55 +585,72 @@ impl ArmController for OscPose {
             for j in 0..n {
                 let mut s = 0.0;
                 for k in 0..6 {
-                    s += w.jbar[(i, k)] * w.jac[(k, j)];
+                    s += w.jbar[(i, k)] * jac[(k, j)];
                 }
                 w.null[(i, j)] = f64::from(u8::from(i == j)) - s;
             }
         }
-        let kn = self.config.nullspace_kp;
-        let kvn = kn.sqrt() * 2.0;
+        let kvn = NULLSPACE_KP.sqrt() * 2.0;
         for i in 0..n {
-            w.posture[i] = (self.q0[i] - w.q[i]) * kn - w.qd[i] * kvn;
+            w.posture[i] =
+                (self.initial_joint[i] - self.arm.q[i]) * NULLSPACE_KP - self.arm.qd[i] * kvn;
         }
-        w.mass.mul_to(&w.posture, &mut w.posture_m);
+        mass.mul_to(&w.posture, &mut w.posture_m);
         w.tau.gemv_tr(1.0, &w.null, &w.posture_m, 1.0);
         torques.copy_from_slice(w.tau.as_slice());
+        self.arm.finish();
     }
 
-    /// `[goal_pos (3), goal_ori (9, column-major), q₀ (n), first-after-reset flag (1),
-    /// creation-time mass matrix (n·n)]`.
+    /// `[kp (6), kd (6), goal_pos (3), goal_ori (9), ori_ref (9), q₀ (n), interpolators,
+    /// cached arm state]`.
     fn state(&self) -> Vec<f64> {
-        let n = self.q0.len();
-        let mut out = Vec::with_capacity(13 + n + n * n);
+        let mut out = Vec::with_capacity(self.state_len());
+        out.extend(self.kp);
+        out.extend(self.kd);
         out.extend(self.goal_pos.iter());
         out.extend(self.goal_ori.iter());
-        out.extend(self.q0.iter());
-        out.push(f64::from(u8::from(self.first_after_reset)));
-        out.extend(self.reset_mass.iter());
+        out.extend(self.ori_ref.iter());
+        out.extend(self.initial_joint.iter());
+        for i in self.interp_pos.iter().chain(&self.interp_ori) {
+            out.extend(i.state());
+        }
+        self.arm.state(&mut out);
         out
     }
 
     fn set_state(&mut self, state: &[f64]) -> Result<()> {
-        let n = self.q0.len();
-        let len = 13 + n + n * n;
-        if state.len() != len || state.iter().any(|v| !v.is_finite()) {
-            return Err(Error::invalid_argument(
-                "controller state",
-                format!(
-                    "expected {len} finite values for OSC_POSE, got {}",
-                    state.len()
-                ),
-            ));
+        check_state(state, self.state_len(), self.name())?;
+        let n = self.arm.joints();
+        self.kp.copy_from_slice(&state[..6]);
+        self.kd.copy_from_slice(&state[6..12]);
+        self.goal_pos.copy_from_slice(&state[12..15]);
+        self.goal_ori.copy_from_slice(&state[15..24]);
+        self.ori_ref.copy_from_slice(&state[24..33]);
+        self.initial_joint.copy_from_slice(&state[33..33 + n]);
+        let mut rest = &state[33 + n..];
+        for i in self.interp_pos.iter_mut().chain(self.interp_ori.iter_mut()) {
+            let k = i.state_len();
+            i.set_state(&rest[..k]);
+            rest = &rest[k..];
         }
-        self.goal_pos = Vector3::from_column_slice(&state[..3]);
-        self.goal_ori = Matrix3::from_column_slice(&state[3..12]);
-        self.q0.copy_from_slice(&state[12..12 + n]);
-        self.first_after_reset = state[12 + n] != 0.0;
-        self.reset_mass.copy_from_slice(&state[13 + n..]);
+        self.arm.set_state(rest);
         Ok(())
     }
 
     fn clone_box(&self) -> Box<dyn ArmController> {
         Box::new(self.clone())
+    }
+}
+
+impl Osc {
+    fn state_len(&self) -> usize {
+        33 + self.arm.joints()
+            + self
+                .interp_pos
+                .iter()
+                .chain(&self.interp_ori)
+                .map(LinearInterpolator::state_len)
+                .sum::<usize>()
+            + self.arm.state_len()
     }
 }

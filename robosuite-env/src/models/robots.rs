@@ -60,8 +60,6 @@ pub struct RobotInfo {
     pub default_mount: MountInfo,
     /// Its default gripper per arm (robosuite class names).
     pub default_grippers: &'static [&'static str],
-    /// robosuite's default controller configuration file, per arm (`default_panda`, ...).
-    pub default_controller: &'static [&'static str],
     /// Where it stands in each arena.
     pub base_offsets: BaseOffsets,
     /// From its root body to its top.
@@ -82,7 +80,6 @@ const SINGLE_ARM: RobotInfo = RobotInfo {
     damping: None,
     default_mount: RETHINK_MOUNT,
     default_grippers: &[],
-    default_controller: &[],
     base_offsets: BaseOffsets::SINGLE_ARM,
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
@@ -103,7 +100,6 @@ pub const PANDA: RobotInfo = RobotInfo {
     ],
     damping: Some(&[0.1, 0.1, 0.1, 0.1, 0.1, 0.01, 0.01]),
     default_grippers: &["PandaGripper"],
-    default_controller: &["default_panda"],
     ..SINGLE_ARM
 };
 
@@ -113,7 +109,6 @@ pub const SAWYER: RobotInfo = RobotInfo {
     file: "robots/sawyer/robot.xml",
     init_qpos: &[0.0, -1.18, 0.00, 2.18, 0.00, 0.57, -1.57],
     default_grippers: &["RethinkGripper"],
-    default_controller: &["default_sawyer"],
     ..SINGLE_ARM
 };
 
@@ -123,7 +118,6 @@ pub const IIWA: RobotInfo = RobotInfo {
     file: "robots/iiwa/robot.xml",
     init_qpos: &[0.000, 0.650, 0.000, -1.890, 0.000, 0.600, 0.000],
     default_grippers: &["Robotiq140Gripper"],
-    default_controller: &["default_iiwa"],
     ..SINGLE_ARM
 };
 
@@ -133,7 +127,6 @@ pub const JACO: RobotInfo = RobotInfo {
     file: "robots/jaco/robot.xml",
     init_qpos: &[3.192, 3.680, -0.000, 1.170, 0.050, 3.760, 3.142],
     default_grippers: &["JacoThreeFingerGripper"],
-    default_controller: &["default_jaco"],
     ..SINGLE_ARM
 };
 
@@ -143,7 +136,6 @@ pub const KINOVA3: RobotInfo = RobotInfo {
     file: "robots/kinova3/robot.xml",
     init_qpos: &[0.000, 0.650, 0.000, 1.890, 0.000, 0.600, -PI / 2.0],
     default_grippers: &["Robotiq85Gripper"],
-    default_controller: &["osc_pose"],
     ..SINGLE_ARM
 };
 
@@ -153,7 +145,6 @@ pub const UR5E: RobotInfo = RobotInfo {
     file: "robots/ur5e/robot.xml",
     init_qpos: &[-0.470, -1.735, 2.480, -2.275, -1.590, -1.991],
     default_grippers: &["Robotiq85Gripper"],
-    default_controller: &["default_ur5e"],
     ..SINGLE_ARM
 };
 
@@ -164,7 +155,6 @@ pub const XARM7: RobotInfo = RobotInfo {
     init_qpos: &[0.0, 0.0, 0.0, 0.39 * PI, 0.0, 0.39 * PI, 0.0],
     damping: Some(&[0.1, 0.1, 0.1, 0.1, 0.1, 0.01, 0.01]),
     default_grippers: &["XArm7Gripper"],
-    default_controller: &["default_xarm7"],
     ..SINGLE_ARM
 };
 

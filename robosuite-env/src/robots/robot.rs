@@ -2,7 +2,11 @@
 //! and proprioceptive observables (robosuite's `Robot` / `FixedBaseRobot`).
 
 use super::noise::InitNoise;
-use crate::controllers::{ArmBinding, ArmController, GripController, OscConfig, OscPose};
+use crate::controllers::config::join;
+use crate::controllers::{
+    ArmBinding, ArmController, CompositeControllerConfig, GripController, Timing,
+    build_arm_controller,
+};
 use crate::math::{mat_from_row_major, mat2quat, xyzw};
 use crate::models::grippers::GripperInfo;
 use crate::models::robots::RobotModel;
@@ -159,6 +163,7 @@ pub struct Robot {
     noise: InitNoise,
     base_body: usize,
     arms: Vec<Arm>,
+    part_order: Vec<usize>,
     contact_geoms: GeomSet,
     observables: Vec<Observable<Robot>>,
     qpos_buf: Vec<f64>,
@@ -182,17 +187,22 @@ fn geom_set(model: &MjModel, names: &[String]) -> Result<GeomSet> {
 }
 
 impl Robot {
-    /// Binds robot `robot` (as composed into the scene) in the compiled `model`, with
-    /// `controller` on every arm and the reset noise `noise`.
+    /// Binds robot `robot` (as composed into the scene) in the compiled `model`, with the
+    /// controllers of `controllers` (fitted to the robot: one part per arm, see
+    /// [`CompositeControllerConfig::fit_to`]) and the reset noise `noise`; `path` names the
+    /// controller config in errors.
     ///
     /// # Errors
     /// [`Error::Model`] when a joint, body, site, geom or actuator robosuite names is
-    /// missing; [`Error::InvalidArgument`] for an invalid controller configuration.
+    /// missing; [`Error::InvalidArgument`] naming the key for a controller configuration
+    /// that does not fit the arm or is out of range.
     pub fn bind(
         model: &MjModel,
         robot: &RobotModel,
-        controller: &OscConfig,
+        controllers: &CompositeControllerConfig,
+        timing: Timing,
         noise: InitNoise,
+        path: &str,
     ) -> Result<Self> {
         noise.validate()?;
         let index = robot.idn;
@@ -235,9 +245,19 @@ impl Robot {
                 qpos: joint_qpos[range.clone()].to_vec(),
                 dofs: joint_dofs[range.clone()].to_vec(),
                 nv,
+                ctrlrange: ctrlrange.clone(),
             };
-            let controller: Box<dyn ArmController> =
-                Box::new(OscPose::new(controller.clone(), binding)?);
+            let part_path = join(&join(path, "body_parts"), arm.side);
+            let part = controllers.arm(arm.side).ok_or_else(|| {
+                Error::invalid_argument(
+                    join(path, "body_parts"),
+                    format!(
+                        "no controller for the `{}` arm of {}",
+                        arm.side, robot.info.name
+                    ),
+                )
+            })?;
+            let controller = build_arm_controller(&part.controller, binding, timing, &part_path)?;
             let (mut gq, mut gd, mut ga, mut granges) = (vec![], vec![], vec![], vec![]);
             for j in g.xml.names_of(&g.xml.names.joints) {
                 let (q, d) = joint_addresses(model, &j)?;
@@ -257,7 +277,11 @@ impl Robot {
                 qpos: gq,
                 dofs: gd,
                 actuators: ga,
-                controller: GripController::new(g.info.action, granges),
+                controller: GripController::new(
+                    g.info.action,
+                    granges,
+                    part.gripper.use_action_scaling,
+                ),
                 left_pads: geom_set(model, &named(g.info.left_fingerpad))?,
                 right_pads: geom_set(model, &named(g.info.right_fingerpad))?,
                 geoms: geom_set(model, &g.xml.names_of(&g.xml.names.contact_geoms))?,
@@ -290,6 +314,11 @@ impl Robot {
                 gripper,
             });
         }
+        let part_order = controllers
+            .arms
+            .iter()
+            .filter_map(|(side, _)| arms.iter().position(|a| a.side == side))
+            .collect();
         let contact_geoms = geom_set(model, &robot.xml.names_of(&robot.xml.names.contact_geoms))?;
         let mut out = Self {
             index,
@@ -301,6 +330,7 @@ impl Robot {
             noise,
             base_body: body_id(model, &robot.xml.root_body())?,
             arms,
+            part_order,
             contact_geoms,
             observables: Vec::new(),
         };
@@ -459,11 +489,11 @@ impl Robot {
         self.arms.iter().map(Arm::action_dim).sum()
     }
 
-    /// The action bounds `(low, high)`: per arm the controller's, then per arm the
-    /// gripper's `[-1, 1]`.
+    /// The action bounds `(low, high)`: per arm (in the controller config's order) the
+    /// controller's, then per arm the gripper's `[-1, 1]`.
     pub fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
         let (mut lo, mut hi) = (Vec::new(), Vec::new());
-        for arm in &self.arms {
+        for arm in self.part_order.iter().map(|&i| &self.arms[i]) {
             let (l, h) = arm.controller.action_limits();
             lo.extend(l);
             hi.extend(h);
@@ -494,11 +524,10 @@ impl Robot {
 
     /// The reset posture: `init_qpos` plus noise (one draw per joint from `rng`), the
     /// grippers' initial positions, and zeroed gripper commands. Call after
-    /// `mj_resetData`; [`Robot::rebase`] after the next `mj_forward`.
+    /// `mj_resetData`.
     ///
-    /// As robosuite, the controllers take their creation-time cache (see
-    /// [`ArmController::capture_reset`]) after the arm's posture is written (with a forward
-    /// pass) and before the grippers' is.
+    /// As robosuite, the controllers are reset (see [`ArmController::reset`]) after the
+    /// arm's posture is written (with a forward pass) and before the grippers' is.
     pub fn reset(&mut self, sim: &mut Sim, rng: &mut EnvRng) {
         self.qpos_buf.copy_from_slice(&self.init_qpos);
         self.noise.perturb(rng, &mut self.qpos_buf);
@@ -518,7 +547,7 @@ impl Robot {
     }
 
     /// Writes `qpos_buf` as the robot's joint positions, forwards, and lets the controllers
-    /// take their creation-time cache (robosuite's controller construction during a reset).
+    /// reset (robosuite's controller construction during a reset).
     fn start_at_posture(&mut self, sim: &mut Sim) {
         let qpos = sim.data_mut().qpos_mut();
         for (&a, &v) in self.joint_qpos.iter().zip(&self.qpos_buf) {
@@ -526,14 +555,15 @@ impl Robot {
         }
         sim.forward();
         for arm in &mut self.arms {
-            arm.controller.capture_reset(sim);
+            arm.controller.reset(sim);
+            arm.torques.iter_mut().for_each(|t| *t = 0.0);
         }
     }
 
     /// The controller part of a reset to a recorded state: the robot's joints take their
     /// values in `state` (`[time, qpos, qvel]`) on a freshly reset simulator, as robosuite
     /// builds its controllers before the grippers and objects are placed; the caller then
-    /// sets the whole state and calls [`Robot::rebase`]. Gripper commands are zeroed.
+    /// sets the whole state. Gripper commands are zeroed.
     pub fn reset_to(&mut self, sim: &mut Sim, state: &[f64]) {
         for (v, &a) in self.qpos_buf.iter_mut().zip(&self.joint_qpos) {
             *v = state[1 + a];
@@ -549,20 +579,14 @@ impl Robot {
         }
     }
 
-    /// Re-bases the arm controllers on the current (forwarded) state.
-    pub fn rebase(&mut self, sim: &Sim) {
-        for arm in &mut self.arms {
-            arm.controller.reset(sim);
-            arm.torques.iter_mut().for_each(|t| *t = 0.0);
-        }
-    }
-
-    /// Sets the goals from this robot's slice of the action (per arm the controller's part,
-    /// then per arm the gripper's); call on the first substep, after `mj_step1`. The slice
-    /// length is checked by the environment.
+    /// Sets the goals from this robot's slice of the action (robosuite's part order: the
+    /// arms' controllers in the controller config's order, then the grippers in arm order);
+    /// call on the first substep, after `mj_step1`. The slice length is checked by the
+    /// environment.
     pub fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
         let mut at = 0;
-        for arm in &mut self.arms {
+        for &i in &self.part_order {
+            let arm = &mut self.arms[i];
             let n = arm.controller.action_dim();
             arm.controller.set_goal(sim, &action[at..at + n]);
             at += n;

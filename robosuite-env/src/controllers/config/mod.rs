@@ -1,0 +1,470 @@
+//! robosuite's controller configurations, as robosuite users write them: the composite
+//! `BASIC` config (`{"type": "BASIC", "body_parts": {"right": {...}, ...}}`, as
+//! `load_composite_controller_config` returns it and robosuite's JSON files store it, with
+//! or without the `"arms"` level) or a bare part config (`{"type": "OSC_POSITION", ...}`,
+//! robosuite's `load_part_controller_config`), parsed once with serde and checked key by
+//! key.
+//!
+//! Every error names the key (`controller_configs.body_parts.right.kp`) and lists what is
+//! valid. Values are checked against the robot when the controllers are built, which
+//! happens when the env is made.
+
+mod files;
+mod parts;
+mod values;
+
+pub use files::{
+    COMPOSITE_CONTROLLER_TYPES, load_composite_controller_config, load_part_controller_config,
+};
+pub use parts::{
+    ARM_CONTROLLER_TYPES, ArmControllerConfig, GRIPPER_CONTROLLER_TYPES, GripperConfig, IkConfig,
+    JointPositionConfig, JointTorqueConfig, JointVelocityConfig, OscConfig,
+};
+pub use values::{Bounds, ImpedanceMode, InputRefFrame, InputType, Interpolation, PerAxis};
+
+use crate::assets::Assets;
+use gym_core::{Error, Result};
+use serde::de::DeserializeOwned;
+use serde_json::{Map, Value};
+
+/// The body parts robosuite's composite configs name: the arms this crate controls, then
+/// the parts of mobile and humanoid robots, which no robot here has (robosuite drops the
+/// config of a part a robot does not have).
+pub const BODY_PARTS: &[&str] = &["right", "left", "torso", "head", "base", "legs"];
+
+/// One arm's configuration: its controller and its gripper's.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ArmPartConfig {
+    /// The arm controller.
+    pub controller: ArmControllerConfig,
+    /// The gripper controller (`GRIP`).
+    pub gripper: GripperConfig,
+}
+
+impl From<ArmControllerConfig> for ArmPartConfig {
+    fn from(controller: ArmControllerConfig) -> Self {
+        Self {
+            controller,
+            gripper: GripperConfig::default(),
+        }
+    }
+}
+
+/// robosuite's composite `BASIC` controller configuration: one part config per arm, in the
+/// config's order (which is the order of the arms' slices of the action).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CompositeControllerConfig {
+    /// The arm parts (`"right"`, `"left"`) in the config's order.
+    pub arms: Vec<(String, ArmPartConfig)>,
+    /// The other parts the config names (`torso`, `head`, `base`, `legs`): no robot here
+    /// has them, so they are dropped when the controllers are built, as robosuite drops
+    /// them.
+    pub other_parts: Vec<String>,
+}
+
+impl CompositeControllerConfig {
+    /// A config with `part` on the right arm.
+    pub fn single_arm(part: impl Into<ArmPartConfig>) -> Self {
+        Self {
+            arms: vec![("right".to_owned(), part.into())],
+            other_parts: Vec::new(),
+        }
+    }
+
+    /// The config of arm `side`, if the config has one.
+    pub fn arm(&self, side: &str) -> Option<&ArmPartConfig> {
+        self.arms.iter().find(|(s, _)| s == side).map(|(_, p)| p)
+    }
+
+    /// Sets the config of arm `side`, keeping its place (or appending it), as robosuite's
+    /// `refactor_composite_controller_config` does.
+    pub fn set_arm(&mut self, side: &str, part: ArmPartConfig) {
+        match self.arms.iter_mut().find(|(s, _)| s == side) {
+            Some((_, p)) => *p = part,
+            None => self.arms.push((side.to_owned(), part)),
+        }
+    }
+
+    /// Parses a composite config (robosuite's dict) at `path` (the name errors give it,
+    /// such as `controller_configs`).
+    ///
+    /// # Errors
+    /// [`Error::UnknownKey`] for an unknown key or body part; [`Error::InvalidArgument`]
+    /// for a missing or ill-typed value or an unknown controller type;
+    /// [`Error::Unsupported`] for a composite type of mobile or whole-body robots.
+    pub fn from_value(value: &Value, path: &str) -> Result<Self> {
+        let obj = object(value, path)?;
+        for key in obj.keys() {
+            if ![
+                "type",
+                "body_parts",
+                "composite_controller_specific_configs",
+            ]
+            .contains(&key.as_str())
+            {
+                return Err(unknown_key(
+                    path,
+                    key,
+                    &[
+                        "type",
+                        "body_parts",
+                        "composite_controller_specific_configs",
+                    ],
+                ));
+            }
+        }
+        let kind = obj
+            .get("type")
+            .map_or(Ok("BASIC"), |t| string(t, &join(path, "type")))?;
+        check_composite_type(kind, &join(path, "type"))?;
+        if let Some(specific) = obj.get("composite_controller_specific_configs") {
+            let at = join(path, "composite_controller_specific_configs");
+            if !object(specific, &at)?.is_empty() {
+                return Err(Error::invalid_argument(
+                    at,
+                    "BASIC takes no composite-specific settings (robosuite's BASIC uses only \
+                     `body_part_ordering`, which robosuite-rs does not offer); give {} or leave it out",
+                ));
+            }
+        }
+        let parts_path = join(path, "body_parts");
+        let parts = object(
+            obj.get("body_parts").ok_or_else(|| {
+                Error::invalid_argument(
+                    &parts_path,
+                    "missing (robosuite requires `type` and `body_parts`)",
+                )
+            })?,
+            &parts_path,
+        )?;
+        let mut out = Self::default();
+        for (name, part) in parts {
+            if name == "arms" {
+                let arms_path = join(&parts_path, "arms");
+                for (arm, cfg) in object(part, &arms_path)? {
+                    out.add_part(arm, cfg, &arms_path)?;
+                }
+            } else {
+                out.add_part(name, part, &parts_path)?;
+            }
+        }
+        Ok(out)
+    }
+
+    fn add_part(&mut self, name: &str, value: &Value, parent: &str) -> Result<()> {
+        let at = join(parent, name);
+        match name {
+            "right" | "left" => {
+                let part = parse_arm_part(value, &at)?;
+                self.set_arm(name, part);
+            }
+            "torso" | "head" | "base" | "legs" => {
+                object(value, &at)?;
+                if !self.other_parts.iter().any(|p| p == name) {
+                    self.other_parts.push(name.to_owned());
+                }
+            }
+            _ => {
+                let mut valid = BODY_PARTS.to_vec();
+                valid.push("arms");
+                return Err(unknown_key(parent, name, &valid));
+            }
+        }
+        Ok(())
+    }
+
+    /// The config robosuite would run on a robot with arms `arms`: every arm must have a
+    /// part config; configs of parts the robot does not have are dropped. The arms keep the
+    /// config's order.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming `path` when an arm of the robot has no config.
+    pub fn fit_to(&self, robot: &str, arms: &[&str], path: &str) -> Result<Self> {
+        for side in arms {
+            if self.arm(side).is_none() {
+                return Err(Error::invalid_argument(
+                    join(path, "body_parts"),
+                    format!(
+                        "no controller for the `{side}` arm of {robot}; {robot}'s arms: {}",
+                        arms.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(Self {
+            arms: self
+                .arms
+                .iter()
+                .filter(|(s, _)| arms.contains(&s.as_str()))
+                .cloned()
+                .collect(),
+            other_parts: Vec::new(),
+        })
+    }
+}
+
+/// robosuite's `controller_configs` entry for one robot: a composite config, or a bare
+/// part config that robosuite puts on every arm of the robot's default composite config
+/// (`refactor_composite_controller_config`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ControllerConfig {
+    /// A composite `BASIC` config.
+    Composite(CompositeControllerConfig),
+    /// A part config for every arm, with the `GRIP` gripper controller.
+    Part(ArmControllerConfig),
+}
+
+impl From<ArmControllerConfig> for ControllerConfig {
+    fn from(part: ArmControllerConfig) -> Self {
+        Self::Part(part)
+    }
+}
+
+impl From<CompositeControllerConfig> for ControllerConfig {
+    fn from(c: CompositeControllerConfig) -> Self {
+        Self::Composite(c)
+    }
+}
+
+impl ControllerConfig {
+    /// Parses robosuite's dict (composite or part config; robosuite's
+    /// `is_part_controller_config` tells them apart) at `path`.
+    ///
+    /// # Errors
+    /// As [`CompositeControllerConfig::from_value`].
+    pub fn from_value(value: &Value, path: &str) -> Result<Self> {
+        let obj = object(value, path)?;
+        let is_part = !obj.contains_key("body_parts")
+            && obj
+                .get("type")
+                .and_then(Value::as_str)
+                .is_some_and(|t| ARM_CONTROLLER_TYPES.contains(&t));
+        if is_part {
+            let mut part = parse_arm_part(value, path)?;
+            // robosuite's refactor always gives the GRIP controller.
+            part.gripper = GripperConfig::default();
+            Ok(Self::Part(part.controller))
+        } else {
+            if let Some(t) = obj.get("type").and_then(Value::as_str)
+                && !obj.contains_key("body_parts")
+                && !COMPOSITE_CONTROLLER_TYPES.contains(&t)
+            {
+                return Err(unknown_type(t, &join(path, "type")));
+            }
+            Ok(Self::Composite(CompositeControllerConfig::from_value(
+                value, path,
+            )?))
+        }
+    }
+
+    /// Parses a JSON text (a robosuite controller JSON file's contents).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] naming `path` for text that is not JSON; otherwise as
+    /// [`ControllerConfig::from_value`].
+    pub fn from_json(text: &str, path: &str) -> Result<Self> {
+        let value: Value = serde_json::from_str(text)
+            .map_err(|e| Error::invalid_argument(path, format!("not valid JSON: {e}")))?;
+        Self::from_value(&value, path)
+    }
+
+    /// The composite config for robot `robot` (arms `arms`): a composite config as is, a
+    /// part config on every arm of the robot's default config (robosuite's
+    /// `default_{robot}.json`, else `basic.json`), then fitted to the robot
+    /// ([`CompositeControllerConfig::fit_to`]).
+    ///
+    /// # Errors
+    /// [`Error::Model`] when robosuite's default config file cannot be read;
+    /// [`Error::InvalidArgument`] when an arm has no config.
+    pub fn for_robot(
+        &self,
+        assets: &Assets,
+        robot: &str,
+        arms: &[&str],
+        path: &str,
+    ) -> Result<CompositeControllerConfig> {
+        match self {
+            Self::Composite(c) => c.fit_to(robot, arms, path),
+            Self::Part(part) => {
+                let mut base = robot_default(assets, robot)?;
+                for side in arms {
+                    base.set_arm(side, ArmPartConfig::from(part.clone()));
+                }
+                base.fit_to(robot, arms, path)
+            }
+        }
+    }
+}
+
+/// robosuite's default composite config for `robot` (`load_composite_controller_config(robot=...)`).
+///
+/// # Errors
+/// [`Error::Model`] when the file cannot be read or parsed.
+pub fn robot_default(assets: &Assets, robot: &str) -> Result<CompositeControllerConfig> {
+    let value = load_composite_controller_config(assets, None, Some(robot))?;
+    CompositeControllerConfig::from_value(&value, "controller_configs").map_err(|e| {
+        Error::Model(format!(
+            "robosuite's default controller config for {robot}: {e}"
+        ))
+    })
+}
+
+/// Parses one arm part (`{"type": ..., ..., "gripper": {...}}`) at `path`.
+fn parse_arm_part(value: &Value, path: &str) -> Result<ArmPartConfig> {
+    let obj = object(value, path)?;
+    let type_path = join(path, "type");
+    let kind = string(
+        obj.get("type").ok_or_else(|| {
+            Error::invalid_argument(
+                &type_path,
+                format!("missing; valid: {}", ARM_CONTROLLER_TYPES.join(", ")),
+            )
+        })?,
+        &type_path,
+    )?;
+    let (keys, ignored) =
+        ArmControllerConfig::keys_of(kind).ok_or_else(|| unknown_type(kind, &type_path))?;
+    let mut fields = Map::new();
+    for (key, v) in obj {
+        match key.as_str() {
+            "type" | "gripper" => {}
+            k if keys.contains(&k) => {
+                fields.insert(key.clone(), v.clone());
+            }
+            k if ignored.contains(&k) => {}
+            _ => {
+                let mut valid = vec!["type", "gripper"];
+                valid.extend_from_slice(keys);
+                valid.extend_from_slice(ignored);
+                return Err(unknown_key(path, key, &valid));
+            }
+        }
+    }
+    let fields = Value::Object(fields);
+    let controller = match kind {
+        "OSC_POSE" => ArmControllerConfig::OscPose(typed(fields, path)?),
+        "OSC_POSITION" => ArmControllerConfig::OscPosition(typed(fields, path)?),
+        "IK_POSE" => ArmControllerConfig::IkPose(typed(fields, path)?),
+        "JOINT_POSITION" => ArmControllerConfig::JointPosition(typed(fields, path)?),
+        "JOINT_VELOCITY" => ArmControllerConfig::JointVelocity(typed(fields, path)?),
+        _ => ArmControllerConfig::JointTorque(typed(fields, path)?),
+    };
+    let gripper = match obj.get("gripper") {
+        None | Some(Value::Null) => GripperConfig::default(),
+        Some(g) => parse_gripper(g, &join(path, "gripper"))?,
+    };
+    Ok(ArmPartConfig {
+        controller,
+        gripper,
+    })
+}
+
+fn parse_gripper(value: &Value, path: &str) -> Result<GripperConfig> {
+    let obj = object(value, path)?;
+    let type_path = join(path, "type");
+    let kind = obj
+        .get("type")
+        .map_or(Ok("GRIP"), |t| string(t, &type_path))?;
+    if !GRIPPER_CONTROLLER_TYPES.contains(&kind) {
+        return Err(Error::invalid_argument(
+            type_path,
+            format!(
+                "unknown gripper controller `{kind}`; valid: {}",
+                GRIPPER_CONTROLLER_TYPES.join(", ")
+            ),
+        ));
+    }
+    let mut fields = Map::new();
+    for (key, v) in obj {
+        if key == "type" {
+            continue;
+        }
+        if !GripperConfig::KEYS.contains(&key.as_str()) {
+            let mut valid = vec!["type"];
+            valid.extend_from_slice(GripperConfig::KEYS);
+            return Err(unknown_key(path, key, &valid));
+        }
+        fields.insert(key.clone(), v.clone());
+    }
+    typed(Value::Object(fields), path)
+}
+
+/// Deserializes `value` into `T`, naming the offending key in the error.
+fn typed<T: DeserializeOwned>(value: Value, path: &str) -> Result<T> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let inner = e.path().to_string();
+        let at = if inner == "." {
+            path.to_owned()
+        } else {
+            join(path, &inner)
+        };
+        Error::invalid_argument(at, e.into_inner().to_string())
+    })
+}
+
+fn check_composite_type(kind: &str, path: &str) -> Result<()> {
+    match kind {
+        "BASIC" => Ok(()),
+        k if COMPOSITE_CONTROLLER_TYPES.contains(&k) => Err(Error::Unsupported(format!(
+            "{path}: the composite controller `{k}` drives mobile or whole-body robots; \
+             robosuite-rs's robots are fixed-base arms, whose composite controller is BASIC"
+        ))),
+        k => Err(Error::invalid_argument(
+            path,
+            format!(
+                "unknown composite controller `{k}`; valid: BASIC (robosuite also has {} for mobile and whole-body robots)",
+                COMPOSITE_CONTROLLER_TYPES[1..].join(", ")
+            ),
+        )),
+    }
+}
+
+fn unknown_type(kind: &str, path: &str) -> Error {
+    Error::invalid_argument(
+        path,
+        format!(
+            "unknown controller `{kind}`; valid arm controllers: {} (composite configs: {} with `body_parts`)",
+            ARM_CONTROLLER_TYPES.join(", "),
+            COMPOSITE_CONTROLLER_TYPES.join(", ")
+        ),
+    )
+}
+
+fn unknown_key(path: &str, key: &str, valid: &[&str]) -> Error {
+    Error::UnknownKey {
+        key: join(path, key),
+        available: valid.iter().map(|s| (*s).to_owned()).collect(),
+    }
+}
+
+fn object<'a>(value: &'a Value, path: &str) -> Result<&'a Map<String, Value>> {
+    value.as_object().ok_or_else(|| {
+        Error::invalid_argument(path, format!("expected a dict, got {}", kind_of(value)))
+    })
+}
+
+fn string<'a>(value: &'a Value, path: &str) -> Result<&'a str> {
+    value.as_str().ok_or_else(|| {
+        Error::invalid_argument(path, format!("expected a string, got {}", kind_of(value)))
+    })
+}
+
+fn kind_of(value: &Value) -> &'static str {
+    match value {
+        Value::Null => "null",
+        Value::Bool(_) => "a bool",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "a list",
+        Value::Object(_) => "a dict",
+    }
+}
+
+/// `parent.key`.
+pub(crate) fn join(parent: &str, key: &str) -> String {
+    if parent.is_empty() {
+        key.to_owned()
+    } else {
+        format!("{parent}.{key}")
+    }
+}
