@@ -74,7 +74,7 @@ fn reference_torques(sim: &Sim, osc: &OscPose) -> Vec<f64> {
     let wrench = DVector::from_iterator(6, fp.iter().chain(fo.iter()).copied());
     let mut tau = j.transpose() * wrench + h;
     let n = DMatrix::identity(7, 7) - &m_inv * j.transpose() * &lambda * &j;
-    let q0 = DVector::from_column_slice(&osc.initial_joints());
+    let q0 = DVector::from_column_slice(osc.initial_joints());
     let kn = cfg.nullspace_kp;
     tau += n.transpose() * (&m * ((q0 - q) * kn - qd * (2.0 * kn.sqrt())));
     tau.iter().copied().collect()

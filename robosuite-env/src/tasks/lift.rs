@@ -1,12 +1,12 @@
 //! robosuite's `Lift`: lift a small box off the table (`environments/manipulation/lift.py`).
 
-use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward};
+use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward, wood_material};
 use super::placement::{Axis, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::arenas::Arena;
 use crate::models::objects::primitive::Primitive;
-use crate::models::objects::{CustomMaterial, ObjectModel, Shape};
+use crate::models::objects::{ObjectModel, Shape};
 use crate::models::robots::RobotModel;
 use crate::observables::{ObsSpec, Observable, observe_all, specs};
 use crate::robots::Robot;
@@ -66,23 +66,6 @@ pub(crate) fn place_single_robot(robots: &mut [RobotModel], arena: &Arena) {
     }
 }
 
-/// robosuite's `redwood` material of Lift's cube.
-fn redwood(assets: &Assets) -> Result<CustomMaterial> {
-    CustomMaterial::new(
-        assets,
-        "WoodRed",
-        "redwood",
-        "redwood_mat",
-        &[("type", "cube")],
-        &[
-            ("texrepeat", "1 1"),
-            ("specular", "0.4"),
-            ("shininess", "0.1"),
-        ],
-        false,
-    )
-}
-
 impl TaskSpec for LiftSpec {
     fn name(&self) -> &str {
         "Lift"
@@ -101,7 +84,7 @@ impl TaskSpec for LiftSpec {
         arena.set_origin([0.0; 3])?;
         let half = std::array::from_fn(|i| 0.5 * (self.cube_size_min[i] + self.cube_size_max[i]));
         let mut cube = Primitive::new("cube", Shape::Box(half));
-        cube.material = Some(redwood(assets)?);
+        cube.material = Some(wood_material(assets, "WoodRed", "redwood")?);
         Ok(TaskScene {
             arena,
             objects: vec![cube.build()?],
