@@ -10,9 +10,11 @@
 pub mod common;
 mod lift;
 pub mod placement;
+mod stack;
 mod tool_hang;
 
 pub use lift::{Lift, LiftSpec};
+pub use stack::{CUBE_A_HALF, CUBE_B_HALF, Stack, StackSpec};
 pub use tool_hang::{ToolHang, ToolHangSpec};
 
 use crate::assets::Assets;
