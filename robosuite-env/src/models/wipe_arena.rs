@@ -221,7 +221,7 @@ mod tests {
     fn a_walk_with_no_room_is_a_typed_error_not_a_hang() {
         // The markers are wider than the covered part of the table: no point is inside.
         let tight = MarkerWalk {
-            coverage_factor: 0.05,
+            coverage_factor: 0.04,
             ..walk()
         };
         let [lx, ly] = tight.limits();
