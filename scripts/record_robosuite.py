@@ -232,6 +232,15 @@ def wrap(a, period):
     return (a + period / 2) % period - period / 2
 
 
+def osc_action(eef, target, yaw, grip):
+    """A Panda action: toward `target`, turning by `yaw` about z, with the gripper command."""
+    out = np.zeros(7)
+    out[:3] = toward(eef, target)
+    out[5] = np.clip(yaw / 0.5, -1.0, 1.0)
+    out[6] = grip
+    return out
+
+
 def stack_policy():
     """Grasp cube A (fingers aligned with its faces), lift it, carry it over cube B, lower
     it onto B, release and retreat."""
@@ -267,11 +276,7 @@ def stack_policy():
             target = np.array([eef[0], eef[1], 1.0])
         if done:
             state["phase"], state["t"] = phase + 1, 0
-        out = np.zeros(7)
-        out[:3] = toward(eef, target)
-        out[5] = np.clip(yaw / 0.5, -1.0, 1.0)
-        out[6] = grip
-        return out
+        return osc_action(eef, target, yaw, grip)
 
     return act
 
@@ -306,11 +311,7 @@ def door_policy(env):
         yaw_err = wrap(np.arctan2(normal[1], normal[0]) - finger_yaw(obs), np.pi) if phase < 3 else 0.0
         if done:
             state["phase"], state["t"], state["anchor"] = phase + 1, 0, np.array(eef)
-        out = np.zeros(7)
-        out[:3] = toward(eef, target)
-        out[5] = np.clip(yaw_err / 0.5, -1.0, 1.0)
-        out[6] = grip
-        return out
+        return osc_action(eef, target, yaw_err, grip)
 
     return act
 

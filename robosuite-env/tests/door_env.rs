@@ -256,12 +256,7 @@ fn scripted_door(env: &mut RobosuiteEnv, seed: u64) -> (bool, usize) {
 #[test]
 fn scripted_policy_opens_the_door() {
     let mut env = door(EnvConfig::default().with_horizon(300));
-    let report: Vec<(bool, usize)> = (0..3).map(|seed| scripted_door(&mut env, seed)).collect();
-    let ok = report.iter().filter(|r| r.0).count();
-    assert!(
-        ok >= 2,
-        "scripted Door succeeded on {ok}/3 seeds: {report:?}"
-    );
+    common::assert_scripted_successes("Door", &mut env, 3, 2, scripted_door);
 }
 
 #[test]

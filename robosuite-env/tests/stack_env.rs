@@ -216,12 +216,7 @@ fn scripted_stack(env: &mut RobosuiteEnv, seed: u64) -> (bool, usize) {
 #[test]
 fn scripted_policy_stacks_the_cubes() {
     let mut env = stack(EnvConfig::default().with_horizon(300));
-    let report: Vec<(bool, usize)> = (0..4).map(|seed| scripted_stack(&mut env, seed)).collect();
-    let ok = report.iter().filter(|r| r.0).count();
-    assert!(
-        ok >= 3,
-        "scripted Stack succeeded on {ok}/4 seeds: {report:?}"
-    );
+    common::assert_scripted_successes("Stack", &mut env, 4, 3, scripted_stack);
 }
 
 #[test]

@@ -200,3 +200,20 @@ pub fn assert_snapshot_replays(env: &mut RobosuiteEnv, actions: &[ArrayD<f64>], 
     let second = run(env);
     assert_eq!(first, second);
 }
+
+/// Runs a scripted `policy` (returning whether it reported success, and when) from resets
+/// with the seeds `0..seeds` and checks that it succeeds on at least `min` of them.
+pub fn assert_scripted_successes(
+    task: &str,
+    env: &mut RobosuiteEnv,
+    seeds: u64,
+    min: usize,
+    mut policy: impl FnMut(&mut RobosuiteEnv, u64) -> (bool, usize),
+) {
+    let report: Vec<(bool, usize)> = (0..seeds).map(|seed| policy(env, seed)).collect();
+    let ok = report.iter().filter(|r| r.0).count();
+    assert!(
+        ok >= min,
+        "scripted {task} succeeded on {ok}/{seeds} seeds: {report:?}"
+    );
+}
