@@ -9,7 +9,10 @@ robosuite-rs (`cargo run -p robosuite-env --example replay_fixture -- TASK INDEX
 that run.
 
 robosuite 1.5.2 predates two MuJoCo API changes; this script patches them in robosuite's
-binding helpers (joint types compare as integers; `mj_fullM(m, d, dst)` without `qM`).
+binding helpers (joint types compare as integers; `mj_fullM(m, d, dst)` without `qM`), so
+that it runs with any robosuite 1.5.2 (scripts/record_robosuite.sh's MuJoCo-3.17.0 one has
+them patched already). Where MuJoCo has multi-point convex collisions, they are turned off,
+as robosuite-rs turns them off.
 
 Usage (a Python with robosuite 1.5.2; MuJoCo 3.17.0 can come from another environment):
   PYTHONPATH=DIR_WITH_MUJOCO_3_17 python scripts/replay_robosuite.py Door 0 [--compare ours.json]
@@ -59,6 +62,13 @@ binding.MjModel.get_joint_qvel_addr = lambda self, name: _joint_addr(self, name,
 controller_module.Controller.update = _controller_update
 
 
+def no_multiccd(env):
+    """MuJoCo 3.17's multi-point convex collisions off, as in robosuite's MuJoCo and in
+    robosuite-rs (scripts/mujoco_floor.py does the same)."""
+    if hasattr(mujoco.mjtDisableBit, "mjDSBL_MULTICCD"):
+        env.sim.model._model.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_MULTICCD
+
+
 def largest(steps_a, steps_b, first_contact):
     """Largest differences: arm (joints, grip site) before / after the first touch, reward."""
     free = contact = reward = 0.0
@@ -93,7 +103,9 @@ def main():
         use_camera_obs=False,
         seed=100 + args.rollout,
     )
+    no_multiccd(env)
     env.reset()
+    no_multiccd(env)
     start = np.max(np.abs(env.sim.get_state().flatten() - np.array(rollout["init_state"])))
     keys = list(rollout["steps"][0]["obs"])
     ours = []

@@ -81,7 +81,11 @@ pub fn wood_material(assets: &Assets, texture: &str, tex_name: &str) -> Result<C
         tex_name,
         &format!("{tex_name}_mat"),
         &[("type", "cube")],
-        &[("texrepeat", "1 1"), ("specular", "0.4"), ("shininess", "0.1")],
+        &[
+            ("texrepeat", "1 1"),
+            ("specular", "0.4"),
+            ("shininess", "0.1"),
+        ],
         false,
     )
 }
