@@ -2,12 +2,11 @@
 //! (`environments/manipulation/door.py`, `DoorObject`).
 
 use super::common::{dist, eef_pos, scale_reward, sub};
-use super::lift::place_single_robot;
+use super::lift::single_robot_table;
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::mjcf::tree::{self, format_number, set_attr};
-use crate::models::arenas::Arena;
 use crate::models::objects::{Joints, ObjType, ObjectModel, xml_object};
 use crate::models::robots::RobotModel;
 use crate::observables::{ObsSpec, Observable, observe_all, specs};
@@ -76,15 +75,13 @@ impl TaskSpec for DoorSpec {
     }
 
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let mut arena = Arena::table(
+        let mut arena = single_robot_table(
             assets,
-            "arenas/table_arena.xml",
+            robots,
             TABLE_FULL_SIZE,
             TABLE_FRICTION,
             TABLE_OFFSET,
         )?;
-        place_single_robot(robots, &arena);
-        arena.set_origin([0.0; 3])?;
         arena.set_camera("agentview", AGENTVIEW_POS, AGENTVIEW_QUAT)?;
         Ok(TaskScene {
             arena,

@@ -66,6 +66,31 @@ pub(crate) fn place_single_robot(robots: &mut [RobotModel], arena: &Arena) {
     }
 }
 
+/// The opening of a single-arm table task's `_load_model` (Lift, Stack, Door, ...):
+/// robosuite's `TableArena(table_full_size, table_friction, table_offset)`, robot 0 placed at
+/// its table base offset ([`place_single_robot`]), then `set_origin([0, 0, 0])`.
+///
+/// # Errors
+/// As [`Arena::table`].
+pub(crate) fn single_robot_table(
+    assets: &Assets,
+    robots: &mut [RobotModel],
+    full_size: [f64; 3],
+    friction: [f64; 3],
+    offset: [f64; 3],
+) -> Result<Arena> {
+    let mut arena = Arena::table(
+        assets,
+        "arenas/table_arena.xml",
+        full_size,
+        friction,
+        offset,
+    )?;
+    place_single_robot(robots, &arena);
+    arena.set_origin([0.0; 3])?;
+    Ok(arena)
+}
+
 impl TaskSpec for LiftSpec {
     fn name(&self) -> &str {
         "Lift"
@@ -73,15 +98,13 @@ impl TaskSpec for LiftSpec {
 
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
         self.validate()?;
-        let mut arena = Arena::table(
+        let arena = single_robot_table(
             assets,
-            "arenas/table_arena.xml",
+            robots,
             self.table_full_size,
             self.table_friction,
             TABLE_OFFSET,
         )?;
-        place_single_robot(robots, &arena);
-        arena.set_origin([0.0; 3])?;
         let half = std::array::from_fn(|i| 0.5 * (self.cube_size_min[i] + self.cube_size_max[i]));
         let mut cube = Primitive::new("cube", Shape::Box(half));
         cube.material = Some(wood_material(assets, "WoodRed", "redwood")?);

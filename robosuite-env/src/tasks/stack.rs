@@ -4,12 +4,11 @@
 use super::common::{
     FreeBody, dist, dist_xy, eef_pos, robot0_grasps, scale_reward, sub, wood_material,
 };
-use super::lift::{TABLE_OFFSET, place_single_robot};
+use super::lift::{TABLE_OFFSET, single_robot_table};
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::math::xyzw;
-use crate::models::arenas::Arena;
 use crate::models::objects::Shape;
 use crate::models::objects::primitive::Primitive;
 use crate::models::robots::RobotModel;
@@ -48,15 +47,13 @@ impl TaskSpec for StackSpec {
     }
 
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let mut arena = Arena::table(
+        let arena = single_robot_table(
             assets,
-            "arenas/table_arena.xml",
+            robots,
             self.table_full_size,
             self.table_friction,
             TABLE_OFFSET,
         )?;
-        place_single_robot(robots, &arena);
-        arena.set_origin([0.0; 3])?;
         let mut cube_a = Primitive::new("cubeA", Shape::Box([CUBE_A_HALF; 3]));
         cube_a.rgba = [1.0, 0.0, 0.0, 1.0];
         cube_a.material = Some(wood_material(assets, "WoodRed", "redwood")?);
