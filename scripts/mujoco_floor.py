@@ -64,7 +64,7 @@ def floor(fixture, index):
         obs, reward, done, _ = env.step(np.array(action))
         touched = first is not None and i >= first
         for key, want in rec["obs"].items():
-            d = float(np.abs(np.asarray(obs[key], dtype=np.float64).reshape(-1) - np.array(want)).max())
+            d = float(np.abs(np.asarray(obs[key], dtype=np.float64).reshape(-1) - np.array(want)).max(initial=0.0))
             if is_arm_key(key):
                 k = "contact_arm" if touched else "free_arm"
                 out[k] = max(out[k], d)

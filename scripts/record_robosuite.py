@@ -107,6 +107,17 @@ def task_state(task, env):
         # No drawn model parameters; the state is ToolHang's observation cache, which a
         # replay restarts from the recorded reset state.
         return []
+    if task == "Door":
+        # The door's root pose, placed through the model: position, then quaternion (wxyz).
+        body = env.sim.model.body_name2id(env.door.root_body)
+        return [float(x) for x in env.sim.model.body_pos[body]] + [float(x) for x in env.sim.model.body_quat[body]]
+    if task == "Wipe":
+        # Marker positions (model body_pos), wiped flags, force bias, the step's force and the
+        # force sensor now.
+        markers = env.model.mujoco_arena.markers
+        pos = [float(x) for m in markers for x in env.sim.model.body_pos[env.sim.model.body_name2id(m.root_body)]]
+        force = [float(x) for x in env.robots[0].ee_force["right"]]
+        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * 6 + force
     return []
 
 
@@ -204,6 +215,129 @@ def bar_grasp_policy(obj_name, lift_height=0.1):
     return act
 
 
+def yaw_of(q):
+    """The yaw of an xyzw quaternion."""
+    x, y, z, w = q
+    return np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def finger_yaw(obs):
+    """The yaw of the Panda's finger axis (the hand's y axis) from robot0_eef_quat."""
+    x, y, z, w = obs["robot0_eef_quat"]
+    return np.arctan2(1.0 - 2.0 * (x * x + z * z), 2.0 * (x * y - w * z))
+
+
+def wrap(a, period):
+    """An angle wrapped to [-period/2, period/2)."""
+    return (a + period / 2) % period - period / 2
+
+
+def osc_action(eef, target, yaw, grip):
+    """A Panda action: toward `target`, turning by `yaw` about z, with the gripper command."""
+    out = np.zeros(7)
+    out[:3] = toward(eef, target)
+    out[5] = np.clip(yaw / 0.5, -1.0, 1.0)
+    out[6] = grip
+    return out
+
+
+def stack_policy():
+    """Grasp cube A (fingers aligned with its faces), lift it, carry it over cube B, lower
+    it onto B, release and retreat."""
+    state = {"phase": 0, "t": 0}
+
+    def act(obs):
+        eef, a, b = obs["robot0_eef_pos"], obs["cubeA_pos"], obs["cubeB_pos"]
+        state["t"] += 1
+        phase, t = state["phase"], state["t"]
+        grip, yaw, done = -1.0, 0.0, False
+        if phase == 0:
+            target = a + np.array([0, 0, 0.08])
+            yaw = wrap(yaw_of(obs["cubeA_quat"]) - finger_yaw(obs), np.pi / 2)
+            done = (np.linalg.norm(target - eef) < 0.01 and abs(yaw) < 0.05) or t > 45
+        elif phase == 1:
+            target = a + np.array([0, 0, -0.005])
+            yaw = wrap(yaw_of(obs["cubeA_quat"]) - finger_yaw(obs), np.pi / 2)
+            done = np.linalg.norm(target - eef) < 0.008 or t > 25
+        elif phase == 2:
+            target, grip, done = eef, 1.0, t > 8
+        elif phase == 3:
+            target, grip = np.array([eef[0], eef[1], 0.95]), 1.0
+            done = eef[2] > 0.93 or t > 30
+        elif phase == 4:
+            target, grip = np.array([b[0] + eef[0] - a[0], b[1] + eef[1] - a[1], 0.95]), 1.0
+            done = np.linalg.norm((a - b)[:2]) < 0.004 or t > 50
+        elif phase == 5:
+            target, grip = np.array([b[0] + eef[0] - a[0], b[1] + eef[1] - a[1], eef[2] + b[2] + 0.047 - a[2]]), 1.0
+            done = a[2] - b[2] < 0.05 or t > 30
+        elif phase == 6:
+            target, done = eef, t > 10
+        else:
+            target = np.array([eef[0], eef[1], 1.0])
+        if done:
+            state["phase"], state["t"] = phase + 1, 0
+        return osc_action(eef, target, yaw, grip)
+
+    return act
+
+
+def door_policy(env):
+    """Fingers across the door's normal above the handle, descend onto the lever, close,
+    press the lever down (turning the latch), then pull along the door's normal."""
+    door = env.sim.model.body_name2id(env.door.door_body)
+    state = {"phase": 0, "t": 0, "anchor": None}
+
+    def act(obs):
+        eef, handle = obs["robot0_eef_pos"], obs["handle_pos"]
+        w, _, _, z = env.sim.data.body_xquat[door]
+        yaw = 2.0 * np.arctan2(z, w)
+        normal = np.array([np.sin(yaw), -np.cos(yaw), 0.0])
+        state["t"] += 1
+        phase, t = state["phase"], state["t"]
+        grip, done = -1.0, False
+        if phase == 0:
+            target = handle + np.array([0, 0, 0.06])
+            done = np.linalg.norm(target - eef) < 0.01 or t > 40
+        elif phase == 1:
+            target = handle + np.array([0, 0, -0.005])
+            done = np.linalg.norm(target - eef) < 0.008 or t > 25
+        elif phase == 2:
+            target, grip, done = eef, 1.0, t > 8
+        elif phase == 3:
+            target, grip = state["anchor"] + np.array([0, 0, -0.1]), 1.0
+            done = float(obs["handle_qpos"]) > 0.6 or t > 40
+        else:
+            target, grip = state["anchor"] + 0.2 * normal, 1.0
+        yaw_err = wrap(np.arctan2(normal[1], normal[0]) - finger_yaw(obs), np.pi) if phase < 3 else 0.0
+        if done:
+            state["phase"], state["t"], state["anchor"] = phase + 1, 0, np.array(eef)
+        return osc_action(eef, target, yaw_err, grip)
+
+    return act
+
+
+def wipe_policy(env):
+    """Above the first marker, press the tool 2 cm into the table and follow the markers'
+    path, one marker per step."""
+    ids = [env.sim.model.body_name2id(m.root_body) for m in env.model.mujoco_arena.markers]
+    points = np.array([env.sim.data.body_xpos[i] for i in ids])
+    state = {"t": 0, "k": 0, "down": False}
+
+    def act(obs):
+        eef = obs["robot0_eef_pos"]
+        p = points[min(state["k"], len(points) - 1)]
+        state["t"] += 1
+        if not state["down"] and (np.hypot(*(eef - p)[:2]) < 0.01 or state["t"] > 60):
+            state["down"] = True
+        if state["down"]:
+            state["k"] += 1
+        out = np.zeros(6)
+        out[:3] = toward(eef, [p[0], p[1], p[2] - 0.02 if state["down"] else p[2] + 0.05])
+        return out
+
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -211,6 +345,9 @@ def random_policy(seed, dim):
 
 POLICIES = {
     "Lift": [("scripted", lambda env: pick_policy("cube_pos"), 80), ("random", lambda env: random_policy(7, env.action_dim), 60)],
+    "Stack": [("scripted", lambda env: stack_policy(), 140), ("random", lambda env: random_policy(7, env.action_dim), 60)],
+    "Door": [("scripted", door_policy, 130), ("random", lambda env: random_policy(7, env.action_dim), 60)],
+    "Wipe": [("scripted", wipe_policy, 150), ("random", lambda env: random_policy(7, env.action_dim), 60)],
     "ToolHang": [("scripted", lambda env: bar_grasp_policy("tool"), 120), ("random", lambda env: random_policy(3, env.action_dim), 60)],
 }
 
@@ -252,7 +389,11 @@ def placement(task, robot, resets):
     for _ in range(resets):
         env.reset()
         d = env.sim.data._data
-        for obj in env.model.mujoco_objects:
+        objects = list(env.model.mujoco_objects)
+        if task == "Wipe":
+            # The markers' path starts uniformly in the covered area and ends a walk away.
+            objects += [env.model.mujoco_arena.markers[0], env.model.mujoco_arena.markers[-1]]
+        for obj in objects:
             bid = mujoco.mj_name2id(env.sim.model._model, mujoco.mjtObj.mjOBJ_BODY, obj.root_body)
             p = np.array(d.xpos[bid])
             name = obj.root_body

@@ -252,7 +252,8 @@ impl RobosuiteEnv {
         let task = spec.bind(&composed.task_scene, &model, &robots)?;
 
         // robosuite's order: every robot's observables, then the task's; `use_object_obs =
-        // false` makes the task's object observables inactive.
+        // false` leaves out the task's object observables (and those robosuite creates only
+        // with them, such as Wipe's `robot0_contact`).
         let mut obs_specs: Vec<ObsSpec> = Vec::new();
         let mut robot_ranges = Vec::with_capacity(robots.len());
         for r in &robots {
@@ -266,7 +267,7 @@ impl RobosuiteEnv {
         let task_range = task_start..task_start + total_len(&task_specs);
         obs_specs.extend(task_specs);
         let use_object_obs = config.use_object_obs;
-        let layout = ObsLayout::new(obs_specs, |s| use_object_obs || s.modality != "object");
+        let layout = ObsLayout::new(obs_specs, |s| use_object_obs || !s.needs_object_obs);
         let obs_space = layout.space()?;
 
         let mut action_splits = Vec::new();

@@ -26,6 +26,10 @@ pub struct ObsSpec {
     /// The modality (`"robot0_proprio"`, `"object"`, ...): observables of one modality are
     /// also returned concatenated as `{modality}-state`.
     pub modality: String,
+    /// Whether the observable exists only with `use_object_obs` (every `object` observable,
+    /// and task observables robosuite creates inside its `use_object_obs` branch, such as
+    /// Wipe's `robot0_contact`).
+    pub needs_object_obs: bool,
 }
 
 impl ObsSpec {
@@ -82,9 +86,18 @@ impl<C> Observable<C> {
                 shape: shape.to_vec(),
                 dtype,
                 modality: modality.to_owned(),
+                needs_object_obs: modality == "object",
             },
             read: Arc::new(read),
         }
+    }
+
+    /// The observable, existing only with `use_object_obs` whatever its modality (robosuite
+    /// creates it inside the task's `use_object_obs` branch).
+    #[must_use]
+    pub fn only_with_object_obs(mut self) -> Self {
+        self.spec.needs_object_obs = true;
+        self
     }
 
     /// A float64 vector observable.
@@ -327,6 +340,7 @@ mod tests {
             shape: vec![len],
             dtype,
             modality: modality.into(),
+            needs_object_obs: modality == "object",
         }
     }
 

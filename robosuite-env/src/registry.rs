@@ -4,13 +4,13 @@
 use crate::assets::Assets;
 use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
-use crate::tasks::{LiftSpec, TaskSpec, ToolHangSpec};
+use crate::tasks::{DoorSpec, LiftSpec, StackSpec, TaskSpec, ToolHangSpec, WipeSpec};
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
 use std::sync::Arc;
 
 /// The environment names this crate provides.
-pub const ENV_NAMES: &[&str] = &["Lift", "ToolHang"];
+pub const ENV_NAMES: &[&str] = &["Lift", "Stack", "Door", "Wipe", "ToolHang"];
 
 /// The task registered under `name`, with robosuite's default settings.
 ///
@@ -19,6 +19,9 @@ pub const ENV_NAMES: &[&str] = &["Lift", "ToolHang"];
 pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
     match name {
         "Lift" => Ok(Box::new(LiftSpec::default())),
+        "Stack" => Ok(Box::new(StackSpec::default())),
+        "Door" => Ok(Box::new(DoorSpec::default())),
+        "Wipe" => Ok(Box::new(WipeSpec::default())),
         "ToolHang" => Ok(Box::new(ToolHangSpec::default())),
         other => Err(Error::UnknownEnv {
             id: other.to_owned(),

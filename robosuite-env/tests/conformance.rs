@@ -80,6 +80,9 @@ macro_rules! task_tests {
 }
 
 task_tests! {
+    stack_passes_check_env, stack_passes_the_property_suite => "Stack";
+    door_passes_check_env, door_passes_the_property_suite => "Door";
+    wipe_passes_check_env, wipe_passes_the_property_suite => "Wipe";
     tool_hang_passes_check_env, tool_hang_passes_the_property_suite => "ToolHang";
 }
 

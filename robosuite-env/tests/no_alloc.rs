@@ -156,3 +156,41 @@ fn flat_gym_wrapper_step_into_does_not_allocate_and_equals_step() {
     assert!(a.step_into(&bad, &mut obs, &mut info).is_err());
     assert!(a.step_into(&actions[1], &mut obs, &mut info).is_ok());
 }
+
+#[test]
+fn wipe_steps_that_wipe_markers_do_not_allocate() {
+    // Press the tool along the markers' path: steps with contact, wiped markers and their
+    // model edits, all without the heap.
+    let mut env = make_with("Wipe", EnvConfig::default()).unwrap();
+    let (mut obs, mut info) = env.reset(Some(0), None).unwrap();
+    let m = env.sim().model();
+    let path: Vec<[f64; 3]> = (0..100)
+        .map(|i| {
+            let b = robosuite_env::sim::body_id(m, &format!("contact{i}_main")).unwrap();
+            env.sim().data().xpos()[b]
+        })
+        .collect();
+    let mut action = ArrayD::zeros(ndarray::IxDyn(&[6]));
+    let (mut k, mut down, mut wiping_steps) = (0usize, false, 0);
+    let mut last = 0.0;
+    for t in 0..120 {
+        let eef = &obs["robot0_eef_pos"].as_array().unwrap().to_f64_vec();
+        let p = path[k.min(99)];
+        down |= (eef[0] - p[0]).hypot(eef[1] - p[1]) < 0.01 || t >= 60;
+        k += usize::from(down);
+        let z = if down { p[2] - 0.02 } else { p[2] + 0.05 };
+        for (i, target) in [p[0], p[1], z].into_iter().enumerate() {
+            action[i] = ((target - eef[i]) * 10.0).clamp(-1.0, 1.0);
+        }
+        let mut tr = None;
+        let n = allocations(|| tr = Some(env.step_into(&action, &mut obs, &mut info).unwrap()));
+        assert_eq!(n, 0, "Wipe step {t} allocated {n} times");
+        let wiped = obs["proportion_wiped"].as_array().unwrap().to_f64_vec()[0];
+        wiping_steps += usize::from(wiped > last);
+        last = wiped;
+        if tr.unwrap().done() {
+            break;
+        }
+    }
+    assert!(wiping_steps >= 3, "only {wiping_steps} steps wiped markers");
+}

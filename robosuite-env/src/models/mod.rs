@@ -5,6 +5,7 @@
 //! * [`arenas`]: tables, bins, the empty arena;
 //! * [`robots`], [`bases`], [`grippers`]: robots with their mounts and grippers;
 //! * [`objects`]: objects from robosuite's files and generated ones;
+//! * [`wipe_arena`]: Wipe's table with its dirt markers and their random walk;
 //! * [`scene`]: the world (`base.xml`), the merge and the final MJCF.
 
 pub mod arenas;
@@ -13,6 +14,7 @@ pub mod grippers;
 pub mod objects;
 pub mod robots;
 pub mod scene;
+pub mod wipe_arena;
 
 /// robosuite's colour for the collision geoms of robots (`ROBOT_COLLISION_COLOR`).
 pub const ROBOT_COLLISION_COLOR: [f64; 4] = [0.0, 0.5, 0.0, 1.0];

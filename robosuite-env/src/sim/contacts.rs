@@ -35,3 +35,11 @@ pub fn any_contact_between(data: &Data, a: &GeomSet, b: &GeomSet) -> bool {
         (a.contains(g1) && b.contains(g2)) || (a.contains(g2) && b.contains(g1))
     })
 }
+
+/// Whether any active contact involves a geom of `a` (with any other geom), as robosuite's
+/// `check_contact(geoms_1)` without a second group (Wipe's arm-collision test).
+pub fn any_contact_with(data: &Data, a: &GeomSet) -> bool {
+    data.contact()
+        .iter()
+        .any(|c| a.contains(c.geom[0]) || a.contains(c.geom[1]))
+}

@@ -2,8 +2,9 @@
 //! robosuite's single-object modes and its object-pose sensors.
 
 use super::RewardConfig;
+use crate::assets::Assets;
 use crate::math::{conj, mat_from_row_major, mat2quat, quat_mul, quat_rotate, xyzw};
-use crate::models::objects::ObjectModel;
+use crate::models::objects::{CustomMaterial, ObjectModel};
 use crate::observables::Observable;
 use crate::robots::{Gripper, Robot};
 use crate::sim::{GeomSet, Sim, any_contact_between, body_id, geom_id, joint_id};
@@ -67,6 +68,28 @@ impl FreeBody {
     }
 }
 
+/// The wood material robosuite gives the cubes of Lift and Stack: `CustomMaterial(texture,
+/// tex_name, f"{tex_name}_mat")` with a cube texture, `texrepeat="1 1"`, `specular="0.4"`
+/// and `shininess="0.1"` (`"WoodRed"` / `"redwood"`, `"WoodGreen"` / `"greenwood"`).
+///
+/// # Errors
+/// As [`CustomMaterial::new`].
+pub fn wood_material(assets: &Assets, texture: &str, tex_name: &str) -> Result<CustomMaterial> {
+    CustomMaterial::new(
+        assets,
+        texture,
+        tex_name,
+        &format!("{tex_name}_mat"),
+        &[("type", "cube")],
+        &[
+            ("texrepeat", "1 1"),
+            ("specular", "0.4"),
+            ("shininess", "0.1"),
+        ],
+        false,
+    )
+}
+
 /// The geom ids of `names`.
 ///
 /// # Errors
@@ -117,10 +140,11 @@ pub fn eef_pos(sim: &Sim, robots: &[Robot]) -> [f64; 3] {
     robots.first().map_or([0.0; 3], |r| r.eef_pos(sim, 0))
 }
 
-/// Applies `reward_scale` (`None`: unnormalised) with robosuite's normalisation divisor.
+/// Applies `reward_scale` (`None`: unnormalised) with robosuite's normalisation divisor, in
+/// robosuite's arithmetic order (`reward *= reward_scale / max`).
 pub fn scale_reward(reward: f64, scale: Option<f64>, max: f64) -> f64 {
     match scale {
-        Some(s) => reward * s / max,
+        Some(s) => reward * (s / max),
         None => reward,
     }
 }

@@ -1,12 +1,12 @@
 //! robosuite's `Lift`: lift a small box off the table (`environments/manipulation/lift.py`).
 
-use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward};
+use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward, wood_material};
 use super::placement::{Axis, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::arenas::Arena;
 use crate::models::objects::primitive::Primitive;
-use crate::models::objects::{CustomMaterial, ObjectModel, Shape};
+use crate::models::objects::{ObjectModel, Shape};
 use crate::models::robots::RobotModel;
 use crate::observables::{ObsSpec, Observable, observe_all, specs};
 use crate::robots::Robot;
@@ -66,21 +66,29 @@ pub(crate) fn place_single_robot(robots: &mut [RobotModel], arena: &Arena) {
     }
 }
 
-/// robosuite's `redwood` material of Lift's cube.
-fn redwood(assets: &Assets) -> Result<CustomMaterial> {
-    CustomMaterial::new(
+/// The opening of a single-arm table task's `_load_model` (Lift, Stack, Door, ...):
+/// robosuite's `TableArena(table_full_size, table_friction, table_offset)`, robot 0 placed at
+/// its table base offset ([`place_single_robot`]), then `set_origin([0, 0, 0])`.
+///
+/// # Errors
+/// As [`Arena::table`].
+pub(crate) fn single_robot_table(
+    assets: &Assets,
+    robots: &mut [RobotModel],
+    full_size: [f64; 3],
+    friction: [f64; 3],
+    offset: [f64; 3],
+) -> Result<Arena> {
+    let mut arena = Arena::table(
         assets,
-        "WoodRed",
-        "redwood",
-        "redwood_mat",
-        &[("type", "cube")],
-        &[
-            ("texrepeat", "1 1"),
-            ("specular", "0.4"),
-            ("shininess", "0.1"),
-        ],
-        false,
-    )
+        "arenas/table_arena.xml",
+        full_size,
+        friction,
+        offset,
+    )?;
+    place_single_robot(robots, &arena);
+    arena.set_origin([0.0; 3])?;
+    Ok(arena)
 }
 
 impl TaskSpec for LiftSpec {
@@ -90,18 +98,16 @@ impl TaskSpec for LiftSpec {
 
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
         self.validate()?;
-        let mut arena = Arena::table(
+        let arena = single_robot_table(
             assets,
-            "arenas/table_arena.xml",
+            robots,
             self.table_full_size,
             self.table_friction,
             TABLE_OFFSET,
         )?;
-        place_single_robot(robots, &arena);
-        arena.set_origin([0.0; 3])?;
         let half = std::array::from_fn(|i| 0.5 * (self.cube_size_min[i] + self.cube_size_max[i]));
         let mut cube = Primitive::new("cube", Shape::Box(half));
-        cube.material = Some(redwood(assets)?);
+        cube.material = Some(wood_material(assets, "WoodRed", "redwood")?);
         Ok(TaskScene {
             arena,
             objects: vec![cube.build()?],

@@ -8,12 +8,18 @@
 //! half-built state.
 
 pub mod common;
+mod door;
 mod lift;
 pub mod placement;
+mod stack;
 mod tool_hang;
+mod wipe;
 
+pub use door::{Door, DoorSpec};
 pub use lift::{Lift, LiftSpec};
+pub use stack::{CUBE_A_HALF, CUBE_B_HALF, Stack, StackSpec};
 pub use tool_hang::{ToolHang, ToolHangSpec};
+pub use wipe::{Wipe, WipeConfig, WipeSpec};
 
 use crate::assets::Assets;
 use crate::models::arenas::Arena;

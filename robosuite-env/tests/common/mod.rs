@@ -152,3 +152,68 @@ pub struct Waypoint {
     /// Maximum steps.
     pub max_steps: usize,
 }
+
+/// Checks an observation (and the env's observation space) against robosuite's keys, shapes
+/// and dtypes, in order.
+pub fn assert_observation_layout(
+    env: &RobosuiteEnv,
+    obs: &DictValue,
+    expected: &[(&str, &[usize], gym_core::DType)],
+) {
+    use gym_core::Space;
+    let keys: Vec<&str> = obs.keys().map(String::as_str).collect();
+    let want: Vec<&str> = expected.iter().map(|(k, _, _)| *k).collect();
+    assert_eq!(keys, want);
+    assert_eq!(env.observation_keys(), want);
+    for (key, shape, dtype) in expected {
+        let a = obs[*key]
+            .as_array()
+            .unwrap_or_else(|| panic!("{key} is not an array"));
+        assert_eq!(a.shape(), *shape, "{key}");
+        assert_eq!(a.dtype(), *dtype, "{key}");
+    }
+    assert!(env.observation_space().contains(obs));
+}
+
+/// Steps `actions` from the current state, taking a snapshot after the first `at`; then
+/// restores it and steps the rest again: observations, rewards and end flags repeat bit for
+/// bit, and the task state comes back with the snapshot.
+pub fn assert_snapshot_replays(env: &mut RobosuiteEnv, actions: &[ArrayD<f64>], at: usize) {
+    for a in &actions[..at] {
+        let _ = env.step(a).expect("the action steps");
+    }
+    let snapshot = env.snapshot();
+    let task_state = env.task().save_state();
+    let run = |env: &mut RobosuiteEnv| -> Vec<(DictValue, u64, bool, bool)> {
+        actions[at..]
+            .iter()
+            .map_while(|a| {
+                let s = env.step(a).ok()?;
+                Some((s.observation, s.reward.to_bits(), s.terminated, s.truncated))
+            })
+            .collect()
+    };
+    let first = run(env);
+    assert!(!first.is_empty());
+    env.restore(&snapshot).expect("the snapshot restores");
+    assert_eq!(env.task().save_state(), task_state);
+    let second = run(env);
+    assert_eq!(first, second);
+}
+
+/// Runs a scripted `policy` (returning whether it reported success, and when) from resets
+/// with the seeds `0..seeds` and checks that it succeeds on at least `min` of them.
+pub fn assert_scripted_successes(
+    task: &str,
+    env: &mut RobosuiteEnv,
+    seeds: u64,
+    min: usize,
+    mut policy: impl FnMut(&mut RobosuiteEnv, u64) -> (bool, usize),
+) {
+    let report: Vec<(bool, usize)> = (0..seeds).map(|seed| policy(env, seed)).collect();
+    let ok = report.iter().filter(|r| r.0).count();
+    assert!(
+        ok >= min,
+        "scripted {task} succeeded on {ok}/{seeds} seeds: {report:?}"
+    );
+}
