@@ -4,9 +4,9 @@
 Run it with a Python that has robosuite 1.5.2 (and mujoco 3.3.7), for example through
 scripts/record_robosuite.sh's virtualenv:
 
-    .bench-venv/robosuite/bin/python scripts/record_controllers.py [--robot NAME ...]
+    .bench-venv/robosuite/bin/python scripts/record_controllers.py [ROBOT ...]
 
-It writes robosuite-env/tests/fixtures/robosuite/controllers-ROBOT.json, figures only. For
+It writes robosuite-env/tests/fixtures/robosuite/controllers/ROBOT.json, figures only. For
 each case (a controller config, as robosuite users write it, on Lift):
 
 * the config robosuite-rs is given, and the config robosuite ran (they differ only where
@@ -31,6 +31,11 @@ documentation describes, with the smallest change:
 It also records, as figures for the documentation, how far robosuite's broken set-ups move
 the hand under zero actions over 20 steps: IK_POSE as shipped, and OSC_POSE with linear
 interpolation in its default base frame.
+
+With --floor (run with robosuite on MuJoCo 3.17.0, as scripts/record_robosuite.sh's second
+virtualenv has it) it replays every recorded case and writes into the fixture how far
+robosuite itself then is from its 3.3.7 recording: the part of any difference that MuJoCo's
+version causes.
 """
 import argparse
 import copy
@@ -104,6 +109,14 @@ def make(robot, cfg, seed):
         use_camera_obs=False,
         seed=seed,
     )
+
+
+def same_collisions_as_mujoco_3_3(env):
+    """On MuJoCo 3.17 (when measuring what MuJoCo's version changes), turns off the multi-
+    contact convex collisions that 3.17 turns on by default and 3.3.7 lacks, as robosuite-rs
+    does."""
+    if hasattr(mujoco.mjtDisableBit, "mjDSBL_MULTICCD"):
+        env.sim.model._model.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_MULTICCD
 
 
 def short(x):
@@ -212,9 +225,10 @@ def gripper_action(rng, t):
     return 1.0 if (t // 10) % 2 else -1.0
 
 
-def run_case(robot, name, cfg, rs_cfg, policy, seed):
+def run_case(robot, name, cfg, rs_cfg, policy, seed, actions=None):
     env = make(robot, composite(robot, rs_cfg or cfg), seed)
     obs = env.reset()
+    same_collisions_as_mujoco_3_3(env)
     ctrl = env.robots[0].part_controllers["right"]
     n = len(env.robots[0].arm_joints) if hasattr(env.robots[0], "arm_joints") else len(ctrl.qpos_index)
     base_p, base_r, world_p, world_r = base_frame_pose(env)
@@ -242,9 +256,12 @@ def run_case(robot, name, cfg, rs_cfg, policy, seed):
     }
     rng = np.random.default_rng(seed)
     for t in range(STEPS):
-        arm = policy(env, ctx, rng, t)
-        # Rounded before robosuite sees them, so the fixture holds the exact actions.
-        action = np.round(np.concatenate([np.asarray(arm, dtype=np.float64), [gripper_action(rng, t)]]), 6)
+        if actions is None:
+            arm = policy(env, ctx, rng, t)
+            # Rounded before robosuite sees them, so the fixture holds the exact actions.
+            action = np.round(np.concatenate([np.asarray(arm, dtype=np.float64), [gripper_action(rng, t)]]), 6)
+        else:
+            action = np.asarray(actions[t], dtype=np.float64)
         obs, _, _, _ = env.step(action)
         if robot_touches(env):
             sys.exit(f"record_controllers: {robot} {name} touched something at step {t}; free motion is required")
@@ -275,8 +292,7 @@ def record(robot, out):
     probe = make(robot, None, 0)
     n = len(probe.robots[0].part_controllers["right"].qpos_index)
     probe.close()
-    if robot not in ik_module.SUPPORTED_IK_ROBOTS or n != 7:
-        size_ik_gains(robot, n)
+    size_ik_gains(robot, n)
     data = {
         "robot": robot,
         "robosuite": robosuite.__version__,
@@ -292,16 +308,44 @@ def record(robot, out):
             "IK_POSE": zero_action_drift(robot, part("IK_POSE")),
             "OSC_POSE linear base": zero_action_drift(robot, osc_linear),
         }
-    path = os.path.join(out, f"controllers-{robot}.json")
+    path = os.path.join(out, f"{robot}.json")
     with open(path, "w") as f:
         json.dump(data, f, separators=(",", ":"))
         f.write("\n")
     print(f"{robot}: {len(data['cases'])} cases -> {path} ({os.path.getsize(path) // 1024} KiB)")
 
 
+def floor(robot, out):
+    """What MuJoCo's version alone changes: robosuite on this MuJoCo (3.17.0, with 3.3.7's
+    collision set) replaying each recorded case, against the recording; written into the
+    fixture as each case's `floor`."""
+    path = os.path.join(out, f"{robot}.json")
+    with open(path) as f:
+        data = json.load(f)
+    probe = make(robot, None, 0)
+    n = len(probe.robots[0].part_controllers["right"].qpos_index)
+    probe.close()
+    size_ik_gains(robot, n)
+    cases = {name: (cfg, rs_cfg, seed) for seed, (name, cfg, rs_cfg, _) in enumerate(cases_for(robot, n), start=200)}
+    for case in data["cases"]:
+        cfg, rs_cfg, seed = cases[case["name"]]
+        again = run_case(robot, case["name"], cfg, rs_cfg, None, seed, actions=case["actions"])
+        case["floor"] = {
+            k: max(max(abs(x - y) for x, y in zip(a[k], b[k])) for a, b in zip(case["steps"], again["steps"]))
+            for k in ("joint_pos", "eef_pos", "gripper_qpos")
+        }
+        case["floor_mujoco"] = mujoco.__version__
+    with open(path, "w") as f:
+        json.dump(data, f, separators=(",", ":"))
+        f.write("\n")
+    worst = max(max(c["floor"].values()) for c in data["cases"])
+    print(f"{robot}: floors written (largest {worst:.2e}) -> {path}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite"))
+    parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite", "controllers"))
+    parser.add_argument("--floor", action="store_true", help="measure MuJoCo-version floors into existing fixtures (run on MuJoCo 3.17)")
     parser.add_argument("robots", nargs="*", default=["Panda", "Sawyer", "UR5e"])
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
@@ -309,7 +353,7 @@ def main():
     fix_joint_velocity()
     os.makedirs(args.out, exist_ok=True)
     for robot in args.robots:
-        record(robot, args.out)
+        (floor if args.floor else record)(robot, args.out)
 
 
 if __name__ == "__main__":

@@ -19,6 +19,8 @@ from __future__ import annotations
 # loads it (by its SONAME) when imported, so it must be imported before `_native`.
 import mujoco as _mujoco  # noqa: F401  (imported for its side effect)
 
+import json
+import math
 from collections import OrderedDict
 from os import PathLike
 from typing import Any
@@ -32,6 +34,9 @@ __all__ = [
     "make_vec",
     "make_pool",
     "scene_xml",
+    "load_composite_controller_config",
+    "load_part_controller_config",
+    "ALL_PART_CONTROLLERS",
     "RobosuiteEnv",
     "ALL_ENVIRONMENTS",
     "SUPPORTED_KWARGS",
@@ -39,6 +44,9 @@ __all__ = [
 ]
 
 __version__: str = _native.__version__
+
+#: robosuite's arm part controllers (``robosuite.controllers.ALL_PART_CONTROLLERS``).
+ALL_PART_CONTROLLERS: tuple[str, ...] = tuple(_native.part_controller_types())
 
 #: The robosuite tasks this build provides.
 ALL_ENVIRONMENTS: list[str] = list(_native.robosuite_env_names())
@@ -94,26 +102,6 @@ SUPPORTED_KWARGS: tuple[str, ...] = (
     + _RENDER_ONLY_KWARGS
 )
 
-# robosuite 1.5.2's OSC_POSE defaults: keys of a controller config accepted when equal.
-_OSC_DEFAULTS: dict[str, Any] = {
-    "type": "OSC_POSE",
-    "input_max": 1,
-    "input_min": -1,
-    "output_min": [-0.05, -0.05, -0.05, -0.5, -0.5, -0.5],
-    "impedance_mode": "fixed",
-    "kp_limits": [0, 300],
-    "damping_ratio_limits": [0, 10],
-    "position_limits": None,
-    "orientation_limits": None,
-    "uncouple_pos_ori": True,
-    "input_type": "delta",
-    "input_ref_frame": "base",
-    "interpolation": None,
-    "ramp_ratio": 0.2,
-    "gripper": {"type": "GRIP"},
-}
-
-
 def _same(a: Any, b: Any) -> bool:
     try:
         return bool(np.array_equal(np.asarray(a, dtype=object if a is None else None), np.asarray(b, dtype=object if b is None else None)))
@@ -121,56 +109,44 @@ def _same(a: Any, b: Any) -> bool:
         return a == b
 
 
-def _controller_kwargs(cfg: Any) -> dict[str, Any]:
-    """Maps robosuite's ``controller_configs`` (composite ``BASIC`` or a bare arm part
-    config) to the Rust controller keys; raises on anything not supported."""
-    if cfg is None:
-        return {}
-    if not isinstance(cfg, dict):
-        raise ValueError(f"controller_configs must be a dict or None, got {type(cfg).__name__}")
-    part = cfg
-    if "body_parts" in cfg:
-        if cfg.get("type", "BASIC") != "BASIC":
-            raise ValueError(f"controller_configs: only the BASIC composite controller is supported, got {cfg.get('type')!r}")
-        parts = dict(cfg["body_parts"])
-        arm = parts.pop("right", None) or parts.pop("arms", {}).get("right")
-        if arm is None:
-            raise ValueError("controller_configs: no `right` arm part found in body_parts")
-        if parts:
-            raise ValueError(f"controller_configs: unsupported body parts {sorted(parts)}")
-        part = arm
-    out: dict[str, Any] = {}
-    for key, value in part.items():
-        if key == "kp":
-            if np.ndim(value) != 0:
-                raise ValueError("controller_configs: only a scalar kp is supported")
-            out["controller_kp"] = float(value)
-        elif key == "damping_ratio":
-            if np.ndim(value) != 0:
-                raise ValueError("controller_configs: only a scalar damping_ratio is supported")
-            out["controller_damping_ratio"] = float(value)
-        elif key == "output_max":
-            om = np.broadcast_to(np.asarray(value, dtype=np.float64), (6,))
-            if not (np.all(om[:3] == om[0]) and np.all(om[3:] == om[3])):
-                raise ValueError("controller_configs: output_max must be equal within position and within orientation")
-            out["controller_output_max_pos"] = float(om[0])
-            out["controller_output_max_ori"] = float(om[3])
-        elif key in _OSC_DEFAULTS:
-            if key == "output_min" and "output_max" in part:
-                if not _same(np.negative(np.asarray(part["output_max"], dtype=float)) * np.ones(6), np.asarray(value, dtype=float) * np.ones(6)):
-                    raise ValueError("controller_configs: output_min must be -output_max")
-                continue
-            if key == "gripper":
-                if not isinstance(value, dict) or value.get("type") != "GRIP":
-                    raise ValueError(f"controller_configs: only the GRIP gripper controller is supported, got {value!r}")
-                continue
-            if not _same(value, _OSC_DEFAULTS[key]):
-                raise ValueError(
-                    f"controller_configs: {key}={value!r} is not supported (only robosuite's default {_OSC_DEFAULTS[key]!r})"
-                )
-        else:
-            raise ValueError(f"controller_configs: unsupported key {key!r}")
-    return out
+def _plain(value: Any, path: str) -> Any:
+    """A controller config as plain JSON values (NumPy arrays and scalars included),
+    refusing non-finite numbers with the key that holds them."""
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    elif isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, dict):
+        return {str(k): _plain(v, f"{path}.{k}") for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, f"{path}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError(f"invalid argument `{path}`: must be a finite number, got {value}")
+    return value
+
+
+def _controller_json(cfg: Any) -> str:
+    """robosuite's ``controller_configs`` (a composite or part config dict, or a list of
+    one per robot) as JSON text; the Rust core parses and checks it."""
+    if not isinstance(cfg, (dict, list, tuple)):
+        raise ValueError(f"controller_configs must be a dict, a list of dicts or None, got {type(cfg).__name__}")
+    return json.dumps(_plain(cfg, "controller_configs"))
+
+
+def load_composite_controller_config(controller: str | None = None, robot: str | None = None) -> dict[str, Any]:
+    """robosuite's ``load_composite_controller_config``: the composite controller config
+    (a dict) robosuite hands out for ``robot`` (its ``default_{robot}.json``, else
+    ``basic.json``) or for the composite controller ``controller`` (``"BASIC"`` or a
+    ``.json`` path), read from robosuite's own files."""
+    return json.loads(_native.load_composite_controller_config(controller, robot))
+
+
+def load_part_controller_config(custom_fpath: str | PathLike[str] | None = None, default_controller: str | None = None) -> dict[str, Any]:
+    """robosuite's ``load_part_controller_config``: the part controller config of
+    ``default_controller`` (one of :data:`ALL_PART_CONTROLLERS`) or of the JSON file
+    ``custom_fpath``."""
+    path = None if custom_fpath is None else str(custom_fpath)
+    return json.loads(_native.load_part_controller_config(path, default_controller))
 
 
 def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[str, Any]:
@@ -202,7 +178,8 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
                 raise ValueError(f"gripper_types: give one per robot ({len(robots_list)}), got {len(choices)}")
             config["gripper_types"] = ",".join("None" if c is None else str(c) for c in choices)
         elif key == "controller_configs":
-            config.update(_controller_kwargs(value))
+            if value is not None:
+                config["controller_configs"] = _controller_json(value)
         elif key == "initialization_noise":
             if value is None:
                 config["initialization_noise_type"] = "none"
@@ -356,8 +333,10 @@ def make(
     Supported: ``horizon``, ``control_freq``, ``reward_scale`` (``None`` allowed),
     ``reward_shaping``, ``ignore_done``, ``use_object_obs``, ``seed``,
     ``initialization_noise`` (``"default"``, ``None`` or ``{"magnitude", "type"}``),
-    ``controller_configs`` (robosuite's ``BASIC``/``OSC_POSE`` config: ``kp``,
-    ``damping_ratio``, ``output_max``; other keys only with robosuite's defaults),
+    ``controller_configs`` (robosuite's composite ``BASIC`` config or a part config of
+    any of :data:`ALL_PART_CONTROLLERS`, exactly as robosuite's
+    :func:`load_composite_controller_config` / :func:`load_part_controller_config` return
+    them, or a list of one per robot),
     ``has_renderer`` / ``has_offscreen_renderer`` / ``use_camera_obs`` (``False`` only;
     ``True`` raises because rendering does not exist yet), the camera and render settings
     (no effect while rendering is off), ``model_xml`` (a robosuite-style scene file to run

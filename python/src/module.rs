@@ -162,6 +162,52 @@ fn config_keys() -> Vec<String> {
         .collect()
 }
 
+/// robosuite's `load_composite_controller_config(controller, robot)`, as JSON text: the
+/// dict robosuite returns, read from robosuite's own files.
+#[pyfunction]
+#[pyo3(signature = (controller=None, robot=None))]
+fn load_composite_controller_config(
+    controller: Option<&str>,
+    robot: Option<&str>,
+) -> PyResult<String> {
+    let assets = robosuite_env::assets::Assets::locate().map_err(to_pyerr)?;
+    robosuite_env::controllers::config::load_composite_controller_config(&assets, controller, robot)
+        .map(|v| v.to_string())
+        .map_err(to_pyerr)
+}
+
+/// robosuite's `load_part_controller_config(custom_fpath, default_controller)`, as JSON
+/// text.
+#[pyfunction]
+#[pyo3(signature = (custom_fpath=None, default_controller=None))]
+fn load_part_controller_config(
+    custom_fpath: Option<PathBuf>,
+    default_controller: Option<&str>,
+) -> PyResult<String> {
+    use robosuite_env::controllers::config as cc;
+    let value = match (default_controller, custom_fpath) {
+        (Some(kind), _) => {
+            let assets = robosuite_env::assets::Assets::locate().map_err(to_pyerr)?;
+            cc::load_part_controller_config(&assets, kind)
+        }
+        (None, Some(path)) => cc::read_json(&path),
+        (None, None) => Err(gym_core::Error::invalid_argument(
+            "default_controller",
+            "give custom_fpath or default_controller (robosuite asserts the same)",
+        )),
+    };
+    value.map(|v| v.to_string()).map_err(to_pyerr)
+}
+
+/// robosuite's arm part controllers.
+#[pyfunction]
+fn part_controller_types() -> Vec<String> {
+    robosuite_env::controllers::config::ARM_CONTROLLER_TYPES
+        .iter()
+        .map(|s| (*s).to_owned())
+        .collect()
+}
+
 /// The extension module.
 #[pymodule(name = "_native")]
 fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -178,6 +224,9 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene_xml, m)?)?;
     m.add_function(wrap_pyfunction!(robosuite_env_names, m)?)?;
     m.add_function(wrap_pyfunction!(config_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(load_composite_controller_config, m)?)?;
+    m.add_function(wrap_pyfunction!(load_part_controller_config, m)?)?;
+    m.add_function(wrap_pyfunction!(part_controller_types, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

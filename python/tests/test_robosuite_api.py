@@ -84,7 +84,7 @@ def test_controller_configs() -> None:
     env = suite.make("Lift", controller_configs=cfg, **QUIET)
     env.reset(seed=0)
     env.step(np.zeros(7))
-    bad = {"type": "BASIC", "body_parts": {"right": {"type": "OSC_POSE", "input_ref_frame": "world"}}}
+    bad = {"type": "BASIC", "body_parts": {"right": {"type": "OSC_POSE", "input_ref_frame": "moon"}}}
     with pytest.raises(ValueError, match="input_ref_frame"):
         suite.make("Lift", controller_configs=bad, **QUIET)
 
@@ -95,13 +95,20 @@ def test_controller_configs() -> None:
         {"has_renderer": True},
         {"has_offscreen_renderer": True},
         {"use_camera_obs": True},
-        {"gripper_types": "Robotiq85Gripper"},
         {"lite_physics": False},
     ],
 )
 def test_unsupported_arguments_raise(kwargs: dict[str, object]) -> None:
     with pytest.raises(ValueError, match="not supported"):
         suite.make("Lift", **kwargs)
+
+
+def test_gripper_types() -> None:
+    env = suite.make("Lift", gripper_types="Robotiq85Gripper", **QUIET)
+    obs = env.reset(seed=0)
+    assert obs["robot0_gripper_qpos"].shape == (6,)
+    with pytest.raises(ValueError, match="FooGripper"):
+        suite.make("Lift", gripper_types="FooGripper", **QUIET)
 
 
 def test_invalid_arguments_raise() -> None:
@@ -112,13 +119,13 @@ def test_invalid_arguments_raise() -> None:
     with pytest.raises(ValueError, match="horizon"):
         suite.make("Lift", horizon=0, **QUIET)
     with pytest.raises(ValueError, match="robot"):
-        suite.make("Lift", robots="Sawyer", **QUIET)
+        suite.make("Lift", robots="Sawyerr", **QUIET)
     with pytest.raises(ValueError, match="control_freq"):
         suite.make("Lift", control_freq=-1, **QUIET)
 
 
 def test_model_xml_missing_file_raises(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    with pytest.raises(RuntimeError, match="no scene file"):
+    with pytest.raises(RuntimeError, match="cannot read the scene file"):
         suite.make("Lift", model_xml=tmp_path / "missing.xml", **QUIET)
 
 

@@ -114,6 +114,45 @@ fn env_step_into_does_not_allocate_and_equals_step_for_every_task() {
 }
 
 #[test]
+fn every_controller_steps_without_allocating() {
+    use robosuite_env::controllers::ControllerConfig;
+    let configs = [
+        r#"{"type": "OSC_POSE", "impedance_mode": "variable", "interpolation": "linear", "input_ref_frame": "world"}"#,
+        r#"{"type": "OSC_POSITION", "impedance_mode": "variable_kp"}"#,
+        r#"{"type": "OSC_POSE", "input_type": "absolute", "position_limits": [[-1, -1, 0], [1, 1, 2]], "orientation_limits": [[-3, -3, -3], [3, 3, 3]]}"#,
+        r#"{"type": "IK_POSE", "interpolation": "linear"}"#,
+        r#"{"type": "JOINT_POSITION", "impedance_mode": "variable", "interpolation": "linear"}"#,
+        r#"{"type": "JOINT_VELOCITY", "interpolation": "linear"}"#,
+        r#"{"type": "JOINT_TORQUE", "interpolation": "linear"}"#,
+    ];
+    for (robot, text) in ["Panda", "UR5e"]
+        .iter()
+        .flat_map(|r| configs.iter().map(move |c| (r, c)))
+    {
+        let value: serde_json::Value = serde_json::from_str(text).unwrap();
+        let config = ControllerConfig::from_value(&value, "controller_configs").unwrap();
+        let mut env = make_with(
+            "Lift",
+            EnvConfig::default()
+                .with_robots([*robot])
+                .with_controller(config),
+        )
+        .unwrap();
+        let (mut obs, mut info) = env.reset(Some(2), None).unwrap();
+        let mut rng = rng_from_seed(4);
+        let actions: Vec<ArrayD<f64>> = (0..10)
+            .map(|_| env.action_space().sample(&mut rng))
+            .collect();
+        for (i, action) in actions.iter().enumerate() {
+            let n = allocations(|| {
+                let _ = env.step_into(action, &mut obs, &mut info).unwrap();
+            });
+            assert_eq!(n, 0, "{robot} {text}: step {i} allocated {n} times");
+        }
+    }
+}
+
+#[test]
 fn step_into_replaces_buffers_of_another_layout() {
     let mut env = make_with("Lift", EnvConfig::default()).unwrap();
     env.reset(Some(1), None).unwrap();

@@ -107,7 +107,11 @@ pub fn load_part_controller_config(assets: &Assets, default_controller: &str) ->
     )))
 }
 
-fn read_json(path: &std::path::Path) -> Result<Value> {
+/// A controller config JSON file (robosuite's `load_part_controller_config(custom_fpath)`).
+///
+/// # Errors
+/// [`Error::Model`] when the file is missing or not JSON.
+pub fn read_json(path: &std::path::Path) -> Result<Value> {
     let text = read_file(path)?;
     serde_json::from_str(&text)
         .map_err(|e| Error::Model(format!("{}: not valid JSON: {e}", path.display())))

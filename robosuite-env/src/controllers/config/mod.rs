@@ -15,6 +15,7 @@ mod values;
 
 pub use files::{
     COMPOSITE_CONTROLLER_TYPES, load_composite_controller_config, load_part_controller_config,
+    read_json,
 };
 pub use parts::{
     ARM_CONTROLLER_TYPES, ArmControllerConfig, GRIPPER_CONTROLLER_TYPES, GripperConfig, IkConfig,
