@@ -3,9 +3,12 @@
 
 mod common;
 
-use common::object_tasks::{PlacePolicy, arena_use, assert_obs_layout, body_pos, set_free_joint};
+use common::object_tasks::{
+    PlacePolicy, arena_use, assert_obs_layout, assert_snapshot_repeats, assert_spread,
+    assert_task_states_rejected, body_pos, random_episodes, set_free_joint,
+};
 use common::{action, finger_yaw, get, wrap_half, yaw_of};
-use gym_core::{DictValue, Env, Error, Space};
+use gym_core::{DictValue, Env, Error};
 use robosuite_env::sim::site_id;
 use robosuite_env::tasks::common::ObjectMode;
 use robosuite_env::tasks::{NUTS, NutAssemblySpec};
@@ -72,9 +75,7 @@ fn placement_follows_robosuites_samplers() {
         }
         yaws.push(yaw_of(&get(&obs, "RoundNut_quat")));
     }
-    let spread = yaws.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b))
-        - yaws.iter().fold(f64::INFINITY, |a, b| a.min(*b));
-    assert!(spread > 1.0, "yaws are drawn: {yaws:?}");
+    assert_spread(&yaws);
 }
 
 #[test]
@@ -237,12 +238,7 @@ fn task_state_round_trips_and_bad_states_are_rejected() {
     let _ = e
         .step(&action([0.3, 0.1, -0.2, 0.0, 0.0, 0.1, 1.0]))
         .unwrap();
-    let snap = e.snapshot();
-    let a = action([-0.2, 0.4, 0.1, 0.0, 0.1, 0.0, -1.0]);
-    let first = e.step(&a).unwrap();
-    e.restore(&snap).unwrap();
-    let again = e.step(&a).unwrap();
-    assert_eq!(first.observation, again.observation);
+    assert_snapshot_repeats(&mut e);
 
     // The other nut can be put in play by a recorded start.
     let other = 1.0 - id;
@@ -253,23 +249,14 @@ fn task_state_round_trips_and_bad_states_are_rejected() {
         get(&obs, "nut_pos"),
         body_pos(&e, &format!("{nut}_main")).to_vec()
     );
-    for bad in [
+    let bad = [
         vec![],
         vec![2.0],
         vec![0.5],
         vec![f64::INFINITY],
         vec![id, 1.0],
-    ] {
-        let before = e.task().save_state();
-        assert!(
-            matches!(
-                e.reset_to_state(&bad, &state),
-                Err(Error::InvalidArgument { .. })
-            ),
-            "{bad:?}"
-        );
-        assert_eq!(e.task().save_state(), before);
-    }
+    ];
+    assert_task_states_rejected(&mut e, &bad, &state);
     let mut round = env("NutAssemblyRound", EnvConfig::default());
     round.reset(Some(0), None).unwrap();
     let s = round.get_state();
@@ -313,16 +300,7 @@ fn the_mujoco_arena_suffices_for_stacked_nuts_and_long_random_rollouts() {
         most >= 60,
         "the nuts touch each other and the table: {most} contacts"
     );
-    let mut rng = gym_core::rng_from_seed(8);
-    for seed in 0..2 {
-        e.reset(Some(seed), None).unwrap();
-        loop {
-            let a = e.action_space().sample(&mut rng);
-            if e.step(&a).unwrap().done() {
-                break;
-            }
-        }
-    }
+    random_episodes(&mut e, 2);
     let (used, reserved) = arena_use(&e);
     // Measured: about 390 KB of the default 2 MiB.
     assert!(used < reserved / 4, "{used} of {reserved} bytes");

@@ -3,9 +3,12 @@
 
 mod common;
 
-use common::object_tasks::{PlacePolicy, arena_use, assert_obs_layout, body_pos, set_free_joint};
+use common::object_tasks::{
+    PlacePolicy, arena_use, assert_obs_layout, assert_snapshot_repeats, assert_spread,
+    assert_task_states_rejected, body_pos, random_episodes, set_free_joint,
+};
 use common::{action, get};
-use gym_core::{Env, Error, Space};
+use gym_core::{Env, Error};
 use robosuite_env::tasks::common::ObjectMode;
 use robosuite_env::tasks::{PICK_PLACE_OBJECTS, PickPlaceSpec};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
@@ -82,9 +85,7 @@ fn placement_stays_in_bin_one_without_overlap() {
             assert!((v[2] - (0.8 - EXTENTS[i].1)).abs() < 1e-12, "{name}: {v:?}");
         }
     }
-    let spread = yaws.iter().fold(f64::NEG_INFINITY, |a, b| a.max(*b))
-        - yaws.iter().fold(f64::INFINITY, |a, b| a.min(*b));
-    assert!(spread > 1.0, "yaws are drawn: {yaws:?}");
+    assert_spread(&yaws);
 }
 
 #[test]
@@ -223,40 +224,21 @@ fn task_state_round_trips_and_bad_states_are_rejected() {
             .step(&action([0.3, 0.1, -0.2, 0.0, 0.0, 0.1, 1.0]))
             .unwrap();
     }
-    let snap = e.snapshot();
-    let a = action([-0.2, 0.4, 0.1, 0.0, 0.1, 0.0, -1.0]);
-    let first = e.step(&a).unwrap();
-    e.restore(&snap).unwrap();
-    let again = e.step(&a).unwrap();
-    assert_eq!(first.observation, again.observation);
-    assert_eq!(first.reward.to_bits(), again.reward.to_bits());
+    assert_snapshot_repeats(&mut e);
 
     // A recorded start: the object id alone, as the fixtures give it.
     let (obs, _) = e.reset_to_state(&[id], &state).unwrap();
     assert_eq!(get(&obs, "obj_id"), vec![id]);
     assert_eq!(get(&obs, "obj_to_robot0_eef_pos"), vec![0.0; 3]);
-    for bad in [
+    let bad = [
         vec![],
         vec![4.0],
         vec![1.5],
         vec![-1.0],
         vec![f64::NAN],
         vec![id, 0.0, 0.0],
-    ] {
-        let before = e.task().save_state();
-        assert!(
-            matches!(
-                e.reset_to_state(&bad, &state),
-                Err(Error::InvalidArgument { .. })
-            ),
-            "{bad:?}"
-        );
-        assert_eq!(
-            e.task().save_state(),
-            before,
-            "a rejected state changes nothing"
-        );
-    }
+    ];
+    assert_task_states_rejected(&mut e, &bad, &state);
     let mut nan_cache = task.clone();
     nan_cache[3] = f64::NAN;
     assert!(e.reset_to_state(&nan_cache, &state).is_err());
@@ -293,16 +275,7 @@ fn invalid_object_ids_are_rejected() {
 fn the_mujoco_arena_suffices_for_long_random_rollouts() {
     for name in ["PickPlace", "PickPlaceSingle"] {
         let mut e = env(name, EnvConfig::default().with_horizon(500));
-        let mut rng = gym_core::rng_from_seed(8);
-        for seed in 0..2 {
-            e.reset(Some(seed), None).unwrap();
-            loop {
-                let a = e.action_space().sample(&mut rng);
-                if e.step(&a).unwrap().done() {
-                    break;
-                }
-            }
-        }
+        random_episodes(&mut e, 2);
         let (used, reserved) = arena_use(&e);
         // Measured: about 85 KB of the default 2 MiB.
         assert!(used < reserved / 4, "{name}: {used} of {reserved} bytes");

@@ -175,3 +175,55 @@ impl<G: Fn(&DictValue) -> ([f64; 3], f64)> PlacePolicy<G> {
         None
     }
 }
+
+/// Asserts that drawn angles spread over more than one radian (random yaw).
+pub fn assert_spread(angles: &[f64]) {
+    let hi = angles.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let lo = angles.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(hi - lo > 1.0, "the angles are drawn: {angles:?}");
+}
+
+/// Asserts that a step repeats bit for bit from a restored snapshot.
+pub fn assert_snapshot_repeats(env: &mut RobosuiteEnv) {
+    let snapshot = env.snapshot();
+    let a = super::action([-0.2, 0.4, 0.1, 0.0, 0.1, 0.0, -1.0]);
+    let first = env.step(&a).unwrap();
+    env.restore(&snapshot).unwrap();
+    let again = env.step(&a).unwrap();
+    assert_eq!(first.observation, again.observation);
+    assert_eq!(first.reward.to_bits(), again.reward.to_bits());
+}
+
+/// Asserts that each of `bad` is refused as a task state by `reset_to_state` (with the
+/// valid simulator state `state`) and leaves the task state as it was.
+pub fn assert_task_states_rejected(env: &mut RobosuiteEnv, bad: &[Vec<f64>], state: &[f64]) {
+    for task_state in bad {
+        let before = env.task().save_state();
+        assert!(
+            matches!(
+                env.reset_to_state(task_state, state),
+                Err(gym_core::Error::InvalidArgument { .. })
+            ),
+            "{task_state:?}"
+        );
+        assert_eq!(
+            env.task().save_state(),
+            before,
+            "{task_state:?} changed the task"
+        );
+    }
+}
+
+/// Runs `episodes` episodes of uniformly random actions to their end.
+pub fn random_episodes(env: &mut RobosuiteEnv, episodes: u64) {
+    let mut rng = gym_core::rng_from_seed(8);
+    for seed in 0..episodes {
+        env.reset(Some(seed), None).unwrap();
+        loop {
+            let a = env.action_space().sample(&mut rng);
+            if env.step(&a).unwrap().done() {
+                break;
+            }
+        }
+    }
+}
