@@ -23,6 +23,11 @@ const PEGS: [[f64; 2]; 2] = [[0.23, 0.1], [0.23, -0.1]];
 
 const FLAT: [f64; 4] = [1.0, 0.0, 0.0, 0.0];
 
+/// Puts nut `i` (0 square, 1 round) flat at `pos`.
+fn put_nut(env: &mut RobosuiteEnv, i: usize, pos: [f64; 3]) {
+    set_free_joint(env, &format!("{}_joint0", NUTS[i]), pos, FLAT);
+}
+
 #[test]
 fn variants_have_robosuites_observation_layouts() {
     for (name, nuts) in [
@@ -107,55 +112,25 @@ fn reward_and_success_on_hand_set_states() {
     let [sq_peg, rd_peg] = PEGS;
     let mut round = env("NutAssemblyRound", EnvConfig::default());
     round.reset(Some(0), None).unwrap();
-    set_free_joint(
-        &mut round,
-        "RoundNut_joint0",
-        [rd_peg[0], rd_peg[1], 0.83],
-        FLAT,
-    );
+    put_nut(&mut round, 1, [rd_peg[0], rd_peg[1], 0.83]);
     assert!(round.check_success());
     assert_eq!(round.reward(), 1.0);
     // On the wrong peg, or at the table top + 0.05: not on its peg.
-    set_free_joint(
-        &mut round,
-        "RoundNut_joint0",
-        [sq_peg[0], sq_peg[1], 0.83],
-        FLAT,
-    );
+    put_nut(&mut round, 1, [sq_peg[0], sq_peg[1], 0.83]);
     assert!(!round.check_success());
-    set_free_joint(
-        &mut round,
-        "RoundNut_joint0",
-        [rd_peg[0], rd_peg[1], 0.87],
-        FLAT,
-    );
+    put_nut(&mut round, 1, [rd_peg[0], rd_peg[1], 0.87]);
     assert!(!round.check_success());
     // Within 3 cm of the peg in x and y counts.
-    set_free_joint(
-        &mut round,
-        "RoundNut_joint0",
-        [rd_peg[0] + 0.029, rd_peg[1] - 0.029, 0.83],
-        FLAT,
-    );
+    put_nut(&mut round, 1, [rd_peg[0] + 0.029, rd_peg[1] - 0.029, 0.83]);
     assert!(round.check_success());
 
     // Both nuts: one placed is half the normalised reward.
     let mut both = env("NutAssembly", EnvConfig::default());
     both.reset(Some(0), None).unwrap();
-    set_free_joint(
-        &mut both,
-        "RoundNut_joint0",
-        [rd_peg[0], rd_peg[1], 0.83],
-        FLAT,
-    );
+    put_nut(&mut both, 1, [rd_peg[0], rd_peg[1], 0.83]);
     assert!(!both.check_success());
     assert_eq!(both.reward(), 0.5);
-    set_free_joint(
-        &mut both,
-        "SquareNut_joint0",
-        [sq_peg[0], sq_peg[1], 0.83],
-        FLAT,
-    );
+    put_nut(&mut both, 0, [sq_peg[0], sq_peg[1], 0.83]);
     assert!(both.check_success());
     assert_eq!(both.reward(), 1.0);
 
@@ -168,12 +143,7 @@ fn reward_and_success_on_hand_set_states() {
             .with_reward_scale(None),
     );
     shaped.reset(Some(0), None).unwrap();
-    set_free_joint(
-        &mut shaped,
-        "RoundNut_joint0",
-        [rd_peg[0] + 0.01, rd_peg[1], 1.0],
-        FLAT,
-    );
+    put_nut(&mut shaped, 1, [rd_peg[0] + 0.01, rd_peg[1], 1.0]);
     let hover = (1.0 - 0.1f64.tanh()) * (0.7 - 0.5);
     assert!(
         (shaped.reward() - hover).abs() < 1e-12,
@@ -288,7 +258,7 @@ fn the_mujoco_arena_suffices_for_stacked_nuts_and_long_random_rollouts() {
     // pairs give up to 8 contacts each).
     let mut e = env("NutAssembly", EnvConfig::default().with_horizon(500));
     e.reset(Some(0), None).unwrap();
-    set_free_joint(&mut e, "SquareNut_joint0", [0.0, 0.0, 0.8299], FLAT);
+    put_nut(&mut e, 0, [0.0, 0.0, 0.8299]);
     let turned = [0.92388, 0.0, 0.0, 0.38268];
     set_free_joint(&mut e, "RoundNut_joint0", [0.0, 0.0, 0.8499], turned);
     let mut most = 0;

@@ -25,7 +25,10 @@ const EXTENTS: [(f64, f64); 4] = [
     (0.025, -0.06),
 ];
 
-const UPRIGHT: [f64; 4] = [1.0, 0.0, 0.0, 0.0];
+/// Puts object `name` upright at `pos`.
+fn put(env: &mut RobosuiteEnv, name: &str, pos: [f64; 3]) {
+    set_free_joint(env, &format!("{name}_joint0"), pos, [1.0, 0.0, 0.0, 0.0]);
+}
 
 #[test]
 fn variants_have_robosuites_observation_layouts() {
@@ -124,38 +127,33 @@ fn reward_and_success_on_hand_set_states() {
     let t = spec.target_bin_placement(3);
     let mut can = env("PickPlaceCan", EnvConfig::default());
     can.reset(Some(0), None).unwrap();
-    set_free_joint(&mut can, "Can_joint0", [t[0], t[1], 0.87], UPRIGHT);
+    put(&mut can, "Can", [t[0], t[1], 0.87]);
     assert!(can.check_success());
     assert_eq!(can.reward(), 1.0);
     // The milk's quadrant is not the can's; 10 cm above the bin's centre height is not in it.
     let t0 = spec.target_bin_placement(0);
-    set_free_joint(&mut can, "Can_joint0", [t0[0], t0[1], 0.87], UPRIGHT);
+    put(&mut can, "Can", [t0[0], t0[1], 0.87]);
     assert!(!can.check_success());
     assert_eq!(can.reward(), 0.0);
-    set_free_joint(&mut can, "Can_joint0", [t[0], t[1], 0.9], UPRIGHT);
+    put(&mut can, "Can", [t[0], t[1], 0.9]);
     assert!(!can.check_success());
 
     // Mode 0: one object in place is a quarter, all four a success.
     let mut all = env("PickPlace", EnvConfig::default());
     all.reset(Some(0), None).unwrap();
-    set_free_joint(&mut all, "Can_joint0", [t[0], t[1], 0.87], UPRIGHT);
+    put(&mut all, "Can", [t[0], t[1], 0.87]);
     assert!(!all.check_success());
     assert_eq!(all.reward(), 0.25);
     for (i, name) in PICK_PLACE_OBJECTS.iter().enumerate() {
         let p = spec.target_bin_placement(i);
-        set_free_joint(
-            &mut all,
-            &format!("{name}_joint0"),
-            [p[0], p[1], 0.85],
-            UPRIGHT,
-        );
+        put(&mut all, name, [p[0], p[1], 0.85]);
     }
     assert!(all.check_success());
     assert_eq!(all.reward(), 1.0);
     // Unnormalised: one per object.
     let mut raw = env("PickPlace", EnvConfig::default().with_reward_scale(None));
     raw.reset(Some(0), None).unwrap();
-    set_free_joint(&mut raw, "Can_joint0", [t[0], t[1], 0.87], UPRIGHT);
+    put(&mut raw, "Can", [t[0], t[1], 0.87]);
     assert_eq!(raw.reward(), 1.0);
 
     // Shaped: the can 1 cm from its target, above the bin but too high to count: the hover
@@ -167,7 +165,7 @@ fn reward_and_success_on_hand_set_states() {
             .with_reward_scale(None),
     );
     shaped.reset(Some(0), None).unwrap();
-    set_free_joint(&mut shaped, "Can_joint0", [t[0] + 0.01, t[1], 1.0], UPRIGHT);
+    put(&mut shaped, "Can", [t[0] + 0.01, t[1], 1.0]);
     let expected = 0.5 + (1.0 - 0.1f64.tanh()) * (0.7 - 0.5);
     assert!(
         (shaped.reward() - expected).abs() < 1e-12,
@@ -175,7 +173,7 @@ fn reward_and_success_on_hand_set_states() {
         shaped.reward()
     );
     // Not above its quadrant: the reaching term wins (no grasp, no lift).
-    set_free_joint(&mut shaped, "Can_joint0", [0.1, -0.25, 0.86], UPRIGHT);
+    put(&mut shaped, "Can", [0.1, -0.25, 0.86]);
     let eef = get(&shaped.observation(), "robot0_eef_pos");
     let d = ((eef[0] - 0.1).powi(2) + (eef[1] + 0.25).powi(2) + (eef[2] - 0.86).powi(2)).sqrt();
     let t_d = ((t[0] - 0.1).powi(2) + (t[1] + 0.25).powi(2)).sqrt();
