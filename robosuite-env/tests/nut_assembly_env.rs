@@ -4,10 +4,12 @@
 mod common;
 
 use common::object_tasks::{
-    PlacePolicy, arena_use, assert_obs_layout, assert_snapshot_repeats, assert_spread,
-    assert_task_states_rejected, body_pos, random_episodes, set_free_joint,
+    PlacePolicy, arena_use, assert_spread, assert_task_states_rejected, assert_variant_layouts,
+    body_pos, probe_actions, random_episodes, set_free_joint,
 };
-use common::{action, finger_yaw, get, wrap_half, yaw_of};
+use common::{
+    action, assert_scripted_successes, assert_snapshot_replays, finger_yaw, get, wrap_half, yaw_of,
+};
 use gym_core::{DictValue, Env, Error};
 use robosuite_env::sim::site_id;
 use robosuite_env::tasks::common::ObjectMode;
@@ -30,24 +32,18 @@ fn put_nut(env: &mut RobosuiteEnv, i: usize, pos: [f64; 3]) {
 
 #[test]
 fn variants_have_robosuites_observation_layouts() {
-    for (name, nuts) in [
-        ("NutAssembly", &NUTS[..]),
-        ("NutAssemblySquare", &["SquareNut"][..]),
-        ("NutAssemblyRound", &["RoundNut"][..]),
-    ] {
-        let mut e = env(name, EnvConfig::default());
-        let m = e.sim().model().ffi();
-        assert_eq!(
-            (m.nq, m.nv, m.nu, m.nbody, m.ngeom),
-            (23, 21, 9, 29, 120),
-            "{name}"
-        );
-        assert_obs_layout(&mut e, nuts, None);
-    }
     // Mode 1: robosuite names the keys after each reset's nut; here they are `nut_*`,
     // followed by robosuite's `nut_id`.
-    let mut single = env("NutAssemblySingle", EnvConfig::default());
-    assert_obs_layout(&mut single, &["nut"], Some("nut_id"));
+    assert_variant_layouts(
+        &[
+            ("NutAssembly", &NUTS[..]),
+            ("NutAssemblySquare", &["SquareNut"][..]),
+            ("NutAssemblyRound", &["RoundNut"][..]),
+        ],
+        [23, 21, 9, 29, 120],
+        "NutAssemblySingle",
+        "nut",
+    );
     // The relative pose, as robosuite computes it from its observation cache: the nut
     // position of the previous observation in the current grip frame (zero at reset).
     let mut both = env("NutAssembly", EnvConfig::default());
@@ -192,9 +188,11 @@ fn scripted_policy_solves_nut_assembly_round() {
         carry_z: 1.02,
         release_z: 0.84,
     };
-    let results: Vec<Option<usize>> = (0..3).map(|seed| policy.run(&mut e, seed, 300)).collect();
-    let solved = results.iter().filter(|r| r.is_some()).count();
-    assert!(solved >= 2, "scripted NutAssemblyRound: {results:?}");
+    assert_scripted_successes("NutAssemblyRound", &mut e, 3, 2, |env, seed| {
+        policy
+            .run(env, seed, 300)
+            .map_or((false, 300), |t| (true, t))
+    });
 }
 
 #[test]
@@ -208,7 +206,7 @@ fn task_state_round_trips_and_bad_states_are_rejected() {
     let _ = e
         .step(&action([0.3, 0.1, -0.2, 0.0, 0.0, 0.1, 1.0]))
         .unwrap();
-    assert_snapshot_repeats(&mut e);
+    assert_snapshot_replays(&mut e, &probe_actions(), 1);
 
     // The other nut can be put in play by a recorded start.
     let other = 1.0 - id;

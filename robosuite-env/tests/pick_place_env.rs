@@ -4,10 +4,10 @@
 mod common;
 
 use common::object_tasks::{
-    PlacePolicy, arena_use, assert_obs_layout, assert_snapshot_repeats, assert_spread,
-    assert_task_states_rejected, body_pos, random_episodes, set_free_joint,
+    PlacePolicy, arena_use, assert_spread, assert_task_states_rejected, assert_variant_layouts,
+    body_pos, probe_actions, random_episodes, set_free_joint,
 };
-use common::{action, get};
+use common::{action, assert_scripted_successes, assert_snapshot_replays, get};
 use gym_core::{Env, Error};
 use robosuite_env::tasks::common::ObjectMode;
 use robosuite_env::tasks::{PICK_PLACE_OBJECTS, PickPlaceSpec};
@@ -32,26 +32,20 @@ fn put(env: &mut RobosuiteEnv, name: &str, pos: [f64; 3]) {
 
 #[test]
 fn variants_have_robosuites_observation_layouts() {
-    for (name, objects) in [
-        ("PickPlace", &PICK_PLACE_OBJECTS[..]),
-        ("PickPlaceMilk", &["Milk"][..]),
-        ("PickPlaceBread", &["Bread"][..]),
-        ("PickPlaceCereal", &["Cereal"][..]),
-        ("PickPlaceCan", &["Can"][..]),
-    ] {
-        let mut e = env(name, EnvConfig::default());
-        let m = e.sim().model().ffi();
-        assert_eq!(
-            (m.nq, m.nv, m.nu, m.nbody, m.ngeom),
-            (37, 33, 9, 34, 126),
-            "{name}"
-        );
-        assert_obs_layout(&mut e, objects, None);
-    }
     // Mode 1: robosuite names the keys after each reset's object; here they are `obj_*`,
     // followed by robosuite's `obj_id`.
-    let mut single = env("PickPlaceSingle", EnvConfig::default());
-    assert_obs_layout(&mut single, &["obj"], Some("obj_id"));
+    assert_variant_layouts(
+        &[
+            ("PickPlace", &PICK_PLACE_OBJECTS[..]),
+            ("PickPlaceMilk", &["Milk"][..]),
+            ("PickPlaceBread", &["Bread"][..]),
+            ("PickPlaceCereal", &["Cereal"][..]),
+            ("PickPlaceCan", &["Can"][..]),
+        ],
+        [37, 33, 9, 34, 126],
+        "PickPlaceSingle",
+        "obj",
+    );
 }
 
 #[test]
@@ -203,9 +197,11 @@ fn scripted_policy_solves_pick_place_can() {
         carry_z: 1.1,
         release_z: 0.82 + 0.04 + 0.005,
     };
-    let results: Vec<Option<usize>> = (0..3).map(|seed| policy.run(&mut e, seed, 300)).collect();
-    let solved = results.iter().filter(|r| r.is_some()).count();
-    assert!(solved >= 2, "scripted PickPlaceCan: {results:?}");
+    assert_scripted_successes("PickPlaceCan", &mut e, 3, 2, |env, seed| {
+        policy
+            .run(env, seed, 300)
+            .map_or((false, 300), |t| (true, t))
+    });
 }
 
 #[test]
@@ -222,7 +218,7 @@ fn task_state_round_trips_and_bad_states_are_rejected() {
             .step(&action([0.3, 0.1, -0.2, 0.0, 0.0, 0.1, 1.0]))
             .unwrap();
     }
-    assert_snapshot_repeats(&mut e);
+    assert_snapshot_replays(&mut e, &probe_actions(), 1);
 
     // A recorded start: the object id alone, as the fixtures give it.
     let (obs, _) = e.reset_to_state(&[id], &state).unwrap();

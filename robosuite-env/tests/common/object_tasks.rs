@@ -2,8 +2,9 @@
 //! NutAssembly): robosuite's observation layout, hand-set object poses, a scripted
 //! pick-and-place and the MuJoCo arena check.
 
-use super::{dist3, get, move_to};
-use gym_core::{DType, DictValue, Env, Space, Value};
+use super::{assert_observation_layout, dist3, get, move_to};
+use gym_core::{DType, DictValue, Env, Space};
+use ndarray::ArrayD;
 use robosuite_env::RobosuiteEnv;
 use robosuite_env::sim::{body_id, joint_id};
 
@@ -52,19 +53,12 @@ pub fn expected_obs(objects: &[&str], id_key: Option<&str>) -> Vec<(String, Vec<
 /// [`expected_obs`]: keys in order, shapes, dtypes, and the concatenations.
 pub fn assert_obs_layout(env: &mut RobosuiteEnv, objects: &[&str], id_key: Option<&str>) {
     let expected = expected_obs(objects, id_key);
-    let space = env.observation_space().clone();
-    let keys: Vec<&str> = space.keys().collect();
-    let want: Vec<&str> = expected.iter().map(|(k, _, _)| k.as_str()).collect();
-    assert_eq!(keys, want);
     let (obs, _) = env.reset(Some(0), None).unwrap();
-    assert!(space.contains(&obs));
-    for (key, shape, dtype) in &expected {
-        let Value::Array(a) = &obs[key.as_str()] else {
-            panic!("{key} is not an array")
-        };
-        assert_eq!(a.shape(), shape.as_slice(), "{key}");
-        assert_eq!(a.dtype(), *dtype, "{key}");
-    }
+    let layout: Vec<(&str, &[usize], DType)> = expected
+        .iter()
+        .map(|(k, shape, dtype)| (k.as_str(), shape.as_slice(), *dtype))
+        .collect();
+    assert_observation_layout(env, &obs, &layout);
     let concat = |range: std::ops::Range<usize>| -> Vec<f64> {
         expected[range]
             .iter()
@@ -73,6 +67,36 @@ pub fn assert_obs_layout(env: &mut RobosuiteEnv, objects: &[&str], id_key: Optio
     };
     assert_eq!(get(&obs, "robot0_proprio-state"), concat(0..10));
     assert_eq!(get(&obs, "object-state"), concat(10..expected.len() - 2));
+}
+
+/// Checks each variant's model sizes `(nq, nv, nu, nbody, ngeom)` and observation layout
+/// (its observed objects), and the mode-1 variant `single`, whose object keys are named
+/// after `prefix` and followed by `{prefix}_id`.
+pub fn assert_variant_layouts(
+    variants: &[(&str, &[&str])],
+    sizes: [i64; 5],
+    single: &str,
+    prefix: &str,
+) {
+    let make = |name: &str| {
+        robosuite_env::make_with(name, robosuite_env::EnvConfig::default())
+            .unwrap_or_else(|e| panic!("{name} builds: {e}"))
+    };
+    for (name, objects) in variants {
+        let mut env = make(name);
+        let m = env.sim().model().ffi();
+        assert_eq!([m.nq, m.nv, m.nu, m.nbody, m.ngeom], sizes, "{name}");
+        assert_obs_layout(&mut env, objects, None);
+    }
+    assert_obs_layout(&mut make(single), &[prefix], Some(&format!("{prefix}_id")));
+}
+
+/// A few actions for snapshot checks.
+pub fn probe_actions() -> Vec<ArrayD<f64>> {
+    [0.3, -0.2, 0.1, 0.4]
+        .iter()
+        .map(|v| super::action([*v, 0.1, -0.2, 0.0, 0.1, 0.0, -v]))
+        .collect()
 }
 
 /// The world position of body `name`.
@@ -181,17 +205,6 @@ pub fn assert_spread(angles: &[f64]) {
     let hi = angles.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let lo = angles.iter().copied().fold(f64::INFINITY, f64::min);
     assert!(hi - lo > 1.0, "the angles are drawn: {angles:?}");
-}
-
-/// Asserts that a step repeats bit for bit from a restored snapshot.
-pub fn assert_snapshot_repeats(env: &mut RobosuiteEnv) {
-    let snapshot = env.snapshot();
-    let a = super::action([-0.2, 0.4, 0.1, 0.0, 0.1, 0.0, -1.0]);
-    let first = env.step(&a).unwrap();
-    env.restore(&snapshot).unwrap();
-    let again = env.step(&a).unwrap();
-    assert_eq!(first.observation, again.observation);
-    assert_eq!(first.reward.to_bits(), again.reward.to_bits());
 }
 
 /// Asserts that each of `bad` is refused as a task state by `reset_to_state` (with the
