@@ -20,10 +20,15 @@ import os
 import sys
 
 os.environ.setdefault("MUJOCO_GL", "disable")
+if os.environ.get("PYTHONHASHSEED") != "0":
+    # As record_robosuite.py: robosuite's single-object mode 1 draws from a set of names.
+    os.environ["PYTHONHASHSEED"] = "0"
+    os.execv(sys.executable, [sys.executable] + sys.argv)
 
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 import robosuite as suite  # noqa: E402
+from record_robosuite import our_key  # noqa: E402
 
 FIXTURES = os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite")
 
@@ -62,6 +67,7 @@ def floor(fixture, index):
     out = {"free_arm": 0.0, "contact_arm": 0.0, "objects": 0.0, "reward": 0.0, "success_mismatches": 0}
     for i, (action, rec) in enumerate(zip(r["actions"], r["steps"])):
         obs, reward, done, _ = env.step(np.array(action))
+        obs = {our_key(fixture["task"], env, k): v for k, v in obs.items()}
         touched = first is not None and i >= first
         for key, want in rec["obs"].items():
             d = float(np.abs(np.asarray(obs[key], dtype=np.float64).reshape(-1) - np.array(want)).max(initial=0.0))

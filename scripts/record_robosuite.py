@@ -22,6 +22,11 @@ import os
 import sys
 
 os.environ.setdefault("MUJOCO_GL", "disable")
+if os.environ.get("PYTHONHASHSEED") != "0":
+    # robosuite's single-object mode 1 draws the object from a set of names, whose order
+    # follows string hashing: fix it so that recordings repeat.
+    os.environ["PYTHONHASHSEED"] = "0"
+    os.execv(sys.executable, [sys.executable] + sys.argv)
 
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
@@ -100,6 +105,20 @@ def robot_touches(env):
 # the layout robosuite-rs's Task::save_state uses.
 
 
+PICK_PLACE = ["PickPlace", "PickPlaceSingle", "PickPlaceMilk", "PickPlaceBread", "PickPlaceCereal", "PickPlaceCan"]
+NUT_ASSEMBLY = ["NutAssembly", "NutAssemblySingle", "NutAssemblySquare", "NutAssemblyRound"]
+
+
+def active_object(task, env):
+    """The object in play of a single-object mode (PickPlace's `object_id`, NutAssembly's
+    `nut_id`), or None in mode 0."""
+    if task in PICK_PLACE and env.single_object_mode != 0:
+        return env.object_id
+    if task in NUT_ASSEMBLY and env.single_object_mode != 0:
+        return env.nut_id
+    return None
+
+
 def task_state(task, env):
     if task == "Lift":
         return [float(x) for x in env.cube.size]
@@ -118,7 +137,25 @@ def task_state(task, env):
         pos = [float(x) for m in markers for x in env.sim.model.body_pos[env.sim.model.body_name2id(m.root_body)]]
         force = [float(x) for x in env.robots[0].ee_force["right"]]
         return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * 6 + force
+    active = active_object(task, env)
+    if active is not None:
+        # The object in play.
+        return [float(active)]
     return []
+
+
+def our_key(task, env, key):
+    """robosuite-rs's name for an observation key. In single-object mode 1 robosuite names
+    the object keys after each reset's object (`Cereal_pos`); a fixed observation space
+    cannot, so robosuite-rs names them `obj_*` (PickPlaceSingle) / `nut_*`
+    (NutAssemblySingle)."""
+    prefix = {"PickPlaceSingle": ("obj", lambda: env.objects[env.object_id].name),
+              "NutAssemblySingle": ("nut", lambda: env.nuts[env.nut_id].name)}.get(task)
+    if prefix is not None:
+        name = prefix[1]() + "_"
+        if key.startswith(name):
+            return prefix[0] + "_" + key[len(name):]
+    return key
 
 
 # Observation keys recorded per step (beside the full state).
@@ -338,6 +375,99 @@ def wipe_policy(env):
     return act
 
 
+def place_policy(grab, goal, carry_z, release_z):
+    """Pick an object and put it down: above the grasp point `grab(obs)` (returning the
+    point and the yaw error of the fingers, or None not to align), descend, close, lift to
+    `carry_z`, carry the object over `goal` (xy), lower it until the object is at
+    `release_z`, open and rise."""
+    state = {"phase": 0, "t": 0}
+
+    def act(obs, obj_pos):
+        eef = np.asarray(obs["robot0_eef_pos"])
+        point, yaw_err = grab(obs)
+        grip, align = -1.0, False
+        ph = state["phase"]
+        if ph == 0:
+            target, align = point + np.array([0, 0, 0.08]), True
+        elif ph == 1:
+            target, align = point, True
+        elif ph == 2:
+            target, grip = eef, 1.0
+        elif ph == 3:
+            target, grip = np.array([eef[0], eef[1], carry_z]), 1.0
+        elif ph == 4:
+            target, grip = np.array([goal[0] + eef[0] - obj_pos[0], goal[1] + eef[1] - obj_pos[1], carry_z]), 1.0
+        elif ph == 5:
+            target = np.array([goal[0] + eef[0] - obj_pos[0], goal[1] + eef[1] - obj_pos[1], eef[2] - obj_pos[2] + release_z])
+            grip = 1.0
+        elif ph == 6:
+            target = eef
+        else:
+            target = np.array([eef[0], eef[1], carry_z])
+        yaw = yaw_err if (align and yaw_err is not None) else 0.0
+        d = np.linalg.norm(target - eef)
+        state["t"] += 1
+        t = state["t"]
+        done = {
+            0: (d < 0.01 and abs(yaw) < 0.05) or t > 60,
+            1: d < 0.005 or t > 40,
+            2: t >= 12,
+            3: d < 0.02 or t > 40,
+            4: d < 0.005 or t > 80,
+            5: d < 0.01 or t > 50,
+            6: t >= 12,
+        }.get(ph, False)
+        if done:
+            state["phase"], state["t"] = ph + 1, 0
+        return osc_action(eef, target, yaw, grip)
+
+    return act
+
+
+# Grasp heights above the objects' origins (below their tops), the heights of their origins
+# above the bin floor when they rest (measured in robosuite), and the drop at release.
+GROCERY_GRASP = {"Milk": 0.03, "Bread": 0.0, "Cereal": 0.0, "Can": 0.0}
+GROCERY_REST = {"Milk": 0.061, "Bread": 0.022, "Cereal": 0.075, "Can": 0.040}
+RELEASE_DROP = 0.005
+
+
+def pick_place_policy(env, name):
+    """Put grocery `name` into its quadrant of the goal bin."""
+    i = env.object_to_id[name.lower()]
+    # The corner of the object's quadrant nearest the robot, 6 cm inside (the centres of the
+    # far quadrants stretch the arm to the end of its reach, where its posture is chaotic).
+    centre = env.target_bin_placements[i]
+    x_low, y_low = centre[0] - env.bin_size[0] / 4.0, centre[1] - env.bin_size[1] / 4.0
+    goal = np.array([x_low + 0.06, y_low + 0.06])
+    key = f"{name}_pos"
+    act = place_policy(
+        lambda obs: (np.asarray(obs[key]) + np.array([0, 0, GROCERY_GRASP[name]]), None),
+        goal,
+        carry_z=1.1,
+        release_z=env.bin2_pos[2] + 0.02 + GROCERY_REST[name] + RELEASE_DROP,
+    )
+    return lambda obs: act(obs, np.asarray(obs[key]))
+
+
+def nut_policy(env, name):
+    """Grasp nut `name` by its handle with the fingers across it, carry its ring over its
+    peg, lower it and let go."""
+    i = env.nut_to_id[name.lower().replace("nut", "")]
+    peg = env.sim.data.body_xpos[[env.peg1_body_id, env.peg2_body_id][i]]
+    # Grasp point along the nut's x axis (the handles' centres are at 0.054 and 0.06).
+    handle = 0.062 if i == 0 else 0.06
+    key, quat_key = f"{name}_pos", f"{name}_quat"
+
+    def grab(obs):
+        nut = np.asarray(obs[key])
+        yaw = yaw_of(obs[quat_key])
+        point = nut + np.array([handle * np.cos(yaw), handle * np.sin(yaw), 0.002])
+        return point, wrap(yaw + np.pi / 2 - finger_yaw(obs), np.pi)
+
+    act = place_policy(grab, peg[:2].copy(), carry_z=1.02, release_z=0.84)
+    return lambda obs: act(obs, np.asarray(obs[key]))
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -350,6 +480,21 @@ POLICIES = {
     "Wipe": [("scripted", wipe_policy, 150), ("random", lambda env: random_policy(7, env.action_dim), 60)],
     "ToolHang": [("scripted", lambda env: bar_grasp_policy("tool"), 120), ("random", lambda env: random_policy(3, env.action_dim), 60)],
 }
+
+
+def scripted_and_random(scripted, steps, seed):
+    """A task's rollouts: the scripted policy for `steps` steps, then 60 random actions."""
+    return [("scripted", scripted, steps), ("random", lambda env: random_policy(seed, env.action_dim), 60)]
+
+
+for _task, _obj in [("PickPlace", "Milk"), ("PickPlaceMilk", "Milk"), ("PickPlaceBread", "Bread"),
+                    ("PickPlaceCereal", "Cereal"), ("PickPlaceCan", "Can")]:
+    POLICIES[_task] = scripted_and_random(lambda env, o=_obj: pick_place_policy(env, o), 240, 11)
+POLICIES["PickPlaceSingle"] = scripted_and_random(
+    lambda env: pick_place_policy(env, env.objects[env.object_id].name), 240, 11)
+for _task, _nut in [("NutAssembly", "RoundNut"), ("NutAssemblySquare", "SquareNut"), ("NutAssemblyRound", "RoundNut")]:
+    POLICIES[_task] = scripted_and_random(lambda env, n=_nut: nut_policy(env, n), 200, 13)
+POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, env.nuts[env.nut_id].name), 200, 13)
 
 
 def rollout(task, robot, seed, make_policy, steps):
@@ -369,7 +514,10 @@ def rollout(task, robot, seed, make_policy, steps):
         record["actions"].append([float(x) for x in action])
         record["steps"].append(
             {
-                "obs": {k: [short(x) for x in np.asarray(obs[k], dtype=np.float64).reshape(-1)] for k in keys},
+                "obs": {
+                    our_key(task, env, k): [short(x) for x in np.asarray(obs[k], dtype=np.float64).reshape(-1)]
+                    for k in keys
+                },
                 "reward": float(reward),
                 "success": bool(env._check_success()),
                 "robot_contact": robot_touches(env),

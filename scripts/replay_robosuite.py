@@ -20,13 +20,19 @@ Usage (a Python with robosuite 1.5.2; MuJoCo 3.17.0 can come from another enviro
 import argparse
 import json
 import os
+import sys
 
 os.environ.setdefault("MUJOCO_GL", "disable")
+if os.environ.get("PYTHONHASHSEED") != "0":
+    # As record_robosuite.py: robosuite's single-object mode 1 draws from a set of names.
+    os.environ["PYTHONHASHSEED"] = "0"
+    os.execv(sys.executable, [sys.executable] + sys.argv)
 
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 import robosuite as suite  # noqa: E402
 import robosuite.utils.binding_utils as binding  # noqa: E402
+from record_robosuite import our_key  # noqa: E402
 from robosuite.controllers.parts import controller as controller_module  # noqa: E402
 
 
@@ -111,6 +117,7 @@ def main():
     ours = []
     for action in rollout["actions"]:
         obs, reward, done, _ = env.step(np.array(action))
+        obs = {our_key(args.task, env, k): v for k, v in obs.items()}
         ours.append(
             {
                 "obs": {k: np.asarray(obs[k], dtype=np.float64).reshape(-1).tolist() for k in keys},

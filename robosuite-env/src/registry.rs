@@ -4,13 +4,31 @@
 use crate::assets::Assets;
 use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
-use crate::tasks::{DoorSpec, LiftSpec, StackSpec, TaskSpec, ToolHangSpec, WipeSpec};
+use crate::tasks::{
+    DoorSpec, LiftSpec, NutAssemblySpec, PickPlaceSpec, StackSpec, TaskSpec, ToolHangSpec, WipeSpec,
+};
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
 use std::sync::Arc;
 
 /// The environment names this crate provides.
-pub const ENV_NAMES: &[&str] = &["Lift", "Stack", "Door", "Wipe", "ToolHang"];
+pub const ENV_NAMES: &[&str] = &[
+    "Lift",
+    "Stack",
+    "NutAssembly",
+    "NutAssemblySingle",
+    "NutAssemblySquare",
+    "NutAssemblyRound",
+    "PickPlace",
+    "PickPlaceSingle",
+    "PickPlaceMilk",
+    "PickPlaceBread",
+    "PickPlaceCereal",
+    "PickPlaceCan",
+    "Door",
+    "Wipe",
+    "ToolHang",
+];
 
 /// The task registered under `name`, with robosuite's default settings.
 ///
@@ -23,10 +41,18 @@ pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
         "Door" => Ok(Box::new(DoorSpec::default())),
         "Wipe" => Ok(Box::new(WipeSpec::default())),
         "ToolHang" => Ok(Box::new(ToolHangSpec::default())),
-        other => Err(Error::UnknownEnv {
-            id: other.to_owned(),
-            available: ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
-        }),
+        other => {
+            if let Some(spec) = PickPlaceSpec::variant(other) {
+                return Ok(Box::new(spec));
+            }
+            if let Some(spec) = NutAssemblySpec::variant(other) {
+                return Ok(Box::new(spec));
+            }
+            Err(Error::UnknownEnv {
+                id: other.to_owned(),
+                available: ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
+            })
+        }
     }
 }
 

@@ -84,6 +84,16 @@ task_tests! {
     door_passes_check_env, door_passes_the_property_suite => "Door";
     wipe_passes_check_env, wipe_passes_the_property_suite => "Wipe";
     tool_hang_passes_check_env, tool_hang_passes_the_property_suite => "ToolHang";
+    pick_place_passes_check_env, pick_place_passes_the_property_suite => "PickPlace";
+    pick_place_single_passes_check_env, pick_place_single_passes_the_property_suite => "PickPlaceSingle";
+    pick_place_milk_passes_check_env, pick_place_milk_passes_the_property_suite => "PickPlaceMilk";
+    pick_place_bread_passes_check_env, pick_place_bread_passes_the_property_suite => "PickPlaceBread";
+    pick_place_cereal_passes_check_env, pick_place_cereal_passes_the_property_suite => "PickPlaceCereal";
+    pick_place_can_passes_check_env, pick_place_can_passes_the_property_suite => "PickPlaceCan";
+    nut_assembly_passes_check_env, nut_assembly_passes_the_property_suite => "NutAssembly";
+    nut_assembly_single_passes_check_env, nut_assembly_single_passes_the_property_suite => "NutAssemblySingle";
+    nut_assembly_square_passes_check_env, nut_assembly_square_passes_the_property_suite => "NutAssemblySquare";
+    nut_assembly_round_passes_check_env, nut_assembly_round_passes_the_property_suite => "NutAssemblyRound";
 }
 
 #[test]

@@ -85,9 +85,19 @@ fn substeps_do_not_allocate() {
 
 #[test]
 fn env_step_into_does_not_allocate_and_equals_step_for_every_task() {
+    step_into_does_not_allocate(&EnvConfig::default());
+}
+
+#[test]
+fn shaped_rewards_do_not_allocate_for_every_task() {
+    step_into_does_not_allocate(&EnvConfig::default().with_reward_shaping(true));
+}
+
+/// Every task's `step_into` with `config` allocates nothing and equals `step`.
+fn step_into_does_not_allocate(config: &EnvConfig) {
     for task in robosuite_env::ENV_NAMES {
-        let mut a = make_with(task, EnvConfig::default()).unwrap();
-        let mut b = make_with(task, EnvConfig::default()).unwrap();
+        let mut a = make_with(task, config.clone()).unwrap();
+        let mut b = make_with(task, config.clone()).unwrap();
         let (mut obs, mut info) = a.reset(Some(5), None).unwrap();
         b.reset(Some(5), None).unwrap();
         let mut rng = rng_from_seed(9);

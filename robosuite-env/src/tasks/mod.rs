@@ -10,6 +10,9 @@
 pub mod common;
 mod door;
 mod lift;
+pub mod mode_objects;
+mod nut_assembly;
+mod pick_place;
 pub mod placement;
 mod stack;
 mod tool_hang;
@@ -17,6 +20,8 @@ mod wipe;
 
 pub use door::{Door, DoorSpec};
 pub use lift::{Lift, LiftSpec};
+pub use nut_assembly::{NUTS, NutAssembly, NutAssemblySpec};
+pub use pick_place::{PICK_PLACE_OBJECTS, PickPlace, PickPlaceSpec};
 pub use stack::{CUBE_A_HALF, CUBE_B_HALF, Stack, StackSpec};
 pub use tool_hang::{ToolHang, ToolHangSpec};
 pub use wipe::{Wipe, WipeConfig, WipeSpec};

@@ -1,5 +1,7 @@
-//! robosuite's `UniformRandomSampler`: object positions uniform in a rectangle around a
-//! reference point, a rotation about one axis, and rejection of overlapping placements.
+//! robosuite's placement samplers: `UniformRandomSampler` (object positions uniform in a
+//! rectangle around a reference point, a rotation about one axis, and rejection of
+//! overlapping placements) and `SequentialCompositeSampler` (samplers run one after another,
+//! each keeping clear of what the earlier ones placed).
 
 use gym_core::{EnvRng, Error, Result};
 use rand::RngExt;
@@ -142,6 +144,53 @@ impl UniformRandomSampler {
             Axis::Y => [c, 0.0, s, 0.0],
             Axis::Z => [c, 0.0, 0.0, s],
         }
+    }
+}
+
+/// robosuite's `SequentialCompositeSampler`: its samplers run in order, each placing its own
+/// objects clear of every object placed before it (robosuite passes the placements made so
+/// far on as fixtures).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SequentialCompositeSampler {
+    /// Each sampler with the indices (into the objects given to
+    /// [`SequentialCompositeSampler::sample`]) of the objects it places, in its order.
+    pub samplers: Vec<(UniformRandomSampler, Vec<usize>)>,
+}
+
+impl SequentialCompositeSampler {
+    /// Samples a pose for every object of `objects`, sampler after sampler; the result is
+    /// indexed like `objects`. RNG use: each sampler's, in order.
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] when an object finds no valid placement, or
+    /// [`Error::InvalidArgument`] when the samplers do not place every object exactly once.
+    pub fn sample(&self, rng: &mut EnvRng, objects: &[PlacedObject]) -> Result<Vec<Pose>> {
+        let mut assigned: Vec<usize> = self
+            .samplers
+            .iter()
+            .flat_map(|(_, o)| o.iter().copied())
+            .collect();
+        assigned.sort_unstable();
+        if assigned != (0..objects.len()).collect::<Vec<_>>() {
+            return Err(Error::invalid_argument(
+                "samplers",
+                format!(
+                    "must place each of the {} objects once, got {assigned:?}",
+                    objects.len()
+                ),
+            ));
+        }
+        let mut placed: Vec<(Pose, PlacedObject)> = Vec::with_capacity(objects.len());
+        let mut out = vec![([0.0; 3], [1.0, 0.0, 0.0, 0.0]); objects.len()];
+        for (sampler, indices) in &self.samplers {
+            let extents: Vec<PlacedObject> = indices.iter().map(|&i| objects[i]).collect();
+            let poses = sampler.sample(rng, &extents, &placed)?;
+            for ((&i, pose), extent) in indices.iter().zip(poses).zip(extents) {
+                out[i] = pose;
+                placed.push((pose, extent));
+            }
+        }
+        Ok(out)
     }
 }
 

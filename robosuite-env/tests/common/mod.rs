@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod fixtures;
+pub mod object_tasks;
 
 use gym_core::{DictValue, Env, Result};
 use ndarray::{ArrayD, IxDyn};
