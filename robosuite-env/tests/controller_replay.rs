@@ -13,7 +13,7 @@
 mod common;
 
 use common::fixtures::values;
-use gym_core::{Env, Space};
+use gym_core::Env;
 use ndarray::{Array1, ArrayD};
 use robosuite_env::controllers::ControllerConfig;
 use robosuite_env::{EnvConfig, make_with};
@@ -27,8 +27,6 @@ struct Fixture {
     robot: String,
     joints: usize,
     cases: Vec<Case>,
-    #[serde(default)]
-    robosuite_zero_action_drift: Option<serde_json::Map<String, Value>>,
 }
 
 #[derive(Deserialize)]

@@ -291,6 +291,8 @@ impl ArmController for JointPosition {
         self.core.reset(sim);
     }
 
+    // The gains come from parallel slices of the action and the limits: indices read best.
+    #[allow(clippy::needless_range_loop)]
     fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
         let c = &mut self.core;
         c.arm.update(sim, false);

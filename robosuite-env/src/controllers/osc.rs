@@ -438,6 +438,8 @@ impl ArmController for Osc {
         }
     }
 
+    // The gains come from parallel slices of the action and the limits: indices read best.
+    #[allow(clippy::needless_range_loop)]
     fn set_goal(&mut self, sim: &Sim, action: &[f64]) {
         self.arm.update(sim, false);
         let gains = 6 * self.impedance.gain_vectors();

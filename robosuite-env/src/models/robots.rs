@@ -121,7 +121,9 @@ pub const IIWA: RobotInfo = RobotInfo {
     ..SINGLE_ARM
 };
 
-/// robosuite's `Jaco` (Kinova Jaco, 7 joints).
+/// robosuite's `Jaco` (Kinova Jaco, 7 joints). Its last rest angle, 3.142, is robosuite's
+/// literal, not π.
+#[allow(clippy::approx_constant)]
 pub const JACO: RobotInfo = RobotInfo {
     name: "Jaco",
     file: "robots/jaco/robot.xml",

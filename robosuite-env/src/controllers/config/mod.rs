@@ -207,6 +207,8 @@ impl CompositeControllerConfig {
 /// robosuite's `controller_configs` entry for one robot: a composite config, or a bare
 /// part config that robosuite puts on every arm of the robot's default composite config
 /// (`refactor_composite_controller_config`).
+// A config is made once per env; boxing the larger variant would only burden matching.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum ControllerConfig {
     /// A composite `BASIC` config.
