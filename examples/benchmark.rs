@@ -7,9 +7,15 @@
 //! (`ThreadEnvPool`, two envs per thread). Prints a table; `--json PATH` also writes JSON.
 //!
 //! ```text
-//! cargo run --release -p examples --example benchmark -- [--task Lift] [--seconds 3]
+//! cargo run --release -p examples --example benchmark -- [--task Lift] [--robot Sawyer]
+//!     [--controller OSC_POSITION] [--robots] [--controllers] [--seconds 3]
 //!     [--max-envs 4] [--rounds 5] [--only steps|vector] [--json bench.json]
 //! ```
+//!
+//! `--robot` and `--controller` put every task on that robot (default: the Panda) and that
+//! arm controller (robosuite's part config file for it; default: the robot's own config).
+//! `--robots` measures the step figures of Lift on each of the seven single-arm robots,
+//! `--controllers` those of Lift on the Panda with each arm controller.
 //!
 //! Figures are wall-clock rates: run it on an otherwise idle machine. The step rates
 //! (env, GymWrapper, physics only) and the vector figures are each interleaved over
@@ -17,9 +23,10 @@
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
 use adapters::{BatchSpace, ThreadEnvPool, ThreadVectorEnv, VectorEnv, WrapperExt};
+use examples::case::Case;
 use examples::physics_only::PhysicsOnly;
 use gym_core::{Env, Result, Space, rng_from_seed};
-use robosuite_env::{EnvConfig, RobosuiteEnv};
+use robosuite_env::controllers::config::ARM_CONTROLLER_TYPES;
 use serde_json::json;
 use std::time::{Duration, Instant};
 
@@ -30,10 +37,13 @@ enum Only {
     Steps,
     /// Vector-env scaling.
     Vector,
+    /// One env's steps/s beside the physics-only rate of its model (`--robots`,
+    /// `--controllers`).
+    Cost,
 }
 
 struct Args {
-    tasks: Vec<String>,
+    cases: Vec<Case>,
     seconds: f64,
     max_envs: usize,
     rounds: usize,
@@ -42,11 +52,14 @@ struct Args {
 }
 
 fn parse_args() -> Args {
+    let mut tasks: Vec<String> = robosuite_env::ENV_NAMES
+        .iter()
+        .map(|s| (*s).to_owned())
+        .collect();
+    let (mut robot, mut controller) = (None, None);
+    let (mut robots, mut controllers) = (false, false);
     let mut args = Args {
-        tasks: robosuite_env::ENV_NAMES
-            .iter()
-            .map(|s| (*s).to_owned())
-            .collect(),
+        cases: Vec::new(),
         seconds: 3.0,
         max_envs: std::thread::available_parallelism()
             .map_or(2, |n| n.get())
@@ -58,9 +71,22 @@ fn parse_args() -> Args {
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
+        match flag.as_str() {
+            "--robots" => {
+                robots = true;
+                continue;
+            }
+            "--controllers" => {
+                controllers = true;
+                continue;
+            }
+            _ => {}
+        }
         let value = it.next().unwrap_or_default();
         match flag.as_str() {
-            "--task" => args.tasks = vec![value],
+            "--task" => tasks = vec![value],
+            "--robot" => robot = Some(value),
+            "--controller" => controller = Some(value),
             "--seconds" => args.seconds = value.parse().unwrap_or(args.seconds),
             "--max-envs" => args.max_envs = value.parse().unwrap_or(args.max_envs),
             "--rounds" => args.rounds = value.parse().unwrap_or(args.rounds).max(1),
@@ -72,6 +98,34 @@ fn parse_args() -> Args {
             },
             other => eprintln!("benchmark: ignoring unknown argument {other}"),
         }
+    }
+    let lift = |robot: Option<&str>, controller: Option<&str>| Case {
+        task: "Lift".to_owned(),
+        robot: robot.map(str::to_owned),
+        controller: controller.map(str::to_owned),
+    };
+    if robots {
+        args.only = Some(Only::Cost);
+        args.cases.extend(
+            robosuite_env::models::robots::ROBOTS
+                .iter()
+                .map(|r| lift(Some(r.name), None)),
+        );
+    }
+    if controllers {
+        args.only = Some(Only::Cost);
+        args.cases
+            .extend(ARM_CONTROLLER_TYPES.iter().map(|c| lift(None, Some(c))));
+    }
+    if !robots && !controllers {
+        args.cases = tasks
+            .into_iter()
+            .map(|task| Case {
+                task,
+                robot: robot.clone(),
+                controller: controller.clone(),
+            })
+            .collect();
     }
     args
 }
@@ -89,9 +143,9 @@ fn rate(budget: Duration, mut step: impl FnMut() -> Result<()>) -> Result<f64> {
 
 /// Steps/s of `n` flat-GymWrapper envs stepped by `n` independent threads (no vector env,
 /// no synchronisation): what the machine itself allows for `n` parallel envs.
-fn parallel_ceiling(task: &str, n: usize, budget: Duration) -> Result<f64> {
+fn parallel_ceiling(task: &Case, n: usize, budget: Duration) -> Result<f64> {
     let envs = (0..n)
-        .map(|_| make(task)?.flat_gym_wrapper(None))
+        .map(|_| task.make()?.flat_gym_wrapper(None))
         .collect::<Result<Vec<_>>>()?;
     std::thread::scope(|scope| {
         let handles: Vec<_> = envs
@@ -134,7 +188,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// count. The machine's speed drifts between minutes, so the measurements are interleaved
 /// in `args.rounds` rounds and each ratio is the median of its per-round ratios.
 fn vector_scaling(
-    task: &str,
+    task: &Case,
     args: &Args,
     rng: &mut gym_core::EnvRng,
 ) -> Result<(Vec<serde_json::Value>, serde_json::Value)> {
@@ -146,7 +200,7 @@ fn vector_scaling(
         .iter()
         .map(|&n| {
             let envs = (0..n)
-                .map(|_| make(task)?.flat_gym_wrapper(None))
+                .map(|_| task.make()?.flat_gym_wrapper(None))
                 .collect::<Result<Vec<_>>>()?;
             let mut venv = ThreadVectorEnv::new(envs)?;
             venv.reset(0u64, None)?;
@@ -156,7 +210,7 @@ fn vector_scaling(
     // EnvPool's asynchronous mode: 2 envs per thread, recv returns one per thread.
     let threads = std::thread::available_parallelism().map_or(2, usize::from);
     let pool_envs = (0..2 * threads)
-        .map(|_| make(task)?.flat_gym_wrapper(None))
+        .map(|_| task.make()?.flat_gym_wrapper(None))
         .collect::<Result<Vec<_>>>()?;
     let mut pool = ThreadEnvPool::new(pool_envs, threads)?;
     let pool_actions = pool.single_action_space().batch_space(threads)?;
@@ -227,20 +281,17 @@ fn rss_mib() -> f64 {
         .map_or(f64::NAN, |pages| pages * 4096.0 / 1048576.0)
 }
 
-fn make(task: &str) -> Result<RobosuiteEnv> {
-    robosuite_env::make_with(task, EnvConfig::default())
-}
-
-fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
+fn bench_task(task: &Case, args: &Args) -> Result<serde_json::Value> {
     let mut rng = rng_from_seed(1);
-    let mut figures = json!({"task": task});
+    let mut figures =
+        json!({"task": task.task, "robot": task.robot, "controller": task.controller});
     if args.only != Some(Only::Vector) {
         step_rates(task, args, &mut rng, &mut figures)?;
     }
     if args.only.is_none() {
         reset_and_memory(task, &mut rng, &mut figures)?;
     }
-    if args.only != Some(Only::Steps) {
+    if args.only.is_none() || args.only == Some(Only::Vector) {
         let (vector, pool) = vector_scaling(task, args, &mut rng)?;
         figures["vector"] = json!(vector);
         figures["pool"] = pool;
@@ -253,19 +304,19 @@ fn bench_task(task: &str, args: &Args) -> Result<serde_json::Value> {
 /// The three are interleaved in `args.rounds` rounds: rates are medians, the cost ratio is
 /// the median of the per-round ratios.
 fn step_rates(
-    task: &str,
+    task: &Case,
     args: &Args,
     rng: &mut gym_core::EnvRng,
     figures: &mut serde_json::Value,
 ) -> Result<()> {
     let window = Duration::from_secs_f64(args.seconds / args.rounds as f64);
-    let mut env = make(task)?;
+    let mut env = task.make()?;
     env.reset(Some(0), None)?;
     let mut physics = match args.only {
-        None => Some(PhysicsOnly::new(&env)?),
+        None | Some(Only::Cost) => Some(PhysicsOnly::new(&env)?),
         Some(_) => None,
     };
-    let mut gym = make(task)?.flat_gym_wrapper(None)?;
+    let mut gym = task.make()?.flat_gym_wrapper(None)?;
     gym.reset(Some(0), None)?;
     let (mut env_rates, mut gym_rates, mut physics_rates) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..args.rounds {
@@ -300,11 +351,11 @@ fn step_rates(
 
 /// Reset time and resident memory per additional instance.
 fn reset_and_memory(
-    task: &str,
+    task: &Case,
     rng: &mut gym_core::EnvRng,
     figures: &mut serde_json::Value,
 ) -> Result<()> {
-    let mut env = make(task)?;
+    let mut env = task.make()?;
     env.reset(Some(0), None)?;
     let resets = 500;
     let t = Instant::now();
@@ -316,7 +367,7 @@ fn reset_and_memory(
     let before = rss_mib();
     let mut many = Vec::new();
     for i in 0..16 {
-        let mut e = make(task)?;
+        let mut e = task.make()?;
         e.reset(Some(i), None)?;
         for _ in 0..5 {
             let a = e.action_space().sample(rng);
@@ -341,9 +392,9 @@ fn main() -> Result<()> {
         args.seconds
     );
     let mut results = Vec::new();
-    for task in &args.tasks {
-        let r = bench_task(task, &args)?;
-        println!("\n{task}");
+    for case in &args.cases {
+        let r = bench_task(case, &args)?;
+        println!("\n{}", case.label());
         let rows = [
             ("substeps", "substeps per env step", ""),
             ("steps_per_s", "env steps/s, one thread", ""),

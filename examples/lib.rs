@@ -1,5 +1,6 @@
 //! Helpers shared by the example programs in this folder.
 
+pub mod case;
 pub mod physics_only;
 
 use gym_core::Info;

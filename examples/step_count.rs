@@ -4,8 +4,11 @@
 //!
 //! ```text
 //! cargo build --release -p examples --example step_count
-//! valgrind --tool=callgrind target/release/examples/step_count Lift gym 200
+//! valgrind --tool=callgrind target/release/examples/step_count Lift gym 200 [ROBOT] [CONTROLLER]
 //! ```
+//!
+//! `ROBOT` puts the task on another robot (`-` or nothing: the Panda), `CONTROLLER` uses
+//! robosuite's part config file of that arm controller (nothing: the robot's default).
 //!
 //! Layers: `raw` (the robosuite env, dict observations), `gym` (the flat f32 GymWrapper),
 //! `physics` (the same model, `mj_step` × substeps, arm held by gravity compensation).
@@ -14,9 +17,9 @@
 //! difference of the counts (`scripts/instructions_per_step.sh` does this).
 
 use adapters::WrapperExt;
+use examples::case::Case;
 use examples::physics_only::PhysicsOnly;
 use gym_core::{Env, Error, Result, Space, rng_from_seed};
-use robosuite_env::EnvConfig;
 use std::hint::black_box;
 
 fn main() -> Result<()> {
@@ -29,8 +32,13 @@ fn main() -> Result<()> {
             .parse()
             .map_err(|_| Error::invalid_argument("steps", format!("not a count: {s}")))?,
     };
+    let case = Case {
+        task: task.to_owned(),
+        robot: args.get(3).filter(|r| *r != "-").cloned(),
+        controller: args.get(4).cloned(),
+    };
     let mut rng = rng_from_seed(7);
-    let mut env = robosuite_env::make_with(task, EnvConfig::default())?;
+    let mut env = case.make()?;
     let actions: Vec<_> = (0..steps)
         .map(|_| env.action_space().sample(&mut rng))
         .collect();
@@ -71,6 +79,6 @@ fn main() -> Result<()> {
             ));
         }
     }
-    println!("{task} {layer}: {steps} steps");
+    println!("{} {layer}: {steps} steps", case.label());
     Ok(())
 }

@@ -9,6 +9,9 @@
 # MuJoCo 3.17.0, where three of robosuite's calls are adapted to MuJoCo's renamed Python
 # API: joint types compared as integers, and mj_fullM's new argument order). Usage:
 #   scripts/record_robosuite.sh [--resets N] [--robot NAME] [TASK ...]
+#   scripts/record_robosuite.sh --controllers [ROBOT ...]
+# The second form records the controller fixtures (scripts/record_controllers.py, default
+# robots Panda, Sawyer and UR5e) and their floors.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=${BENCH_VENV:-.bench-venv/robosuite}
@@ -43,6 +46,12 @@ for rel, pairs in edits.items():
         text = text.replace(old, new)
     path.write_text(text)
 PY
+fi
+if [ "${1:-}" = --controllers ]; then
+    shift
+    "$venv/bin/python" scripts/record_controllers.py "$@"
+    "$floor_venv/bin/python" scripts/record_controllers.py --floor "$@"
+    exit 0
 fi
 "$venv/bin/python" scripts/record_robosuite.py "$@"
 # The fixtures just written (the task names among the arguments; every fixture if none).

@@ -19,7 +19,8 @@
 //!   the scene composed from them;
 //! * [`sim`]: the simulator an environment owns, name lookups, contacts, in-place model edits;
 //! * [`math`]: rotations and the linear algebra of the controllers;
-//! * [`controllers`]: the arm controller abstraction with `OSC_POSE`, and `GRIP`;
+//! * [`controllers`]: the arm controller abstraction, robosuite's six arm controllers and
+//!   `GRIP`, and robosuite's controller configs;
 //! * [`robots`]: robots bound to a compiled scene, with arms, grippers and observables;
 //! * [`observables`]: robosuite's observables and its ordered observation dict;
 //! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and

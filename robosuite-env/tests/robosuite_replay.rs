@@ -4,7 +4,9 @@
 //! Tolerances (MuJoCo 3.17.0 here, 3.3.7 in the recording): robot joints and grip site in
 //! free motion within 1e-5 (rad / m); every position within 2 mm over the rollout once the
 //! robot touches something, and objects (which rest and slide on tables) within 2 mm
-//! throughout; success equal at every step; rewards within 1e-3. Where robosuite itself,
+//! throughout; success equal at every step but where the recorded success changes, whose
+//! crossing may come one step earlier or later (at most one differing step per change, its
+//! reward left out); rewards within 1e-3. Where robosuite itself,
 //! run on MuJoCo 3.17.0, already differs from its 3.3.7 recording by more (the rollout's
 //! `floor`, `scripts/mujoco_floor.py`), the tolerance is that floor plus 10 %: the part of
 //! the difference MuJoCo's version causes is not robosuite-rs's to remove.
@@ -93,6 +95,7 @@ fn rollouts_replay_within_tolerance() {
             );
             assert!(e.objects <= tol(CONTACT_TOL, floor.objects), "{what}");
             assert!(e.success_mismatches <= floor.success_mismatches, "{what}");
+            assert!(e.success_shifts <= e.success_changes, "{what}");
             assert!(e.reward <= tol(REWARD_TOL, floor.reward), "{what}");
         }
     }

@@ -132,8 +132,15 @@ pub struct ReplayErrors {
     pub objects: f64,
     /// Rewards.
     pub reward: f64,
-    /// Steps whose success differs.
+    /// Steps whose success differs, apart from the shifts below.
     pub success_mismatches: usize,
+    /// Steps next to a change of the recorded success (the step before or the step of the
+    /// change) whose success differs: a crossing of the success boundary displaced by one
+    /// step, which a sub-millimetre difference in a moving object causes. Their rewards are
+    /// left out of `reward`.
+    pub success_shifts: usize,
+    /// Changes of the recorded success over the rollout.
+    pub success_changes: usize,
     /// The step of the first touch, if any.
     pub first_contact: Option<usize>,
     /// Steps compared.
@@ -205,8 +212,20 @@ pub fn replay(env: &mut RobosuiteEnv, rollout: &Rollout) -> ReplayErrors {
                 e.all_positions = e.all_positions.max(d);
             }
         }
-        e.reward = e.reward.max((step.reward - rec.reward).abs());
-        if step.info.get_bool("success") != Some(rec.success) {
+        let changes_here = |j: usize| {
+            j > 0
+                && j < rollout.steps.len()
+                && rollout.steps[j].success != rollout.steps[j - 1].success
+        };
+        if changes_here(i) {
+            e.success_changes += 1;
+        }
+        if step.info.get_bool("success") == Some(rec.success) {
+            e.reward = e.reward.max((step.reward - rec.reward).abs());
+        } else if changes_here(i) || changes_here(i + 1) {
+            e.success_shifts += 1;
+        } else {
+            e.reward = e.reward.max((step.reward - rec.reward).abs());
             e.success_mismatches += 1;
         }
         e.steps += 1;
