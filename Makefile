@@ -35,7 +35,7 @@ lint: prerequisites
 	$(CARGO) clippy --workspace --all-targets -- -D warnings
 
 doc: prerequisites
-	$(CARGO) doc --workspace --no-deps
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --workspace --no-deps
 
 prerequisites:
 	@command -v $(CARGO) >/dev/null || { echo "make: cargo not found; install Rust from https://rustup.rs"; exit 1; }

@@ -84,7 +84,7 @@ pub(crate) fn cast_array_ref<S: ArrayElement, T: ArrayElement>(x: &ArrayD<S>) ->
     if let Some(same) = (x as &dyn Any).downcast_ref::<ArrayD<T>>() {
         return same.clone();
     }
-    x.mapv(|v| T::from_f64(v.to_f64()))
+    x.mapv(|v| v.cast_to::<T>())
 }
 
 /// Converts any array value to a typed array (unsafe cast, as NumPy's `astype`).
@@ -140,7 +140,7 @@ impl<T: ArrayElement> NumericSpace for BoxSpace<T> {
     ) -> Result<()> {
         check_shape(self.low().shape(), x.shape())?;
         if out.shape() == x.shape() {
-            out.zip_mut_with(x, |o, v| *o = T::from_f64(v.to_f64()));
+            out.zip_mut_with(x, |o, v| *o = v.cast_to::<T>());
         } else {
             *out = cast_array_ref(x);
         }

@@ -134,6 +134,20 @@ pub trait Scalar:
     }
     /// Whether the value is finite (always true for integers).
     fn is_finite(self) -> bool;
+    /// Converts to `i64` with Rust's `as` semantics (exact for every integer type).
+    fn to_i64(self) -> i64;
+    /// Converts from `i64` with Rust's `as` semantics (wrapping for narrower integers).
+    fn from_i64(v: i64) -> Self;
+    /// Converts to another element type as NumPy's `astype` does: integers to integers
+    /// exactly (wrapping when narrowing), anything involving a float through `f64`.
+    #[inline]
+    fn cast_to<U: Scalar>(self) -> U {
+        if Self::DTYPE.is_float() || U::DTYPE.is_float() {
+            U::from_f64(self.to_f64())
+        } else {
+            U::from_i64(self.to_i64())
+        }
+    }
 }
 
 macro_rules! scalar {
@@ -155,6 +169,16 @@ macro_rules! scalar {
             #[allow(clippy::unnecessary_cast)]
             fn is_finite(self) -> bool {
                 !$float || (self as f64).is_finite()
+            }
+            #[inline]
+            #[allow(clippy::unnecessary_cast)]
+            fn to_i64(self) -> i64 {
+                self as i64
+            }
+            #[inline]
+            #[allow(clippy::unnecessary_cast)]
+            fn from_i64(v: i64) -> Self {
+                v as $t
             }
         }
     };

@@ -9,7 +9,7 @@
 //!   [`registry`], so any typed env can be boxed, made by id, and exported to Python.
 //! * Typed errors ([`Error`], [`SpaceError`]).
 //! * With the `proptest-support` feature, proptest strategies for every space and its
-//!   elements in [`proptest`](crate::proptest).
+//!   elements (values that shrink) in the `proptest` module.
 //!
 //! ```
 //! use gym_core::{rng_from_seed, spaces::{BoxSpace, Discrete}, Space};

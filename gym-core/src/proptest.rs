@@ -3,8 +3,9 @@
 //!
 //! Strategies are functions, as in nalgebra's `proptest` module: bounds are drawn from
 //! ranges that keep arithmetic finite, with infinite bounds mixed in where a space allows
-//! them. Elements are drawn with [`sample_of`], which samples the space from a proptest-chosen
-//! seed, so every element lies in its space by construction of the space's own sampler.
+//! them. Elements ([`element_of`], [`value_of`]) are drawn value by value — every array
+//! entry, discrete index and Dict / Tuple member by its own strategy within its bounds — so
+//! a failing case shrinks its values (toward each entry's lower bound or zero), not a seed.
 
 use crate::dtype::DType;
 use crate::rng::rng_from_seed;
@@ -12,6 +13,7 @@ use crate::space::Space;
 use crate::spaces::{
     AnyBox, AnySpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
+use crate::value::{ArrayValue, Value};
 use ndarray::{ArrayD, IxDyn};
 use proptest::prelude::*;
 
@@ -123,23 +125,144 @@ pub fn seed() -> impl Strategy<Value = u64> {
     any::<u64>()
 }
 
-/// Elements of `space`, drawn by the space's own sampler from a proptest-chosen seed.
+/// One floating entry within `[low, high]` (either may be infinite): the finite side's
+/// neighbourhood when half-bounded, mostly moderate magnitudes when unbounded.
+fn float_entry(low: f64, high: f64) -> BoxedStrategy<f64> {
+    match (low.is_finite(), high.is_finite()) {
+        (true, true) if low == high => Just(low).boxed(),
+        (true, true) => (low..=high).boxed(),
+        (true, false) => prop_oneof![4 => low..low + 100.0, 1 => low..low + 1e6].boxed(),
+        (false, true) => prop_oneof![4 => high - 100.0..=high, 1 => high - 1e6..=high].boxed(),
+        (false, false) => prop_oneof![4 => -100.0..100.0f64, 1 => -1e6..1e6f64].boxed(),
+    }
+}
+
+/// The array of `dtype` and `shape` from row-major entries given as `i64`.
+fn int_array(dtype: DType, shape: &[usize], entries: Vec<i64>) -> ArrayValue {
+    fn typed<T: crate::value::ArrayElement>(shape: &[usize], entries: Vec<i64>) -> ArrayValue {
+        let values = entries.into_iter().map(T::from_i64).collect();
+        T::wrap(ArrayD::from_shape_vec(IxDyn(shape), values).expect("one entry per element"))
+    }
+    match dtype {
+        DType::I8 => typed::<i8>(shape, entries),
+        DType::I16 => typed::<i16>(shape, entries),
+        DType::I32 => typed::<i32>(shape, entries),
+        DType::U8 => typed::<u8>(shape, entries),
+        _ => typed::<i64>(shape, entries),
+    }
+}
+
+/// Elements of a Box, entry by entry within each entry's bounds.
+fn box_value(b: &AnyBox) -> BoxedStrategy<ArrayValue> {
+    let (low, high) = b.bounds_f64();
+    let shape = low.shape().to_vec();
+    let dtype = b.dtype();
+    if dtype.is_float() {
+        let entries: Vec<_> = low
+            .iter()
+            .zip(high.iter())
+            .map(|(l, h)| float_entry(*l, *h))
+            .collect();
+        entries
+            .prop_map(move |v| {
+                let a = ArrayD::from_shape_vec(IxDyn(&shape), v).expect("one entry per element");
+                if dtype == DType::F32 {
+                    ArrayValue::F32(a.mapv(|x| x as f32))
+                } else {
+                    ArrayValue::F64(a)
+                }
+            })
+            .boxed()
+    } else {
+        // An unbounded side of an integer Box is the dtype's range.
+        let (min, max) = match dtype {
+            DType::I8 => (i8::MIN.into(), i8::MAX.into()),
+            DType::I16 => (i16::MIN.into(), i16::MAX.into()),
+            DType::I32 => (i32::MIN.into(), i32::MAX.into()),
+            DType::U8 => (0, u8::MAX.into()),
+            _ => (i64::MIN, i64::MAX),
+        };
+        let entries: Vec<_> = low
+            .iter()
+            .zip(high.iter())
+            .map(|(l, h)| (*l as i64).max(min)..=(*h as i64).min(max))
+            .collect();
+        entries
+            .prop_map(move |v| int_array(dtype, &shape, v))
+            .boxed()
+    }
+}
+
+/// Elements of `space` as dynamic [`Value`]s, value by value, so they shrink: Box entries
+/// within their bounds, Discrete indices from `start`, MultiDiscrete and MultiBinary entries
+/// within their ranges, Dict and Tuple members each by their own strategy.
+pub fn value_of(space: &AnySpace) -> BoxedStrategy<Value> {
+    match space {
+        AnySpace::Box(b) => box_value(b).prop_map(Value::Array).boxed(),
+        AnySpace::Discrete(d) => (d.start()..d.start() + d.n())
+            .prop_map(Value::Discrete)
+            .boxed(),
+        AnySpace::MultiDiscrete(m) => {
+            let shape = m.nvec().shape().to_vec();
+            let entries: Vec<_> = m
+                .start()
+                .iter()
+                .zip(m.nvec().iter())
+                .map(|(s, n)| *s..*s + *n)
+                .collect();
+            entries
+                .prop_map(move |v| Value::Array(int_array(DType::I64, &shape, v)))
+                .boxed()
+        }
+        AnySpace::MultiBinary(m) => {
+            let shape = m.shape().map(<[usize]>::to_vec).unwrap_or_default();
+            let n: usize = shape.iter().product();
+            proptest::collection::vec(0i64..=1, n)
+                .prop_map(move |v| Value::Array(int_array(DType::I8, &shape, v)))
+                .boxed()
+        }
+        AnySpace::Tuple(t) => {
+            let members: Vec<_> = t.spaces().iter().map(value_of).collect();
+            members.prop_map(Value::Tuple).boxed()
+        }
+        AnySpace::Dict(d) => {
+            let keys: Vec<String> = d.keys().map(str::to_owned).collect();
+            let members: Vec<_> = d.iter().map(|(_, s)| value_of(s)).collect();
+            members
+                .prop_map(move |values| Value::Dict(keys.iter().cloned().zip(values).collect()))
+                .boxed()
+        }
+    }
+}
+
+/// Elements of `space`, drawn value by value (see [`value_of`]), so that shrinking shrinks
+/// the values themselves.
+pub fn element_of<S: Space>(space: S) -> impl Strategy<Value = S::Element> {
+    value_of(&space.to_any()).prop_filter_map(
+        "the space's from_value refuses a value of its own to_any structure",
+        move |v| space.from_value(&v).ok(),
+    )
+}
+
+/// Elements of `space`, drawn by the space's own sampler (Gymnasium's sampling law) from a
+/// proptest-chosen seed. They shrink only by their seed; prefer [`element_of`] unless the
+/// sampling law itself is under test.
 pub fn sample_of<S: Space>(space: S) -> impl Strategy<Value = S::Element> {
     seed().prop_map(move |s| space.sample(&mut rng_from_seed(s)))
 }
 
-/// A space together with one of its elements.
-pub fn space_and_element(depth: u32) -> impl Strategy<Value = (AnySpace, crate::value::Value)> {
-    (any_space(depth), seed()).prop_map(|(space, s)| {
-        let x = space.sample(&mut rng_from_seed(s));
-        (space, x)
+/// A space together with one of its elements (drawn value by value).
+pub fn space_and_element(depth: u32) -> impl Strategy<Value = (AnySpace, Value)> {
+    any_space(depth).prop_flat_map(|space| {
+        let values = value_of(&space);
+        (Just(space), values)
     })
 }
 
-/// Sequences of `len` actions from `space` (each drawn from its own seed).
+/// Sequences of `len` actions from `space`, each drawn value by value.
 pub fn action_sequence<S: Space>(
     space: S,
     len: std::ops::RangeInclusive<usize>,
 ) -> impl Strategy<Value = Vec<S::Element>> {
-    proptest::collection::vec(sample_of(space), len)
+    proptest::collection::vec(element_of(space), len)
 }

@@ -122,7 +122,7 @@ impl ArrayValue {
             return self.clone();
         }
         fn conv<T: ArrayElement>(v: &ArrayValue) -> ArrayValue {
-            T::wrap(for_each_array!(v, a => a.mapv(|x| T::from_f64(x.to_f64()))))
+            T::wrap(for_each_array!(v, a => a.mapv(|x| x.cast_to::<T>())))
         }
         match to {
             DType::I8 => conv::<i8>(self),
@@ -149,7 +149,7 @@ impl ArrayValue {
                 got: self.dtype(),
             });
         }
-        Ok(for_each_array!(self, a => a.mapv(|x| T::from_f64(x.to_f64()))))
+        Ok(for_each_array!(self, a => a.mapv(|x| x.cast_to::<T>())))
     }
 
     /// The array reshaped to one dimension (a copy).
@@ -171,7 +171,7 @@ impl ArrayValue {
         fn join<T: ArrayElement>(parts: &[ArrayValue]) -> ArrayValue {
             let mut out: Vec<T> = Vec::with_capacity(parts.iter().map(ArrayValue::len).sum());
             for p in parts {
-                for_each_array!(p, a => out.extend(a.iter().map(|x| T::from_f64(x.to_f64()))));
+                for_each_array!(p, a => out.extend(a.iter().map(|x| x.cast_to::<T>())));
             }
             let n = out.len();
             T::wrap(ArrayD::from_shape_vec(IxDyn(&[n]), out).expect("length matches"))
@@ -275,6 +275,33 @@ mod tests {
         let c = ArrayValue::concatenate(&[a, b]);
         assert_eq!(c.dtype(), DType::F64);
         assert_eq!(c.to_f64_vec(), vec![1.0, 0.0, 0.5]);
+    }
+
+    #[test]
+    fn concatenate_keeps_integers_exact() {
+        // 2^53 + 1 is not an f64; routed through f64 it came back as 2^53.
+        let big = (1i64 << 53) + 1;
+        let a = ArrayValue::from(arr1(&[big]).into_dyn());
+        let b = ArrayValue::from(arr1(&[-big, 7]).into_dyn());
+        let c = ArrayValue::concatenate(&[a, b]);
+        assert_eq!(c.dtype(), DType::I64);
+        assert_eq!(
+            c.to_typed::<i64>().unwrap().into_raw_vec_and_offset().0,
+            vec![big, -big, 7]
+        );
+        let small = ArrayValue::from(arr1(&[-3i8]).into_dyn());
+        let c = ArrayValue::concatenate(&[small, ArrayValue::from(arr1(&[big]).into_dyn())]);
+        assert_eq!(
+            c.to_typed::<i64>().unwrap().into_raw_vec_and_offset().0,
+            vec![-3, big]
+        );
+        assert_eq!(
+            ArrayValue::from(arr1(&[big]).into_dyn())
+                .cast(DType::I32)
+                .to_typed::<i32>()
+                .unwrap()[[0]],
+            big as i32
+        );
     }
 
     #[test]

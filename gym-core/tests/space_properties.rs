@@ -1,7 +1,10 @@
 //! Property tests of every space kind: samples lie in their space, sampling is
 //! reproducible, flatten/unflatten round-trips, and `contains` rejects what it must.
 
-use gym_core::proptest::{any_space, box_space, discrete, multi_binary, multi_discrete, seed};
+use gym_core::proptest::{
+    any_space, box_space, discrete, element_of, multi_binary, multi_discrete, seed,
+    space_and_element,
+};
 use gym_core::{AnyBox, AnySpace, ArrayValue, DType, Space, Value, rng_from_seed};
 use proptest::prelude::*;
 
@@ -15,6 +18,11 @@ proptest! {
             let x = space.sample(&mut rng);
             prop_assert!(space.contains(&x), "{space} does not contain its sample {x:?}");
         }
+    }
+
+    #[test]
+    fn value_strategies_stay_in_their_space((space, x) in space_and_element(3)) {
+        prop_assert!(space.contains(&x), "{space} does not contain the drawn value {x:?}");
     }
 
     #[test]
@@ -169,4 +177,44 @@ fn flatten_space_of_discrete_is_an_int64_box() {
     assert_eq!(fs.dtype(), DType::I64);
     assert_eq!(fs.shape(), Some(&[4usize][..]));
     assert_eq!(fs.to_string(), "Box(0, 1, [4], int64)");
+}
+
+/// A failing property over Box elements shrinks value by value (every entry not needed for
+/// the failure goes to its lower bound), not to another random sample.
+#[test]
+fn element_strategies_shrink_values() {
+    use proptest::test_runner::{Config, TestError, TestRunner};
+    let space = gym_core::BoxSpace::<f64>::uniform(0.0, 100.0, &[4]).unwrap();
+    let mut runner = TestRunner::new(Config {
+        cases: 256,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let result = runner.run(&element_of(space), |x| {
+        prop_assert!(x.iter().all(|v| *v < 50.0));
+        Ok(())
+    });
+    let Err(TestError::Fail(_, minimal)) = result else {
+        panic!("the property must fail: {result:?}");
+    };
+    let above: Vec<f64> = minimal.iter().copied().filter(|v| *v >= 50.0).collect();
+    let below: Vec<f64> = minimal.iter().copied().filter(|v| *v < 50.0).collect();
+    assert_eq!(above.len(), 1, "one entry left failing: {minimal:?}");
+    assert!(
+        below.iter().all(|v| *v == 0.0),
+        "the others shrink to the bound: {minimal:?}"
+    );
+
+    let discrete = gym_core::Discrete::with_start(1000, 5).unwrap();
+    let result = runner.run(&element_of(discrete), |x| {
+        prop_assert!(x < 300);
+        Ok(())
+    });
+    let Err(TestError::Fail(_, minimal)) = result else {
+        panic!("the property must fail: {result:?}");
+    };
+    assert_eq!(
+        minimal, 300,
+        "a discrete index shrinks to the smallest failing one"
+    );
 }

@@ -34,6 +34,24 @@ def test_check_env_on_registered_env(env_id: str) -> None:
     env.close()
 
 
+ROBOTS = ["Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"]
+
+
+@pytest.mark.parametrize("robot", ROBOTS)
+def test_check_env_on_every_task_with_every_robot(robot: str) -> None:
+    # The Panda is covered above; every other single-arm robot on every task, with its
+    # default gripper (Wipe: the wiping tool) and default controller.
+    for env_id in IDS:
+        env = gym.make(env_id, horizon=30, robots=robot)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            check_env(env.unwrapped)
+        assert unexpected(caught) == [], (env_id, robot)
+        joints = env.unwrapped.env.observation_spec()["robot0_joint_pos"].shape
+        assert joints == ((6,) if robot == "UR5e" else (7,)), (env_id, robot)
+        env.close()
+
+
 @pytest.mark.parametrize("env_id", IDS)
 def test_gymnasium_make_and_run(env_id: str) -> None:
     with warnings.catch_warnings(record=True) as caught:

@@ -108,3 +108,54 @@ fn every_task_reports_success_in_info() {
         assert_eq!(step.info.get_bool("success"), Some(false), "{name}");
     }
 }
+
+/// Every task on `robot` against `check_env` (its own default gripper and controller).
+fn every_task_on(robot: &str) {
+    for name in ENV_NAMES {
+        let mut env = make_with(
+            name,
+            EnvConfig::default().with_horizon(30).with_robots([robot]),
+        )
+        .unwrap_or_else(|e| panic!("{name} on {robot} builds: {e}"));
+        let what = format!("{name} on {robot}");
+        let report =
+            check_env(&mut env, &CheckOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+        for check in [
+            conformance_tests::Check::ResetSeedDeterminism,
+            conformance_tests::Check::InvalidAction,
+            conformance_tests::Check::StepAfterEnd,
+        ] {
+            assert!(report.passed(check), "{what}: {check:?}");
+        }
+    }
+}
+
+/// One test per robot other than the Panda (which the tests above cover), so they run in
+/// parallel.
+macro_rules! robot_tests {
+    ($($test:ident => $robot:literal;)*) => {
+        $(
+            #[test]
+            fn $test() {
+                every_task_on($robot);
+            }
+        )*
+
+        #[test]
+        fn every_robot_is_covered() {
+            let covered = ["Panda", $($robot),*];
+            for robot in robosuite_env::models::robots::ROBOTS {
+                assert!(covered.contains(&robot.name), "{} has no conformance test", robot.name);
+            }
+        }
+    };
+}
+
+robot_tests! {
+    every_task_on_sawyer_passes_check_env => "Sawyer";
+    every_task_on_iiwa_passes_check_env => "IIWA";
+    every_task_on_jaco_passes_check_env => "Jaco";
+    every_task_on_kinova3_passes_check_env => "Kinova3";
+    every_task_on_ur5e_passes_check_env => "UR5e";
+    every_task_on_xarm7_passes_check_env => "XArm7";
+}

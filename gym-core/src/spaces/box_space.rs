@@ -82,11 +82,32 @@ impl<T: ArrayElement> BoxSpace<T> {
         )
     }
 
-    /// The unbounded box `(-inf, inf)` of this shape (floating dtypes; integer dtypes get
-    /// their full range, marked unbounded).
+    /// The unbounded box `(-inf, inf)` of this shape (floating dtypes; signed integer
+    /// dtypes get their full range, marked unbounded). An unsigned dtype cannot be unbounded
+    /// (Gymnasium refuses infinite bounds for it): it gets its full range `[0, MAX]`.
     pub fn unbounded(shape: &[usize]) -> Self {
-        Self::uniform(f64::NEG_INFINITY, f64::INFINITY, shape)
-            .expect("infinite bounds are valid for signed dtypes")
+        let full = |v: T| ArrayD::from_elem(IxDyn(shape), v);
+        let flag = |b: bool| ArrayD::from_elem(IxDyn(shape), b);
+        if T::DTYPE == DType::U8 {
+            Self {
+                low: full(T::zero()),
+                high: full(T::from_f64(T::MAX)),
+                bounded_below: flag(true),
+                bounded_above: flag(true),
+            }
+        } else {
+            let (low, high) = if T::DTYPE.is_float() {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            } else {
+                (T::MIN, T::MAX)
+            };
+            Self {
+                low: full(T::from_f64(low)),
+                high: full(T::from_f64(high)),
+                bounded_below: flag(false),
+                bounded_above: flag(false),
+            }
+        }
     }
 
     /// A box from typed bounds.
@@ -349,6 +370,26 @@ mod tests {
         assert!(BoxSpace::<i8>::uniform(0.0, 300.0, &[2]).is_err());
         assert!(
             BoxSpace::<f32>::new(arr1(&[0.0]).into_dyn(), arr1(&[1.0, 2.0]).into_dyn()).is_err()
+        );
+    }
+
+    #[test]
+    fn unbounded_never_panics() {
+        let u = BoxSpace::<u8>::unbounded(&[2]);
+        assert_eq!((u.low()[[0]], u.high()[[1]]), (0, 255));
+        assert!(u.is_bounded());
+        let i = BoxSpace::<i16>::unbounded(&[1]);
+        assert!(!i.is_bounded());
+        assert_eq!((i.low()[[0]], i.high()[[0]]), (i16::MIN, i16::MAX));
+        let f = BoxSpace::<f32>::unbounded(&[3]);
+        assert!(f.low().iter().all(|v| *v == f32::NEG_INFINITY) && !f.is_bounded());
+        assert_eq!(
+            f,
+            BoxSpace::<f32>::uniform(f64::NEG_INFINITY, f64::INFINITY, &[3]).unwrap()
+        );
+        assert_eq!(
+            i,
+            BoxSpace::<i16>::uniform(f64::NEG_INFINITY, f64::INFINITY, &[1]).unwrap()
         );
     }
 
