@@ -1,152 +1,39 @@
 //! [`PassiveEnvChecker`]: validates every `reset` and `step` against the environment's
-//! spaces and reports violations as typed errors.
+//! spaces and reports violations as typed errors. The checks themselves are the
+//! conformance suite's ([`conformance_tests::check_space`], [`conformance_tests::check_obs`]
+//! and [`conformance_tests::passive`]), the same ones `check_env` runs.
 
-use gym_core::spaces::AnySpace;
-use gym_core::{
-    Env, Error, Frame, Info, InfoValue, RenderMode, ResetOptions, Result, Space, Step, Value,
+use conformance_tests::{
+    Failure, SpaceType, Warning, check_info_types, check_obs, check_render_metadata,
+    check_render_return, check_reward, check_space,
 };
+use gym_core::{Env, Error, Frame, Info, RenderMode, ResetOptions, Result, Space, Step};
 
-/// Info keys with a conventional type, checked on every `reset` and `step`.
-const TYPED_INFO_KEYS: [(&str, &str); 3] = [
-    ("success", "bool"),
-    ("is_success", "bool"),
-    ("TimeLimit.truncated", "bool"),
-];
-
-fn contract(check: &str, message: impl Into<String>) -> Error {
+/// A failed check as an [`Error::Contract`] naming `check`.
+fn contract(check: &str, failure: Failure) -> Error {
     Error::Contract {
         check: check.to_owned(),
-        message: message.into(),
+        message: failure.message,
     }
 }
 
-/// Gymnasium's `check_space` (construction-time assertions): Dict and Tuple spaces must be
-/// non-empty, recursively. Equal Box bounds are a warning.
-fn check_space(space: &AnySpace, kind: &str, warnings: &mut Vec<String>) -> Result<()> {
-    match space {
-        AnySpace::Box(b) => {
-            let (low, high) = b.bounds_f64();
-            if low.iter().zip(high.iter()).any(|(l, h)| l == h) {
-                warnings.push(format!("A Box {kind} space maximum and minimum values are equal. Actual equal coordinates: {b}"));
-            }
-            Ok(())
-        }
-        AnySpace::Dict(d) => {
-            if d.is_empty() {
-                return Err(contract(
-                    "check_space",
-                    format!("An empty Dict {kind} space is not allowed."),
-                ));
-            }
-            d.iter()
-                .try_for_each(|(_, s)| check_space(s, kind, warnings))
-        }
-        AnySpace::Tuple(t) => {
-            if t.is_empty() {
-                return Err(contract(
-                    "check_space",
-                    format!("An empty Tuple {kind} space is not allowed."),
-                ));
-            }
-            t.spaces()
-                .iter()
-                .try_for_each(|s| check_space(s, kind, warnings))
-        }
-        AnySpace::Discrete(_) | AnySpace::MultiDiscrete(_) | AnySpace::MultiBinary(_) => Ok(()),
-    }
-}
-
-/// Gymnasium's `check_obs` dtype warnings: an array whose dtype differs from its Box's.
-fn check_obs_dtypes(space: &AnySpace, obs: &Value, method: &str, warnings: &mut Vec<String>) {
-    match (space, obs) {
-        (AnySpace::Box(b), Value::Array(a))
-            if !b.shape().unwrap_or(&[]).is_empty() && a.dtype() != b.dtype() =>
-        {
-            warnings.push(format!(
-                "The obs returned by the `{method}()` method was expecting numpy array dtype to be {}, actual type: {}",
-                b.dtype(),
-                a.dtype()
-            ));
-        }
-        (AnySpace::Dict(d), Value::Dict(v)) => {
-            for (k, s) in d.iter() {
-                if let Some(x) = v.get(k) {
-                    check_obs_dtypes(s, x, method, warnings);
-                }
-            }
-        }
-        (AnySpace::Tuple(t), Value::Tuple(v)) => {
-            for (s, x) in t.spaces().iter().zip(v) {
-                check_obs_dtypes(s, x, method, warnings);
-            }
-        }
-        _ => {}
-    }
-}
-
-fn check_info(info: &Info, method: &str) -> Result<()> {
-    for (key, kind) in TYPED_INFO_KEYS {
-        if let Some(v) = info.get(key)
-            && v.kind() != kind
-        {
-            return Err(contract(
-                "info",
-                format!(
-                    "`{method}()` info[\"{key}\"] must be a {kind}, got a {}",
-                    v.kind()
-                ),
-            ));
-        }
-    }
-    if let Some(v) = info.get("episode") {
-        let InfoValue::Map(m) = v else {
-            return Err(contract(
-                "info",
-                format!(
-                    "`{method}()` info[\"episode\"] must be a map, got a {}",
-                    v.kind()
-                ),
-            ));
-        };
-        for (key, ok) in [
-            ("r", &["float", "int"][..]),
-            ("l", &["int"][..]),
-            ("t", &["float", "int"][..]),
-        ] {
-            match m.get(key) {
-                Some(x) if ok.contains(&x.kind()) => {}
-                Some(x) => {
-                    return Err(contract(
-                        "info",
-                        format!(
-                            "info[\"episode\"][\"{key}\"] must be numeric, got a {}",
-                            x.kind()
-                        ),
-                    ));
-                }
-                None => {
-                    return Err(contract(
-                        "info",
-                        format!("info[\"episode\"] lacks \"{key}\""),
-                    ));
-                }
-            }
-        }
-    }
-    Ok(())
+fn messages(warnings: Vec<Warning>) -> impl Iterator<Item = String> {
+    warnings.into_iter().map(|w| w.message)
 }
 
 /// A checking layer in the spirit of Gymnasium's `PassiveEnvChecker`, strict where
 /// Gymnasium only warns.
 ///
 /// * Construction: both spaces pass Gymnasium's `check_space` (non-empty Dict and Tuple
-///   spaces, recursively); equal Box bounds are recorded as warnings.
-/// * Every `reset` and `step`: the observation lies in the observation space, the reward is
-///   finite, and conventional info keys have their type (`success`, `is_success`,
-///   `TimeLimit.truncated` bools; `episode` a map of numeric `r`, `l`, `t`). A violation is
-///   an [`Error::Contract`] naming the check.
-/// * First `reset` and first `step`: the observation's dtypes are compared with the space's
-///   (a mismatch that `contains` still accepts is a warning, as in Gymnasium).
+///   spaces, recursively; [`Error::Contract`] naming `check_space`); degenerate Box bounds
+///   are recorded as warnings.
+/// * Every `reset` and `step`: the observation passes `check_obs` (structure, dtype that
+///   casts safely, finite values, within the space; [`Error::Contract`] naming `reset` or
+///   `step`), the reward is finite (`step`), and conventional info keys have their type
+///   (`success`, `is_success`, `TimeLimit.truncated` bools; `episode` a map of numeric `r`,
+///   `l`, `t`; [`Error::Contract`] naming `info`).
+/// * First `reset` and first `step`: `check_obs`'s warnings are recorded (a dtype that
+///   differs from the space's but casts safely, as in Gymnasium).
 /// * `render`: the render mode must be one of `metadata.render_modes` (none without modes),
 ///   `render_fps` must be positive when given; a frame of the wrong kind for the mode is an
 ///   error, a missing frame a warning.
@@ -169,12 +56,13 @@ impl<E: Env> PassiveEnvChecker<E> {
     /// [`Error::Contract`] when a space fails `check_space`.
     pub fn new(env: E) -> Result<Self> {
         let mut warnings = Vec::new();
-        check_space(&env.action_space().to_any(), "action", &mut warnings)?;
-        check_space(
-            &env.observation_space().to_any(),
-            "observation",
-            &mut warnings,
-        )?;
+        for (space, kind) in [
+            (env.action_space().to_any(), SpaceType::Action),
+            (env.observation_space().to_any(), SpaceType::Observation),
+        ] {
+            let found = check_space(&space, kind).map_err(|f| contract("check_space", f))?;
+            warnings.extend(messages(found));
+        }
         Ok(Self {
             env,
             checked_reset: false,
@@ -191,21 +79,10 @@ impl<E: Env> PassiveEnvChecker<E> {
 
     fn check_obs(&mut self, obs: &E::Obs, method: &str, first: bool) -> Result<()> {
         let space = self.env.observation_space();
+        let found = check_obs(&space.to_value(obs), &space.to_any(), method)
+            .map_err(|f| contract(method, f))?;
         if first {
-            check_obs_dtypes(
-                &space.to_any(),
-                &space.to_value(obs),
-                method,
-                &mut self.warnings,
-            );
-        }
-        if !space.contains(obs) {
-            return Err(contract(
-                method,
-                format!(
-                    "The obs returned by the `{method}()` method is not within the observation space"
-                ),
-            ));
+            self.warnings.extend(messages(found));
         }
         Ok(())
     }
@@ -213,55 +90,33 @@ impl<E: Env> PassiveEnvChecker<E> {
     fn check_render(&mut self, frame: &Option<Frame>) -> Result<()> {
         let mode = self.env.render_mode();
         let meta = self.env.metadata();
+        let found = check_render_metadata(meta, mode).map_err(|f| contract("render", f))?;
         if !self.checked_render {
             self.checked_render = true;
             if meta.render_modes.is_empty() {
                 self.warnings.push("No render modes was declared in the environment (env.metadata['render_modes'] is empty)".into());
-            } else {
-                match meta.render_fps {
-                    None => self.warnings.push("No render fps was declared in the environment (env.metadata['render_fps'] is None)".into()),
-                    Some(fps) if fps.is_nan() || fps <= 0.0 => {
-                        return Err(contract("render", format!("render_fps must be positive, got {fps}")));
-                    }
-                    Some(_) => {}
-                }
             }
-        }
-        if let Some(m) = mode
-            && !meta.render_modes.contains(&m)
-        {
-            return Err(contract(
-                "render",
-                format!(
-                    "render mode `{}` is not in metadata.render_modes",
-                    m.as_str()
-                ),
-            ));
+            self.warnings.extend(messages(found));
         }
         match (mode, frame) {
-            (None | Some(RenderMode::Human), None) => Ok(()),
-            (None | Some(RenderMode::Human), Some(_)) => {
+            (None, None) => Ok(()),
+            (None, Some(_)) => {
                 self.warnings
-                    .push("render() returned a frame but the render mode is None or human".into());
+                    .push("render() returned a frame but the render mode is None".into());
                 Ok(())
             }
-            (Some(m), None) => {
-                self.warnings.push(format!(
-                    "render() returned no frame in render mode `{}`",
-                    m.as_str()
-                ));
-                Ok(())
-            }
-            (Some(RenderMode::RgbArray), Some(Frame::Rgb(a))) if a.shape()[2] == 3 => Ok(()),
-            (Some(RenderMode::DepthArray), Some(Frame::Depth(_)))
-            | (Some(RenderMode::Ansi), Some(Frame::Ansi(_))) => Ok(()),
-            (Some(m), Some(_)) => Err(contract(
-                "render",
-                format!(
-                    "render() returned a frame of the wrong kind for `{}`",
-                    m.as_str()
-                ),
-            )),
+            (Some(m), frame) => match check_render_return(m, frame.as_ref()) {
+                None => Ok(()),
+                // Strict where Gymnasium warns: a frame of the wrong kind is an error.
+                Some(w) if frame.is_some() && m != RenderMode::Human => Err(Error::Contract {
+                    check: "render".to_owned(),
+                    message: w.message,
+                }),
+                Some(w) => {
+                    self.warnings.push(w.message);
+                    Ok(())
+                }
+            },
         }
     }
 }
@@ -289,7 +144,7 @@ impl<E: Env> Env for PassiveEnvChecker<E> {
         let first = !self.checked_reset;
         self.checked_reset = true;
         self.check_obs(&obs, "reset", first)?;
-        check_info(&info, "reset")?;
+        check_info_types(&info, "reset").map_err(|f| contract("info", f))?;
         Ok((obs, info))
     }
 
@@ -298,13 +153,8 @@ impl<E: Env> Env for PassiveEnvChecker<E> {
         let first = !self.checked_step;
         self.checked_step = true;
         self.check_obs(&step.observation, "step", first)?;
-        if step.reward.is_nan() {
-            return Err(contract("step", "The reward is a NaN value."));
-        }
-        if step.reward.is_infinite() {
-            return Err(contract("step", "The reward is an inf value."));
-        }
-        check_info(&step.info, "step")?;
+        check_reward(step.reward).map_err(|f| contract("step", f))?;
+        check_info_types(&step.info, "step").map_err(|f| contract("info", f))?;
         Ok(step)
     }
 
@@ -323,7 +173,8 @@ impl_wrapper!(PassiveEnvChecker);
 mod tests {
     use super::*;
     use crate::toy::{CountEnv, ScriptEnv, a32, script_f32, unit_actions};
-    use gym_core::spaces::{BoxSpace, DictSpace, TupleSpace};
+    use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, TupleSpace};
+    use gym_core::Value;
     use gym_core::{ArrayValue, IntoBoxedEnv};
 
     #[test]

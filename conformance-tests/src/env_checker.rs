@@ -10,12 +10,12 @@ use crate::data::{Compare, compact, info_difference, step_difference, value_diff
 use crate::invalid::invalid_actions;
 use crate::obs::check_obs;
 use crate::options::CheckOptions;
+use crate::passive::{check_render_metadata, check_render_return, check_reward};
 use crate::report::{Check, ConformanceError, Failure, Report, Skipped, Warning, WarningKind};
 use crate::sb3::sb3_check_spaces;
 use crate::spaces::{SpaceType, check_space, check_space_limit};
 use gym_core::{
-    AnySpace, BoxedEnv, Env, EnvRng, Frame, Info, RenderMode, ResetOptions, Space, Step, Value,
-    rng_from_seed,
+    AnySpace, BoxedEnv, Env, EnvRng, Info, ResetOptions, Space, Step, Value, rng_from_seed,
 };
 use std::any::{Any, TypeId};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -32,6 +32,7 @@ pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
 }
 
 /// A `Debug` rendering cut to `max` characters.
+#[cfg_attr(not(feature = "prop"), allow(dead_code))]
 pub(crate) fn short_debug(x: &impl std::fmt::Debug, max: usize) -> String {
     let s = format!("{x:?}");
     if s.chars().count() <= max {
@@ -169,20 +170,12 @@ impl<'a, E: Env> Harness<'a, E> {
         let step = self.call(check, &what, |env| env.step(action))?;
         let value = self.env.observation_space().to_value(&step.observation);
         self.validate_obs(check, &what, "step", &value)?;
-        if !step.reward.is_finite() {
-            let kind = if step.reward.is_nan() {
-                "a NaN value"
-            } else {
-                "an inf value"
-            };
-            return Err(Failure::new(
-                Check::RewardFinite,
-                format!(
-                    "The reward is {kind} ({}) (in {check}, after `{what}`)",
-                    step.reward
-                ),
-            ));
-        }
+        check_reward(step.reward).map_err(|f| {
+            Failure::new(
+                f.check,
+                format!("{} (in {check}, after `{what}`)", f.message),
+            )
+        })?;
         let Step {
             observation,
             reward,
@@ -987,71 +980,14 @@ fn run_render<E: Env>(h: &mut Harness<'_, E>, o: &CheckOptions) -> Result<Outcom
     let mode = h.env.render_mode();
     let modes = &metadata.render_modes;
     let names: Vec<&str> = modes.iter().map(|m| m.as_str()).collect();
-    if !modes.is_empty() {
-        match metadata.render_fps {
-            None => h.warn(Warning::new(
-                WarningKind::RenderFpsMissing,
-                "No render fps was declared in the environment (env.metadata['render_fps'] is None or not defined), \
-                 rendering may occur at inconsistent fps.",
-            )),
-            Some(fps) if fps.is_nan() || fps <= 0.0 => {
-                return Err(Failure::new(
-                    C,
-                    format!("Expects the `env.metadata['render_fps']` to be greater than zero, actual value: {fps}"),
-                ));
-            }
-            Some(_) => {}
-        }
-    }
-    match mode {
-        Some(m) if modes.is_empty() => {
-            return Err(Failure::new(
-                C,
-                format!(
-                    "With no render_modes, expects the Env.render_mode to be None, actual value: {}",
-                    m.as_str()
-                ),
-            ));
-        }
-        Some(m) if !modes.contains(&m) => {
-            return Err(Failure::new(
-                C,
-                format!(
-                    "The environment was initialized successfully however with an unsupported render mode. Render mode: {}, \
-                     modes: {names:?}",
-                    m.as_str()
-                ),
-            ));
-        }
-        _ => {}
+    for w in check_render_metadata(&metadata, mode)? {
+        h.warn(w);
     }
     if let Some(m) = mode {
         h.reset(C, Some(o.seed), None)?;
         let frame = h.call(C, "render()", |env| env.render())?;
-        let problem = match (m, &frame) {
-            (RenderMode::Human, None) => None,
-            (RenderMode::Human, Some(_)) => {
-                Some("Human rendering should return `None`, got a frame".to_owned())
-            }
-            (RenderMode::RgbArray, Some(Frame::Rgb(a))) if a.shape()[2] == 3 => None,
-            (RenderMode::RgbArray, Some(Frame::Rgb(a))) => Some(format!(
-                "RGB-array rendering should return a numpy array in which the last axis has three dimensions, got {}",
-                a.shape()[2]
-            )),
-            (RenderMode::RgbArray, _) => {
-                Some("RGB-array rendering should return an RGB frame".to_owned())
-            }
-            (RenderMode::DepthArray, Some(Frame::Depth(_))) => None,
-            (RenderMode::DepthArray, _) => {
-                Some("Depth-array rendering should return a depth frame".to_owned())
-            }
-            (RenderMode::Ansi, Some(Frame::Ansi(_))) => None,
-            (RenderMode::Ansi, _) => {
-                Some("ANSI/ASCII rendering should produce a string".to_owned())
-            }
-        };
-        if let Some(p) = problem {
-            h.warn(Warning::new(WarningKind::RenderReturn, p));
+        if let Some(w) = check_render_return(m, frame.as_ref()) {
+            h.warn(w);
         }
     }
     if modes.iter().any(|m| Some(*m) != mode) {

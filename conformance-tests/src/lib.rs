@@ -7,13 +7,16 @@
 //!   after the end of an episode is refused) and, optionally, Stable-Baselines3's extra
 //!   checks. Failures name the [`Check`] they broke and say what was observed; warnings
 //!   are reported apart, with Gymnasium's wording.
-//! * [`prop`] runs property-based checks with proptest over random seeds and action
+//! * [`passive`] holds Gymnasium's passive checks on single values, shared with the
+//!   `PassiveEnvChecker` wrapper of the `adapters` crate (with [`check_space`] and
+//!   [`check_obs`]), so the wrapper and `check_env` apply one checker.
+//! * [`prop`] (feature `prop`, on by default) runs property-based checks with proptest over random seeds and action
 //!   sequences, shrinking to a minimal failing sequence: observations stay in their
 //!   space, replays are bit-identical, state get/set round-trips, time limits truncate
 //!   at exactly N, invalid actions are rejected without side effects, spaces sample and
 //!   flatten correctly.
 //! * [`toy`] holds small, correct environments and [`broken`] deliberately broken ones,
-//!   one per defect, each caught by the check meant for it.
+//!   one per defect, each caught by the check meant for it (both with the `prop` feature).
 //!
 //! ```
 //! use conformance_tests::{check_env, Check, CheckOptions, toy::PointMass};
@@ -48,16 +51,20 @@
 //!   warnings (`seed()` method, `return_info`, the 4-tuple step API) and the default-seed
 //!   warning; and the JAX / PyTorch conversions.
 
+#[cfg(feature = "prop")]
 pub mod broken;
 pub mod data;
 pub mod env_checker;
 pub mod invalid;
 pub mod obs;
 pub mod options;
+pub mod passive;
+#[cfg(feature = "prop")]
 pub mod prop;
 pub mod report;
 pub mod sb3;
 pub mod spaces;
+#[cfg(feature = "prop")]
 pub mod toy;
 
 pub use data::{Compare, data_equivalence};
@@ -69,6 +76,8 @@ pub use env_checker::{
 };
 pub use obs::check_obs;
 pub use options::{CheckOptions, ResetOptionsProbe};
+pub use passive::{check_info_types, check_render_metadata, check_render_return, check_reward};
+#[cfg(feature = "prop")]
 pub use prop::{
     EpisodeEndSpec, PropConfig, PropFailure, PropReport, Property, StateHook, prop_check_env,
 };
