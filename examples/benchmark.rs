@@ -8,14 +8,16 @@
 //!
 //! ```text
 //! cargo run --release -p examples --example benchmark -- [--task Lift] [--robot Sawyer]
-//!     [--controller OSC_POSITION] [--robots] [--controllers] [--seconds 3]
-//!     [--max-envs 4] [--rounds 5] [--only steps|vector] [--json bench.json]
+//!     [--controller OSC_POSITION] [--robots] [--controllers] [--cpu-time] [--seconds 3]
+//!     [--max-envs 4] [--rounds 5] [--only steps|cost|vector] [--json bench.json]
 //! ```
 //!
 //! `--robot` and `--controller` put every task on that robot (default: the Panda) and that
 //! arm controller (robosuite's part config file for it; default: the robot's own config).
 //! `--robots` measures the step figures of Lift on each of the seven single-arm robots,
-//! `--controllers` those of Lift on the Panda with each arm controller.
+//! `--controllers` those of Lift on the Panda with each arm controller. `--cpu-time` counts
+//! one env's steps (raw, GymWrapper, physics only) per CPU-second of its thread instead of
+//! per wall-clock second: on a machine that other work shares, that is what one core gives.
 //!
 //! Figures are wall-clock rates: run it on an otherwise idle machine. The step rates
 //! (env, GymWrapper, physics only) and the vector figures are each interleaved over
@@ -37,13 +39,15 @@ enum Only {
     Steps,
     /// Vector-env scaling.
     Vector,
-    /// One env's steps/s beside the physics-only rate of its model (`--robots`,
-    /// `--controllers`).
+    /// One env's steps/s beside the physics-only rate of its model, reset time and
+    /// memory, without the vector figures (`--only cost`, `--robots`, `--controllers`).
     Cost,
 }
 
 struct Args {
     cases: Vec<Case>,
+    /// One env's rates per CPU-second of its thread rather than per second.
+    cpu_time: bool,
     seconds: f64,
     max_envs: usize,
     rounds: usize,
@@ -60,6 +64,7 @@ fn parse_args() -> Args {
     let (mut robots, mut controllers) = (false, false);
     let mut args = Args {
         cases: Vec::new(),
+        cpu_time: false,
         seconds: 3.0,
         max_envs: std::thread::available_parallelism()
             .map_or(2, |n| n.get())
@@ -80,6 +85,10 @@ fn parse_args() -> Args {
                 controllers = true;
                 continue;
             }
+            "--cpu-time" => {
+                args.cpu_time = true;
+                continue;
+            }
             _ => {}
         }
         let value = it.next().unwrap_or_default();
@@ -94,7 +103,8 @@ fn parse_args() -> Args {
             "--only" => match value.as_str() {
                 "steps" => args.only = Some(Only::Steps),
                 "vector" => args.only = Some(Only::Vector),
-                other => eprintln!("benchmark: --only takes steps or vector, not {other}"),
+                "cost" => args.only = Some(Only::Cost),
+                other => eprintln!("benchmark: --only takes steps, cost or vector, not {other}"),
             },
             other => eprintln!("benchmark: ignoring unknown argument {other}"),
         }
@@ -128,6 +138,39 @@ fn parse_args() -> Args {
             .collect();
     }
     args
+}
+
+/// CPU time this thread has run, from `/proc/thread-self/schedstat` (Linux), in seconds.
+fn thread_cpu_seconds() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: u64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns as f64 * 1e-9)
+}
+
+/// Runs `step` until `budget` of wall-clock time has passed; returns calls per CPU-second
+/// of this thread (what one core gives, whatever else shares the machine), or per second
+/// where the CPU time cannot be read.
+fn cpu_rate(budget: Duration, mut step: impl FnMut() -> Result<()>) -> Result<f64> {
+    let Some(cpu0) = thread_cpu_seconds() else {
+        return rate(budget, step);
+    };
+    let start = Instant::now();
+    let mut n = 0u64;
+    while start.elapsed() < budget {
+        step()?;
+        n += 1;
+    }
+    let cpu = thread_cpu_seconds().map_or(0.0, |c| c - cpu0);
+    Ok(if cpu > 0.0 { n as f64 / cpu } else { f64::NAN })
+}
+
+/// [`cpu_rate`] with `cpu_time`, else [`rate`].
+fn one_env_rate(cpu_time: bool, budget: Duration, step: impl FnMut() -> Result<()>) -> Result<f64> {
+    if cpu_time {
+        cpu_rate(budget, step)
+    } else {
+        rate(budget, step)
+    }
 }
 
 /// Runs `step` until `budget` has passed; returns calls per second.
@@ -288,7 +331,7 @@ fn bench_task(task: &Case, args: &Args) -> Result<serde_json::Value> {
     if args.only != Some(Only::Vector) {
         step_rates(task, args, &mut rng, &mut figures)?;
     }
-    if args.only.is_none() {
+    if matches!(args.only, None | Some(Only::Cost)) {
         reset_and_memory(task, &mut rng, &mut figures)?;
     }
     if args.only.is_none() || args.only == Some(Only::Vector) {
@@ -320,14 +363,14 @@ fn step_rates(
     gym.reset(Some(0), None)?;
     let (mut env_rates, mut gym_rates, mut physics_rates) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..args.rounds {
-        env_rates.push(rate(window, || {
+        env_rates.push(one_env_rate(args.cpu_time, window, || {
             let a = env.action_space().sample(rng);
             if env.step(&a)?.done() {
                 env.reset(None, None)?;
             }
             Ok(())
         })?);
-        gym_rates.push(rate(window, || {
+        gym_rates.push(one_env_rate(args.cpu_time, window, || {
             let a = gym.action_space().sample(rng);
             if gym.step(&a)?.done() {
                 gym.reset(None, None)?;
@@ -335,7 +378,7 @@ fn step_rates(
             Ok(())
         })?);
         if let Some(p) = &mut physics {
-            physics_rates.push(rate(window, || p.step())?);
+            physics_rates.push(one_env_rate(args.cpu_time, window, || p.step())?);
         }
     }
     figures["substeps"] = json!(env.substeps());

@@ -173,8 +173,8 @@ impl_wrapper!(PassiveEnvChecker);
 mod tests {
     use super::*;
     use crate::toy::{CountEnv, ScriptEnv, a32, script_f32, unit_actions};
-    use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, TupleSpace};
     use gym_core::Value;
+    use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, TupleSpace};
     use gym_core::{ArrayValue, IntoBoxedEnv};
 
     #[test]
