@@ -92,6 +92,43 @@ impl Scene {
         doc.to_xml()
     }
 
+    /// The scene with every texture (read from an image file or generated) replaced by a
+    /// 1×1 flat grey texture of the same name and type: for environments that never render,
+    /// whose physics textures do not touch, it saves the texture images (Lift: 20 MiB of its
+    /// 61 MiB per environment). Names, counts and every physical quantity stay as they are.
+    pub fn without_texture_images(&self) -> Self {
+        const IMAGE_ATTRIBUTES: [&str; 16] = [
+            "file",
+            "fileright",
+            "fileleft",
+            "fileup",
+            "filedown",
+            "filefront",
+            "fileback",
+            "gridsize",
+            "gridlayout",
+            "content_type",
+            "builtin",
+            "rgb2",
+            "mark",
+            "markrgb",
+            "random",
+            "nchannel",
+        ];
+        let mut doc = self.doc.clone();
+        let asset = doc.section_mut("asset");
+        for texture in tree::children_mut(asset).filter(|e| e.name == "texture") {
+            for a in IMAGE_ATTRIBUTES {
+                tree::remove_attr(texture, a);
+            }
+            set_attr(texture, "builtin", "flat");
+            set_attr(texture, "width", "1");
+            set_attr(texture, "height", "1");
+            set_attr(texture, "rgb1", "0.5 0.5 0.5");
+        }
+        Self { doc }
+    }
+
     /// Compiles the scene with an arena of `memory` bytes (cached: a scene compiled before is
     /// copied).
     ///
