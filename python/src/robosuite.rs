@@ -187,9 +187,14 @@ impl PyRobosuiteEnv {
 
     /// Sets the flat simulator state `[time, qpos, qvel]` and runs `mj_forward`.
     fn set_state(&self, state: &Bound<'_, PyAny>) -> PyResult<()> {
-        let flat = array_from_py(state)?
-            .cast(gym_core::DType::F64)
-            .to_f64_vec();
+        let array = array_from_py(state)?;
+        if array.shape().len() != 1 {
+            return Err(PyValueError::new_err(format!(
+                "invalid argument `state`: expected a flat (1-D) array [time, qpos, qvel], got shape {:?}",
+                array.shape()
+            )));
+        }
+        let flat = array.cast(gym_core::DType::F64).to_f64_vec();
         self.lock().set_state(&flat).map_err(to_pyerr)
     }
 
