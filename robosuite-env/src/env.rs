@@ -34,7 +34,7 @@ pub enum ModelSource {
 /// (`mjSTATE_INTEGRATION`), the controllers' goals and gripper commands, the task's
 /// randomised parameters and observation cache, the last observation and the episode
 /// counter. Made by [`RobosuiteEnv::snapshot`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnvSnapshot {
     physics: Vec<f64>,
     robots: Vec<RobotState>,
@@ -44,7 +44,7 @@ pub struct EnvSnapshot {
     phase: Phase,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 enum Phase {
     NeedsReset,
     Running,
@@ -454,6 +454,19 @@ impl RobosuiteEnv {
             timestep: self.timestep,
             phase: self.phase,
         }
+    }
+
+    /// The environment RNG and whether it was seeded (see [`RobosuiteEnv::set_rng`]).
+    pub fn rng_state(&self) -> (EnvRng, bool) {
+        (self.rng.clone(), self.rng_seeded)
+    }
+
+    /// Replaces the environment RNG (with [`RobosuiteEnv::restore`], a copy continues the
+    /// original's episode bit for bit, resets included). `seeded = false` draws a fresh
+    /// entropy seed at the next unseeded reset.
+    pub fn set_rng(&mut self, rng: EnvRng, seeded: bool) {
+        self.rng = rng;
+        self.rng_seeded = seeded;
     }
 
     /// Restores a snapshot taken from this environment.

@@ -24,6 +24,7 @@
 //! * [`observables`]: robosuite's observables and its ordered observation dict;
 //! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and
 //!   the tasks;
+//! * [`saved`]: an env's whole run-time state as text (pickling, deep copies);
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
 //!   [`register_envs`]).
 
@@ -37,6 +38,7 @@ pub mod models;
 pub mod observables;
 pub mod registry;
 pub mod robots;
+pub mod saved;
 pub mod sim;
 pub mod tasks;
 

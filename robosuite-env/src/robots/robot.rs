@@ -18,7 +18,7 @@ use std::ops::Range;
 
 /// The controller state of a robot, for snapshots: per arm, the arm controller's state and
 /// the gripper command.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RobotState {
     /// Per arm: the arm controller's [`ArmController::state`].
     pub arms: Vec<Vec<f64>>,
