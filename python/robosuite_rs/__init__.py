@@ -214,6 +214,19 @@ class RobosuiteEnv:
     def __init__(self, native: Any) -> None:
         """Wraps ``native`` (a ``_native.RobosuiteEnv``); use :func:`make` instead."""
         self._native = native
+        self._make_args: tuple[str, dict[str, Any], str | None] | None = None
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickling and ``copy.deepcopy``: the configuration plus the whole run-time state
+        (simulator, controllers, task, episode counter, RNG), so that the copy continues
+        bit-identically. A ``model_xml`` scene is re-read from its path.
+
+        Raises:
+            TypeError: for an env not made by :func:`make`.
+        """
+        if self._make_args is None:
+            raise TypeError("only envs made by robosuite_rs.make can be pickled or copied")
+        return (_restore_env, (self._make_args, self._native.save_env_state()))
 
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
@@ -349,8 +362,20 @@ def make(
         TypeError: for an unknown keyword argument.
     """
     config = _config_kwargs(env_name, robots, kwargs)
-    native = _native.make_robosuite(env_name, config, None if model_xml is None else str(model_xml))
-    return RobosuiteEnv(native)
+    model = None if model_xml is None else str(model_xml)
+    native = _native.make_robosuite(env_name, config, model)
+    env = RobosuiteEnv(native)
+    env._make_args = (env_name, config, model)
+    return env
+
+
+def _restore_env(make_args: tuple[str, dict[str, Any], str | None], state: str) -> "RobosuiteEnv":
+    """An env made with ``make_args`` and given the run-time ``state`` (for ``pickle``)."""
+    native = _native.make_robosuite(*make_args)
+    native.load_env_state(state)
+    env = RobosuiteEnv(native)
+    env._make_args = make_args
+    return env
 
 
 def scene_xml(env_name: str, robots: str | list[str] = "Panda", **kwargs: Any) -> str:

@@ -131,7 +131,7 @@ pub(crate) fn check_batch<S: BatchSpace>(
         let at = values.iter().position(|v| !v.is_finite()).unwrap_or(0);
         let per_row = (values.len() / rows.max(1)).max(1);
         return Err(Error::InvalidAction(format!(
-            "actions[{}] holds a non-finite value ({}); nothing was stepped",
+            "actions[{}] holds a value that is not finite ({}); nothing was stepped",
             at / per_row,
             values[at]
         )));
