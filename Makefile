@@ -2,6 +2,7 @@
 #
 #   make demo   a Lift rollout that prints what happened
 #   make test   every test (Rust and Python)
+#   make fuzz   the fuzz suite, longer
 #
 # Both need only a Rust toolchain, python3 with pip, and pkg-config (installed with
 # apt-get when missing and possible). MuJoCo 3.17.0 is fetched by the build itself
@@ -10,7 +11,7 @@
 CARGO ?= cargo
 PYTHON ?= python3
 
-.PHONY: demo test test-rust test-python bench fmt lint doc prerequisites clean
+.PHONY: demo test test-rust test-python fuzz bench fmt lint doc prerequisites clean
 
 demo: prerequisites
 	$(CARGO) run --release -p examples --example lift_demo
@@ -23,6 +24,12 @@ test-rust: prerequisites
 
 test-python: prerequisites
 	bash python/scripts/test.sh
+
+# The fuzz suite at length (README, "Fuzzing"): 256 proptest cases per Rust property and 300
+# Hypothesis examples per Python property; `make test` runs the same suite briefly.
+fuzz: prerequisites
+	FUZZ_CASES=256 $(CARGO) test --release -p robosuite-env --test fuzz
+	FUZZ_EXAMPLES=300 bash python/scripts/test.sh -k fuzz
 
 bench: prerequisites
 	$(CARGO) run --release -p examples --example benchmark -- --json bench.json

@@ -53,7 +53,7 @@ impl PhysicsOnly {
                 let bias = self.sim.data().qfrc_bias()[dof];
                 self.sim.data_mut().ctrl_mut()[actuator] = bias;
             }
-            self.sim.step();
+            self.sim.step()?;
         }
         self.steps += 1;
         if self.steps.is_multiple_of(200) {

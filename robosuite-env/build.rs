@@ -29,6 +29,7 @@ fn main() {
         return;
     }
     fetch_robosuite_assets();
+    build_guard();
     let lib_dir = match std::env::var_os("MUJOCO_DYNAMIC_LINK_DIR") {
         Some(dir) => user_library(PathBuf::from(dir)),
         None => fetched_library(),
@@ -43,6 +44,17 @@ fn main() {
         "cargo::rustc-env=ROBOSUITE_MUJOCO_LIB_DIR={}",
         lib_dir.display()
     );
+}
+
+/// Compiles the C shim that turns MuJoCo's fatal errors into error codes
+/// (`csrc/guard.c`, explained in `src/sim/guard.rs`).
+fn build_guard() {
+    println!("cargo::rerun-if-changed=csrc/guard.c");
+    cc::Build::new()
+        .file("csrc/guard.c")
+        .std("c11")
+        .warnings(true)
+        .compile("robosuite_guard");
 }
 
 /// Checks a library folder the user chose.

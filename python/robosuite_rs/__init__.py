@@ -20,6 +20,7 @@ from __future__ import annotations
 import mujoco as _mujoco  # noqa: F401  (imported for its side effect)
 
 import json
+import operator
 import math
 from collections import OrderedDict
 from os import PathLike
@@ -213,6 +214,19 @@ class RobosuiteEnv:
     def __init__(self, native: Any) -> None:
         """Wraps ``native`` (a ``_native.RobosuiteEnv``); use :func:`make` instead."""
         self._native = native
+        self._make_args: tuple[str, dict[str, Any], str | None] | None = None
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickling and ``copy.deepcopy``: the configuration plus the whole run-time state
+        (simulator, controllers, task, episode counter, RNG), so that the copy continues
+        bit-identically. A ``model_xml`` scene is re-read from its path.
+
+        Raises:
+            TypeError: for an env not made by :func:`make`.
+        """
+        if self._make_args is None:
+            raise TypeError("only envs made by robosuite_rs.make can be pickled or copied")
+        return (_restore_env, (self._make_args, self._native.save_env_state()))
 
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
@@ -309,7 +323,8 @@ class RobosuiteEnv:
         """Sets the flat simulator state ``[time, qpos, qvel]`` (runs ``mj_forward``).
 
         Raises:
-            ValueError: for a wrong length or a non-finite value.
+            ValueError: for a state that is not a flat array of the right length, or with a
+                non-finite value or a position or velocity beyond 1e6 in magnitude.
         """
         self._native.set_state(state)
 
@@ -347,8 +362,20 @@ def make(
         TypeError: for an unknown keyword argument.
     """
     config = _config_kwargs(env_name, robots, kwargs)
-    native = _native.make_robosuite(env_name, config, None if model_xml is None else str(model_xml))
-    return RobosuiteEnv(native)
+    model = None if model_xml is None else str(model_xml)
+    native = _native.make_robosuite(env_name, config, model)
+    env = RobosuiteEnv(native)
+    env._make_args = (env_name, config, model)
+    return env
+
+
+def _restore_env(make_args: tuple[str, dict[str, Any], str | None], state: str) -> "RobosuiteEnv":
+    """An env made with ``make_args`` and given the run-time ``state`` (for ``pickle``)."""
+    native = _native.make_robosuite(*make_args)
+    native.load_env_state(state)
+    env = RobosuiteEnv(native)
+    env._make_args = make_args
+    return env
 
 
 def scene_xml(env_name: str, robots: str | list[str] = "Panda", **kwargs: Any) -> str:
@@ -359,6 +386,17 @@ def scene_xml(env_name: str, robots: str | list[str] = "Panda", **kwargs: Any) -
         ValueError: as :func:`make`.
     """
     return _native.scene_xml(env_name, _config_kwargs(env_name, robots, kwargs))
+
+
+def _count(name: str, value: Any) -> int:
+    """``value`` as an int if it is an integer (Python or NumPy), else ``TypeError``: a
+    float such as ``2.7`` is never truncated."""
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be an integer, got {value!r}")
+    try:
+        return operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name} must be an integer, got {value!r}") from None
 
 
 def make_vec(
@@ -380,15 +418,17 @@ def make_vec(
 
     Raises:
         ValueError: as :func:`make`, and for ``num_envs < 1``.
+        TypeError: for a ``num_envs`` that is not an integer.
     """
     from .vector import RustVectorEnv
 
-    if int(num_envs) < 1:
+    num_envs = _count("num_envs", num_envs)
+    if num_envs < 1:
         raise ValueError(f"num_envs must be at least 1, got {num_envs}")
     config = _config_kwargs(env_name, robots, kwargs)
     native = _native.make_robosuite_vec(
         env_name,
-        int(num_envs),
+        num_envs,
         config,
         None if keys is None else list(keys),
         bool(flatten_obs),
@@ -418,18 +458,21 @@ def make_pool(
 
     Raises:
         ValueError: as :func:`make`, and for ``num_envs < 1`` or a bad ``batch_size``.
+        TypeError: for a ``num_envs`` or ``batch_size`` that is not an integer.
     """
     from .pool import EnvPool
 
-    if int(num_envs) < 1:
+    num_envs = _count("num_envs", num_envs)
+    batch_size = _count("batch_size", batch_size)
+    if num_envs < 1:
         raise ValueError(f"num_envs must be at least 1, got {num_envs}")
-    if not 1 <= int(batch_size) <= int(num_envs):
+    if not 1 <= batch_size <= num_envs:
         raise ValueError(f"batch_size must be in 1..{num_envs}, got {batch_size}")
     config = _config_kwargs(env_name, robots, kwargs)
     native = _native.make_robosuite_pool(
         env_name,
-        int(num_envs),
-        int(batch_size),
+        num_envs,
+        batch_size,
         config,
         None if keys is None else list(keys),
         bool(flatten_obs),

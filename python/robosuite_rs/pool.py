@@ -74,10 +74,16 @@ class EnvPool:
         """Gives the envs ``env_id`` (one per row of ``actions``) their next actions.
 
         Raises:
-            ValueError: for an id that is unknown, repeated or still pending, or malformed
-                actions; nothing is sent then.
+            ValueError: for an id that is unknown, repeated or still pending, or actions
+                that are not exactly one finite row per id; nothing is sent then.
+            TypeError: for ids that are not integers (``0.5`` is never truncated).
         """
-        self._native.send(actions, [int(i) for i in np.asarray(env_id).reshape(-1)])
+        ids = np.asarray(env_id)
+        if ids.ndim > 1 or (ids.size and ids.dtype.kind not in "iu"):
+            raise TypeError(
+                f"env_id must be an integer id or a 1-D sequence of integer ids, got {env_id!r}"
+            )
+        self._native.send(actions, [int(i) for i in ids.reshape(-1)])
 
     def reset(self, *, seed: int | list[int | None] | None = None) -> tuple[Any, dict[str, Any]]:
         """``async_reset`` then ``recv``: the first ``batch_size`` reset observations."""

@@ -109,6 +109,11 @@ class GymWrapper(RustEnv):
         self.metadata = {"render_modes": [], "render_fps": env.control_freq}
         self.name = env.name
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickling and ``copy.deepcopy``: a GymWrapper over a copy of the wrapped env (see
+        :meth:`robosuite_rs.RobosuiteEnv.__reduce__`)."""
+        return (type(self), (self.env, self.keys, self.flatten_obs))
+
     @staticmethod
     def _default_keys(env: RobosuiteEnv) -> list[str]:
         keys = env.observation_keys()

@@ -133,10 +133,12 @@ fn py_to_info_value(key: &str, v: &Bound<'_, PyAny>) -> PyResult<InfoValue> {
 }
 
 /// Any array-like (NumPy array, list, scalar) as an [`ArrayValue`] of its NumPy dtype
-/// (`bool` becomes `int8`, other integer types `int64`, other float types `float64`).
+/// (`bool` becomes `int8`, other integer types `int64` by value, other float types
+/// `float64`).
 ///
 /// # Errors
-/// `ValueError` for objects NumPy cannot turn into a numeric array.
+/// `ValueError` for objects NumPy cannot turn into a numeric array, and for unsigned values
+/// above `i64::MAX`.
 pub fn array_from_py(obj: &Bound<'_, PyAny>) -> PyResult<ArrayValue> {
     let py = obj.py();
     let np = py.import("numpy")?;
@@ -150,7 +152,19 @@ pub fn array_from_py(obj: &Bound<'_, PyAny>) -> PyResult<ArrayValue> {
         .unwrap_or(b'O');
     let target = match kind {
         b'b' => "int8",
-        b'i' | b'u' => "int64",
+        b'i' => "int64",
+        // By value: an unsigned value above int64's range is rejected, never wrapped.
+        b'u' => {
+            if arr.getattr("size")?.extract::<usize>()? > 0 {
+                let max: u64 = arr.call_method0("max")?.extract()?;
+                if max > i64::MAX as u64 {
+                    return Err(PyValueError::new_err(format!(
+                        "invalid value: the unsigned value {max} does not fit int64"
+                    )));
+                }
+            }
+            "int64"
+        }
         b'f' => "float64",
         _ => {
             return Err(PyValueError::new_err(format!(

@@ -29,6 +29,8 @@ pub mod shared;
 mod convert;
 #[cfg(feature = "python")]
 mod errors;
+#[cfg(feature = "python")]
+mod fork;
 #[cfg(feature = "module")]
 mod module;
 #[cfg(feature = "python")]

@@ -3,6 +3,7 @@
 
 use crate::convert::{py_to_value, space_spec, value_into_py};
 use crate::errors::to_pyerr;
+use crate::fork::ForkAwareMutex;
 use crate::pyenv::{extract_seeds, metadata_into_py, vector_info_into_py};
 use adapters::{BatchSpace, ThreadEnvPool};
 use gym_core::{AnySpace, BoxedEnv, Metadata};
@@ -10,14 +11,14 @@ use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::sync::{Mutex, MutexGuard, PoisonError};
+use std::sync::MutexGuard;
 
 /// A pool of environments stepped asynchronously on Rust threads with the GIL released:
 /// `recv` returns the first `batch_size` to finish (their ids in `info["env_id"]`), `send`
 /// gives those their next actions.
 #[pyclass(name = "NativeEnvPool", module = "robosuite_rs._native")]
 pub struct PyEnvPool {
-    pool: Mutex<ThreadEnvPool<BoxedEnv>>,
+    pool: ForkAwareMutex<ThreadEnvPool<BoxedEnv>>,
     observation_space: AnySpace,
     action_space: AnySpace,
     batched_action_space: AnySpace,
@@ -45,7 +46,7 @@ impl PyEnvPool {
         let action_space = pool.single_action_space().clone();
         let batched_action_space = action_space.batch_space(batch_size).map_err(to_pyerr)?;
         Ok(Self {
-            pool: Mutex::new(pool),
+            pool: ForkAwareMutex::new(pool),
             observation_space,
             action_space,
             batched_action_space,
@@ -53,8 +54,8 @@ impl PyEnvPool {
         })
     }
 
-    fn lock(&self) -> MutexGuard<'_, ThreadEnvPool<BoxedEnv>> {
-        self.pool.lock().unwrap_or_else(PoisonError::into_inner)
+    fn lock(&self) -> gym_core::Result<MutexGuard<'_, ThreadEnvPool<BoxedEnv>>> {
+        self.pool.lock()
     }
 }
 
@@ -71,14 +72,14 @@ type RecvPy<'py> = (
 impl PyEnvPool {
     /// The number of environments.
     #[getter]
-    fn num_envs(&self) -> usize {
-        self.lock().num_envs()
+    fn num_envs(&self) -> PyResult<usize> {
+        Ok(self.lock().map_err(to_pyerr)?.num_envs())
     }
 
     /// How many environments each `recv` returns.
     #[getter]
-    fn batch_size(&self) -> usize {
-        self.lock().batch_size()
+    fn batch_size(&self) -> PyResult<usize> {
+        Ok(self.lock().map_err(to_pyerr)?.batch_size())
     }
 
     /// Queues a reset of every environment (an integer seed gives env `i` `seed + i`; a
@@ -86,7 +87,7 @@ impl PyEnvPool {
     #[pyo3(signature = (seed=None))]
     fn async_reset(&self, py: Python<'_>, seed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
         let seeds = extract_seeds(seed)?;
-        py.detach(|| self.lock().reset(seeds)).map_err(to_pyerr)
+        py.detach(|| self.lock()?.reset(seeds)).map_err(to_pyerr)
     }
 
     /// `recv() -> (obs, rewards, terminations, truncations, info)` for the first
@@ -94,7 +95,7 @@ impl PyEnvPool {
     fn recv<'py>(&self, py: Python<'py>) -> PyResult<RecvPy<'py>> {
         let (obs, rewards, terms, truncs, ids, info) = py
             .detach(|| {
-                let mut pool = self.lock();
+                let mut pool = self.lock()?;
                 pool.recv().map(|s| {
                     (
                         s.observations.clone(),
@@ -129,7 +130,7 @@ impl PyEnvPool {
                     .map_err(|_| PyValueError::new_err(format!("env_id {i} is negative")))
             })
             .collect::<PyResult<Vec<_>>>()?;
-        py.detach(|| self.lock().send(&actions, &ids))
+        py.detach(|| self.lock()?.send(&actions, &ids))
             .map_err(to_pyerr)
     }
 
@@ -150,7 +151,12 @@ impl PyEnvPool {
 
     /// Closes every environment and joins the worker threads; calling it again does
     /// nothing.
+    /// In a forked child whose copy was locked at the fork it does nothing.
     fn close(&self, py: Python<'_>) {
-        py.detach(|| self.lock().close());
+        py.detach(|| {
+            if let Ok(mut pool) = self.lock() {
+                pool.close();
+            }
+        });
     }
 }

@@ -6,6 +6,7 @@ use crate::convert::{
     array_into_py, info_into_py, py_to_info, py_to_value, space_spec, value_into_py,
 };
 use crate::errors::to_pyerr;
+use crate::fork::ForkAwareMutex;
 use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
 use gym_core::{AnySpace, BoxedEnv, Info, Metadata};
 use numpy::PyArray1;
@@ -156,7 +157,7 @@ impl PyEnv {
 /// `_key` masks.
 #[pyclass(name = "NativeVecEnv", module = "robosuite_rs._native")]
 pub struct PyVecEnv {
-    vec: Mutex<ThreadVectorEnv<BoxedEnv>>,
+    vec: ForkAwareMutex<ThreadVectorEnv<BoxedEnv>>,
     observation_space: AnySpace,
     action_space: AnySpace,
     batched_action_space: AnySpace,
@@ -181,12 +182,12 @@ impl PyVecEnv {
             batched_action_space: vec.action_space().clone(),
             metadata: vec.metadata().clone(),
             num_envs: vec.num_envs(),
-            vec: Mutex::new(vec),
+            vec: ForkAwareMutex::new(vec),
         })
     }
 
-    fn lock(&self) -> MutexGuard<'_, ThreadVectorEnv<BoxedEnv>> {
-        self.vec.lock().unwrap_or_else(PoisonError::into_inner)
+    fn lock(&self) -> gym_core::Result<MutexGuard<'_, ThreadVectorEnv<BoxedEnv>>> {
+        self.vec.lock()
     }
 }
 
@@ -277,7 +278,7 @@ impl PyVecEnv {
         let options = options.map(py_to_info).transpose()?;
         let (obs, info) = py
             .detach(|| {
-                let mut vec = self.lock();
+                let mut vec = self.lock()?;
                 vec.reset(seeds, options.as_ref())
                     .map(|(o, i)| (o.clone(), i))
             })
@@ -294,7 +295,7 @@ impl PyVecEnv {
         let actions = py_to_value(actions, &self.batched_action_space)?;
         let (obs, rewards, terms, truncs, info) = py
             .detach(|| {
-                let mut vec = self.lock();
+                let mut vec = self.lock()?;
                 vec.step(&actions).map(|s| {
                     (
                         s.observations.clone(),
@@ -332,8 +333,13 @@ impl PyVecEnv {
 
     /// Closes every environment and joins the worker threads; calling it again does
     /// nothing.
+    /// In a forked child whose copy was locked at the fork it does nothing.
     fn close(&self, py: Python<'_>) {
-        py.detach(|| self.lock().close());
+        py.detach(|| {
+            if let Ok(mut vec) = self.lock() {
+                vec.close();
+            }
+        });
     }
 }
 

@@ -12,6 +12,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use robosuite_env::RobosuiteEnv;
+use robosuite_env::saved::SavedEnv;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 /// A robosuite environment as robosuite's Python API sees it. The Python class
@@ -187,10 +188,28 @@ impl PyRobosuiteEnv {
 
     /// Sets the flat simulator state `[time, qpos, qvel]` and runs `mj_forward`.
     fn set_state(&self, state: &Bound<'_, PyAny>) -> PyResult<()> {
-        let flat = array_from_py(state)?
-            .cast(gym_core::DType::F64)
-            .to_f64_vec();
+        let array = array_from_py(state)?;
+        if array.shape().len() != 1 {
+            return Err(PyValueError::new_err(format!(
+                "invalid argument `state`: expected a flat (1-D) array [time, qpos, qvel], got shape {:?}",
+                array.shape()
+            )));
+        }
+        let flat = array.cast(gym_core::DType::F64).to_f64_vec();
         self.lock().set_state(&flat).map_err(to_pyerr)
+    }
+
+    /// The whole run-time state (episode snapshot and RNG) as JSON text, for pickling and
+    /// deep copies (see `robosuite_env::saved`).
+    fn save_env_state(&self) -> PyResult<String> {
+        SavedEnv::of(&self.lock()).to_json().map_err(to_pyerr)
+    }
+
+    /// Restores [`save_env_state`](Self::save_env_state)'s text into an env made with the
+    /// same configuration; it then continues bit-identically.
+    fn load_env_state(&self, text: &str) -> PyResult<()> {
+        let saved = SavedEnv::from_json(text).map_err(to_pyerr)?;
+        saved.apply(&mut self.lock()).map_err(to_pyerr)
     }
 
     /// `{"render_modes": [], "render_fps": control_freq}`.

@@ -69,12 +69,14 @@ def test_pool_misuse_raises_and_sends_nothing() -> None:
         pool.send(zeros, [ids[0], pending])
     with pytest.raises(ValueError):
         pool.send(zeros, [ids[0], ids[0]])
-    # Both sent envs get a NaN action: of the three pending results (the third env's reset
-    # and two errors) any two include an error.
+    # A NaN row rejects the whole batch before anything is queued: the next good send
+    # goes through and recv returns a full batch.
     nan = zeros.copy()
-    nan[:, 0] = np.nan
-    pool.send(nan, ids)
+    nan[1, 0] = np.nan
     with pytest.raises(ValueError, match="not finite"):
-        pool.recv()
+        pool.send(nan, ids)
+    pool.send(zeros, ids)
+    obs, *_ = pool.recv()
+    assert obs.shape == (2, 60)
     pool.close()
     pool.close()

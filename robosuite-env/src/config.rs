@@ -81,6 +81,34 @@ pub const CONFIG_KEYS: &[&str] = &[
     "controller",
 ];
 
+/// The most physics substeps one env step may run: 5 s of simulated time per env step at
+/// robosuite's 2 ms timestep (`control_freq` ≥ 0.2 Hz), about a second of computing for the
+/// costliest task. A configuration or model that asks for more is rejected when the env is
+/// made, so that no single step runs for hours.
+pub const MAX_SUBSTEPS: usize = 2_500;
+
+/// Checks that `control_freq` gives between 1 and [`MAX_SUBSTEPS`] substeps of `timestep`.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] naming `control_freq` and the valid range.
+pub fn check_substeps(control_freq: f64, timestep: f64) -> Result<()> {
+    let ok = control_freq.is_finite() && control_freq > 0.0 && {
+        let n = (1.0 / control_freq) / timestep;
+        (1.0..(MAX_SUBSTEPS + 1) as f64).contains(&n)
+    };
+    if ok {
+        return Ok(());
+    }
+    let (low, high) = (1.0 / (MAX_SUBSTEPS as f64 * timestep), 1.0 / timestep);
+    Err(Error::invalid_argument(
+        "control_freq",
+        format!(
+            "must be in [{low}, {high}] Hz so that an env step holds between 1 and \
+             {MAX_SUBSTEPS} substeps of {timestep} s, got {control_freq}"
+        ),
+    ))
+}
+
 impl EnvConfig {
     /// Sets the robots.
     #[must_use]
@@ -191,8 +219,8 @@ impl EnvConfig {
         self
     }
 
-    /// The number of physics substeps per env step: `int((1 / control_freq) / 0.002)`, as
-    /// robosuite truncates.
+    /// The number of physics substeps per env step: `int((1 / control_freq) / timestep)`, as
+    /// robosuite truncates (at most [`MAX_SUBSTEPS`] in a valid configuration).
     pub fn substeps(&self, timestep: f64) -> usize {
         ((1.0 / self.control_freq) / timestep) as usize
     }
@@ -232,16 +260,7 @@ impl EnvConfig {
         if self.horizon == 0 {
             return Err(Error::invalid_argument("horizon", "must be at least 1"));
         }
-        if !(self.control_freq.is_finite() && self.control_freq > 0.0 && self.substeps(0.002) >= 1)
-        {
-            return Err(Error::invalid_argument(
-                "control_freq",
-                format!(
-                    "must be in (0, 500] Hz so that an env step holds at least one 2 ms substep, got {}",
-                    self.control_freq
-                ),
-            ));
-        }
+        check_substeps(self.control_freq, 0.002)?;
         if let Some(s) = self.reward_scale
             && !s.is_finite()
         {

@@ -34,7 +34,7 @@ pub enum ModelSource {
 /// (`mjSTATE_INTEGRATION`), the controllers' goals and gripper commands, the task's
 /// randomised parameters and observation cache, the last observation and the episode
 /// counter. Made by [`RobosuiteEnv::snapshot`].
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnvSnapshot {
     physics: Vec<f64>,
     robots: Vec<RobotState>,
@@ -44,7 +44,7 @@ pub struct EnvSnapshot {
     phase: Phase,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 enum Phase {
     NeedsReset,
     Running,
@@ -227,16 +227,8 @@ impl RobosuiteEnv {
                 "the model's timestep must be positive, got {timestep}"
             )));
         }
+        crate::config::check_substeps(config.control_freq, timestep)?;
         let substeps = config.substeps(timestep);
-        if substeps == 0 {
-            return Err(Error::invalid_argument(
-                "control_freq",
-                format!(
-                    "{} Hz leaves no {timestep} s substep per env step",
-                    config.control_freq
-                ),
-            ));
-        }
         let timing = Timing {
             timestep,
             control_freq: config.control_freq,
@@ -399,13 +391,20 @@ impl RobosuiteEnv {
     /// episode counter are kept.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for a wrong length or a non-finite value (nothing is
-    /// changed); [`Error::Closed`] after `close`.
+    /// [`Error::InvalidArgument`] for a wrong length, a non-finite value or a position or
+    /// velocity beyond [`MAX_STATE_MAGNITUDE`](crate::sim::MAX_STATE_MAGNITUDE) (nothing is
+    /// changed); [`Error::Simulation`] when MuJoCo raises an error (the env then needs a
+    /// reset); [`Error::Closed`] after `close`.
     pub fn set_state(&mut self, state: &[f64]) -> Result<()> {
         if self.phase == Phase::Closed {
             return Err(Error::Closed);
         }
-        self.sim.set_state(state)?;
+        if let Err(e) = self.sim.set_state(state) {
+            if self.sim.failed() {
+                self.phase = Phase::NeedsReset;
+            }
+            return Err(e);
+        }
         self.observe();
         Ok(())
     }
@@ -418,8 +417,10 @@ impl RobosuiteEnv {
     /// RNG.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] for a task state or state of the wrong length or with
-    /// non-finite values (nothing is changed then); [`Error::Closed`] after `close`.
+    /// [`Error::InvalidArgument`] for a task state or state of the wrong length, with
+    /// non-finite values or beyond [`MAX_STATE_MAGNITUDE`](crate::sim::MAX_STATE_MAGNITUDE)
+    /// (nothing is changed then); [`Error::Simulation`] when MuJoCo raises an error;
+    /// [`Error::Closed`] after `close`.
     pub fn reset_to_state(
         &mut self,
         task_state: &[f64],
@@ -428,21 +429,12 @@ impl RobosuiteEnv {
         if self.phase == Phase::Closed {
             return Err(Error::Closed);
         }
-        if state.len() != self.sim.state_len() || state.iter().any(|v| !v.is_finite()) {
-            return Err(Error::invalid_argument(
-                "state",
-                format!(
-                    "expected {} finite values [time, qpos, qvel], got {}",
-                    self.sim.state_len(),
-                    state.len()
-                ),
-            ));
-        }
+        self.sim.check_state(state)?;
         self.task.load_state(&mut self.sim, task_state)?;
         self.phase = Phase::NeedsReset;
         self.sim.reset_data();
         for robot in &mut self.robots {
-            robot.reset_to(&mut self.sim, state);
+            robot.reset_to(&mut self.sim, state)?;
         }
         self.task.clear_observation_cache();
         self.sim.set_state(state)?;
@@ -462,6 +454,19 @@ impl RobosuiteEnv {
             timestep: self.timestep,
             phase: self.phase,
         }
+    }
+
+    /// The environment RNG and whether it was seeded (see [`RobosuiteEnv::set_rng`]).
+    pub fn rng_state(&self) -> (EnvRng, bool) {
+        (self.rng.clone(), self.rng_seeded)
+    }
+
+    /// Replaces the environment RNG (with [`RobosuiteEnv::restore`], a copy continues the
+    /// original's episode bit for bit, resets included). `seeded = false` draws a fresh
+    /// entropy seed at the next unseeded reset.
+    pub fn set_rng(&mut self, rng: EnvRng, seeded: bool) {
+        self.rng = rng;
+        self.rng_seeded = seeded;
     }
 
     /// Restores a snapshot taken from this environment.
@@ -573,8 +578,13 @@ impl RobosuiteEnv {
         flat.clear();
         flat.extend(action.iter().copied());
         self.timestep += 1;
-        self.simulate(&flat);
+        let simulated = self.simulate(&flat);
         self.action_buf = flat;
+        if let Err(e) = simulated {
+            // A MuJoCo error or a diverged simulation: the episode cannot go on.
+            self.phase = Phase::NeedsReset;
+            return Err(e);
+        }
         // robosuite samples its observables on the last substep, before `_post_action`
         // computes the reward (which updates Wipe's wiped markers).
         self.observe();
@@ -596,10 +606,12 @@ impl RobosuiteEnv {
         Ok((transition, success))
     }
 
-    /// Runs one env step's physics for a checked action.
-    fn simulate(&mut self, action: &[f64]) {
+    /// Runs one env step's physics for a checked action, stopping at the first substep in
+    /// which MuJoCo raised an error or found the simulation diverged.
+    fn simulate(&mut self, action: &[f64]) -> Result<()> {
+        self.sim.clear_divergence();
         for sub in 0..self.substeps {
-            self.sim.step1();
+            self.sim.step1()?;
             for (robot, split) in self.robots.iter_mut().zip(&self.action_splits) {
                 if sub == 0 {
                     robot.set_goal(&self.sim, &action[split.clone()]);
@@ -612,11 +624,13 @@ impl RobosuiteEnv {
             // Sensors are read only after an env step (and at its first substep, before
             // `mj_step2`), so only the last substep computes them.
             if sub + 1 == self.substeps {
-                self.sim.step2();
+                self.sim.step2()?;
             } else {
-                self.sim.step2_without_sensors();
+                self.sim.step2_without_sensors()?;
             }
+            self.sim.check_diverged()?;
         }
+        Ok(())
     }
 }
 
@@ -669,11 +683,11 @@ impl gym_core::Env for RobosuiteEnv {
         }
         self.sim.reset_data();
         for robot in &mut self.robots {
-            robot.reset(&mut self.sim, &mut self.rng);
+            robot.reset(&mut self.sim, &mut self.rng)?;
         }
         self.task.clear_observation_cache();
         self.task.place_objects(&mut self.sim, &mut self.rng)?;
-        self.sim.forward();
+        self.sim.forward()?;
         self.begin_episode()
     }
 

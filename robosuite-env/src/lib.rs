@@ -25,6 +25,7 @@
 //! * [`observables`]: robosuite's observables and its ordered observation dict;
 //! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and
 //!   the tasks;
+//! * [`saved`]: an env's whole run-time state as text (pickling, deep copies);
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
 //!   [`register_envs`]).
 
@@ -38,6 +39,7 @@ pub mod models;
 pub mod observables;
 pub mod registry;
 pub mod robots;
+pub mod saved;
 pub mod sim;
 pub mod tasks;
 

@@ -58,22 +58,22 @@ fn substeps_do_not_allocate() {
     let mut robot = env.robots()[0].clone();
     let action = [0.4, -0.2, 0.3, 0.1, -0.1, 0.2, 1.0];
     // Warm up once (first calls may initialise lazily).
-    sim.step1();
+    sim.step1().unwrap();
     robot.set_goal(&sim, &action);
     robot.apply_control(&mut sim);
-    sim.step2();
+    sim.step2().unwrap();
     let n = allocations(|| {
         for _ in 0..10 {
             for sub in 0..25 {
-                sim.step1();
+                sim.step1().unwrap();
                 if sub == 0 {
                     robot.set_goal(&sim, &action);
                 }
                 robot.apply_control(&mut sim);
                 if sub == 24 {
-                    sim.step2();
+                    sim.step2().unwrap();
                 } else {
-                    sim.step2_without_sensors();
+                    sim.step2_without_sensors().unwrap();
                 }
             }
         }

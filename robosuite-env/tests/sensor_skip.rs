@@ -16,7 +16,7 @@ fn compare(task: &str, blocks: usize) {
     let mut skipping = Sim::new(env.sim().model().clone()).unwrap();
     for sim in [&mut always, &mut skipping] {
         sim.set_state(&env.get_state()).unwrap();
-        sim.forward();
+        sim.forward().unwrap();
     }
     let mut robot_a = env.robots()[0].clone();
     let mut robot_b = env.robots()[0].clone();
@@ -37,17 +37,17 @@ fn compare(task: &str, blocks: usize) {
         let before = skipping.data().sensordata().to_vec();
         for sub in 0..substeps {
             for (sim, robot) in [(&mut always, &mut robot_a), (&mut skipping, &mut robot_b)] {
-                sim.step1();
+                sim.step1().unwrap();
                 if sub == 0 {
                     robot.set_goal(sim, &action);
                 }
                 robot.apply_control(sim);
             }
-            always.step2();
+            always.step2().unwrap();
             if sub + 1 == substeps {
-                skipping.step2();
+                skipping.step2().unwrap();
             } else {
-                skipping.step2_without_sensors();
+                skipping.step2_without_sensors().unwrap();
                 assert_eq!(skipping.model().opt().disableflags, flags);
                 // The skipped substeps really skip: their sensors are stale.
                 skipped |= always.data().sensordata() != skipping.data().sensordata();

@@ -102,6 +102,77 @@ fn panic_message(payload: &(dyn Any + Send)) -> String {
 
 /// Prefixes the message of a sub-environment's error with its index, where the variant
 /// carries one.
+/// Checks a whole batch of actions before any sub-environment steps, so that a rejected
+/// call changes nothing: `actions` must hold exactly the items `batched` (the batched space
+/// of those items) has, each of `single`'s shape, and no NaN or ±inf value (which every
+/// environment of this workspace rejects).
+///
+/// # Errors
+/// [`Error::InvalidAction`] naming the first problem.
+pub(crate) fn check_batch<S: BatchSpace>(
+    single: &S,
+    batched: &S::Batched,
+    actions: &BatchOf<S>,
+    rows: usize,
+) -> Result<()> {
+    use gym_core::Space;
+    for k in 0..rows {
+        single
+            .read_item(actions, k)
+            .map_err(|e| Error::InvalidAction(format!("actions[{k}]: {e}")))?;
+    }
+    // Every item exists and has the item's shape; the flat length then pins the number of
+    // items to exactly `rows`.
+    let flat = batched.flatten(actions).map_err(|e| {
+        Error::InvalidAction(format!("expected a batch of exactly {rows} actions: {e}"))
+    })?;
+    if !flat.all_finite() {
+        let values = flat.to_f64_vec();
+        let at = values.iter().position(|v| !v.is_finite()).unwrap_or(0);
+        let per_row = (values.len() / rows.max(1)).max(1);
+        return Err(Error::InvalidAction(format!(
+            "actions[{}] holds a value that is not finite ({}); nothing was stepped",
+            at / per_row,
+            values[at]
+        )));
+    }
+    Ok(())
+}
+
+/// The process that made a threaded vector env or pool. Its worker threads exist only in
+/// that process: after `fork()` (Stable-Baselines3's `SubprocVecEnv` forks on Linux) the
+/// child has the channels but no threads, so a step would wait forever and a join would
+/// fail. Every call compares the process id (one `getpid`, no allocation) and refuses in a
+/// child.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct OwnerProcess(u32);
+
+impl OwnerProcess {
+    /// The calling process.
+    pub(crate) fn current() -> Self {
+        Self(std::process::id())
+    }
+
+    /// Whether the calling process is another one (a child made by `fork()`).
+    pub(crate) fn forked(self) -> bool {
+        std::process::id() != self.0
+    }
+
+    /// # Errors
+    /// [`Error::Unsupported`] in a forked child.
+    pub(crate) fn check(self, what: &str) -> Result<()> {
+        if self.forked() {
+            return Err(Error::Unsupported(format!(
+                "this {what} was made in process {} and its worker threads do not exist in \
+                 this forked child (process {}); make a new one in the child",
+                self.0,
+                std::process::id()
+            )));
+        }
+        Ok(())
+    }
+}
+
 pub(crate) fn in_env(e: Error, i: usize) -> Error {
     match e {
         Error::InvalidAction(m) => Error::InvalidAction(format!("sub-environment {i}: {m}")),
@@ -197,6 +268,7 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
             // Gymnasium asserts; the caller must reset the ended sub-environments first.
             return Err(Error::EpisodeEnded);
         }
+        check_batch(&self.single_act, &self.batched_act, actions, self.n)?;
         (0..self.n)
             .map(|i| {
                 let a = self

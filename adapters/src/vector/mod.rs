@@ -23,9 +23,15 @@
 //!   `final_info` in the infos) and `Disabled` (the caller resets with a mask; stepping a
 //!   sub-environment whose episode ended is [`Error::EpisodeEnded`](gym_core::Error)).
 //! * Rewards are `f64`, terminations and truncations `bool`, one per sub-environment.
+//! * A batch of actions must hold exactly one row per sub-environment (per id for the
+//!   pool), each of the single action space's shape, with no NaN or ±inf: the whole batch
+//!   is checked before any sub-environment steps, so a rejected call changes nothing.
 //! * A sub-environment's error is returned as its typed error (messages prefixed with its
 //!   index); the other sub-environments' results of that call are still recorded. A panic
 //!   in a worker thread becomes [`Error::Simulation`](gym_core::Error), never a hang.
+//! * After `fork()`, a [`ThreadVectorEnv`] or [`ThreadEnvPool`] used in the child returns
+//!   [`Error::Unsupported`](gym_core::Error) (its threads exist only in the parent); closing
+//!   or dropping it there neither joins nor waits.
 
 mod core;
 pub mod info;

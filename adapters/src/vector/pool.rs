@@ -2,7 +2,7 @@
 //! `batch_size` environments to finish, `send` gives exactly those their next actions, so
 //! no thread waits for the slowest environment of a batch.
 
-use super::core::{Op, Outcome, VectorCore, in_env, run_op_guarded};
+use super::core::{Op, Outcome, OwnerProcess, VectorCore, check_batch, in_env, run_op_guarded};
 use super::{Seeds, VectorInfo};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Result};
@@ -111,6 +111,7 @@ where
     terminations: Vec<bool>,
     truncations: Vec<bool>,
     closed: bool,
+    owner: OwnerProcess,
 }
 
 /// A worker: takes the next job, runs it on its environment, reports the outcome; exits
@@ -193,6 +194,7 @@ where
             terminations: vec![false; batch_size],
             truncations: vec![false; batch_size],
             closed: false,
+            owner: OwnerProcess::current(),
         };
         for w in 0..num_threads.clamp(1, n) {
             let (slots, jobs, done) = (pool.slots.clone(), job_rx.clone(), done_tx.clone());
@@ -261,8 +263,9 @@ where
     ///
     /// # Errors
     /// [`Error::Closed`]; [`Error::ResetNeeded`] before the first reset;
-    /// [`Error::InvalidArgument`] for an unknown, repeated or pending id, or fewer action
-    /// rows than ids. Nothing is queued then.
+    /// [`Error::InvalidArgument`] for an unknown, repeated or pending id;
+    /// [`Error::InvalidAction`] unless `actions` holds exactly one finite row per id. Nothing
+    /// is queued then.
     pub fn send(&mut self, actions: &BatchOf<E::ActSpace>, env_ids: &[usize]) -> Result<()> {
         self.check_open()?;
         if !self.was_reset {
@@ -281,6 +284,10 @@ where
                     ),
                 ));
             }
+        }
+        if !env_ids.is_empty() {
+            let batched = self.single_act.batch_space(env_ids.len())?;
+            check_batch(&self.single_act, &batched, actions, env_ids.len())?;
         }
         let rows = env_ids
             .iter()
@@ -377,6 +384,15 @@ where
             return;
         }
         self.closed = true;
+        if self.owner.forked() {
+            // A forked child: no worker runs here and the channels' and environments' locks
+            // may have been held at the fork. Leak them; never send, join or lock.
+            std::mem::forget(self.jobs.take());
+            std::mem::forget(std::mem::take(&mut self.workers));
+            let (_, done) = channel();
+            std::mem::forget(std::mem::replace(&mut self.done, done));
+            return;
+        }
         self.jobs = None;
         for handle in self.workers.drain(..) {
             let _ = handle.join();
@@ -396,10 +412,9 @@ where
 
     fn check_open(&self) -> Result<()> {
         if self.closed {
-            Err(Error::Closed)
-        } else {
-            Ok(())
+            return Err(Error::Closed);
         }
+        self.owner.check("ThreadEnvPool")
     }
 
     fn queue(&mut self, id: usize, op: Op<E::Act>) -> Result<()> {

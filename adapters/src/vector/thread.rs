@@ -1,6 +1,6 @@
 //! [`ThreadVectorEnv`]: sub-environments stepped in parallel on persistent worker threads.
 
-use super::core::{Op, Outcome, VectorCore, run_op_guarded};
+use super::core::{Op, Outcome, OwnerProcess, VectorCore, run_op_guarded};
 use super::delegate_to_core;
 use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
@@ -99,6 +99,8 @@ where
     workers: Vec<Worker<E>>,
     /// For each sub-environment: its block and its index there.
     placement: Vec<(usize, usize)>,
+    /// The process whose threads these are (checked against `fork()`).
+    owner: OwnerProcess,
 }
 
 impl<E: Env> ThreadVectorEnv<E>
@@ -155,6 +157,7 @@ where
             local,
             workers,
             placement,
+            owner: OwnerProcess::current(),
         })
     }
 
@@ -244,12 +247,19 @@ where
         options: Option<&ResetOptions>,
         mask: Option<&[bool]>,
     ) -> Result<VectorInfo> {
+        self.owner.check("ThreadVectorEnv")?;
         let ops = self.core.plan_reset(seeds, options, mask)?;
         let outcomes = self.dispatch(ops);
         self.core.finish_reset(outcomes)
     }
 
     fn shutdown(&mut self) {
+        if self.owner.forked() {
+            // A forked child: the workers are not running here, and their channels' locks
+            // may have been held at the fork. Leak them; never send, join or wait.
+            std::mem::forget(std::mem::take(&mut self.workers));
+            return;
+        }
         self.local.close();
         for w in &mut self.workers {
             if let Some(tx) = w.tx.take() {
@@ -278,6 +288,7 @@ where
         &mut self,
         actions: &BatchOf<E::ActSpace>,
     ) -> Result<VectorStep<'_, BatchOf<E::ObsSpace>>> {
+        self.owner.check("ThreadVectorEnv")?;
         let ops = self.core.plan_step(actions)?;
         let outcomes = self.dispatch(ops.into_iter().map(Some).collect());
         let outcomes = outcomes

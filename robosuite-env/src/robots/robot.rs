@@ -18,7 +18,7 @@ use std::ops::Range;
 
 /// The controller state of a robot, for snapshots: per arm, the arm controller's state and
 /// the gripper command.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RobotState {
     /// Per arm: the arm controller's [`ArmController::state`].
     pub arms: Vec<Vec<f64>>,
@@ -528,10 +528,13 @@ impl Robot {
     ///
     /// As robosuite, the controllers are reset (see [`ArmController::reset`]) after the
     /// arm's posture is written (with a forward pass) and before the grippers' is.
-    pub fn reset(&mut self, sim: &mut Sim, rng: &mut EnvRng) {
+    ///
+    /// # Errors
+    /// [`gym_core::Error::Simulation`] when the forward pass raises a MuJoCo error.
+    pub fn reset(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> gym_core::Result<()> {
         self.qpos_buf.copy_from_slice(&self.init_qpos);
         self.noise.perturb(rng, &mut self.qpos_buf);
-        self.start_at_posture(sim);
+        self.start_at_posture(sim)?;
         let qpos = sim.data_mut().qpos_mut();
         for arm in &mut self.arms {
             let g = &mut arm.gripper;
@@ -544,32 +547,38 @@ impl Robot {
             }
             g.controller.reset();
         }
+        Ok(())
     }
 
     /// Writes `qpos_buf` as the robot's joint positions, forwards, and lets the controllers
     /// reset (robosuite's controller construction during a reset).
-    fn start_at_posture(&mut self, sim: &mut Sim) {
+    fn start_at_posture(&mut self, sim: &mut Sim) -> gym_core::Result<()> {
         let qpos = sim.data_mut().qpos_mut();
         for (&a, &v) in self.joint_qpos.iter().zip(&self.qpos_buf) {
             qpos[a] = v;
         }
-        sim.forward();
+        sim.forward()?;
         for arm in &mut self.arms {
             arm.controller.reset(sim);
             arm.torques.iter_mut().for_each(|t| *t = 0.0);
         }
+        Ok(())
     }
 
     /// The controller part of a reset to a recorded state: the robot's joints take their
     /// values in `state` (`[time, qpos, qvel]`) on a freshly reset simulator, as robosuite
     /// builds its controllers before the grippers and objects are placed; the caller then
     /// sets the whole state. Gripper commands are zeroed.
-    pub fn reset_to(&mut self, sim: &mut Sim, state: &[f64]) {
+    ///
+    /// # Errors
+    /// [`gym_core::Error::Simulation`] when the forward pass raises a MuJoCo error.
+    pub fn reset_to(&mut self, sim: &mut Sim, state: &[f64]) -> gym_core::Result<()> {
         for (v, &a) in self.qpos_buf.iter_mut().zip(&self.joint_qpos) {
             *v = state[1 + a];
         }
-        self.start_at_posture(sim);
+        self.start_at_posture(sim)?;
         self.zero_gripper_commands();
+        Ok(())
     }
 
     /// Zeroes every gripper command (robosuite's `current_action` at reset).

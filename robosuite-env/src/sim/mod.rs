@@ -2,6 +2,7 @@
 //! run-time model edits and the MuJoCo version check.
 
 mod contacts;
+mod guard;
 mod names;
 mod resize;
 mod version;
@@ -11,32 +12,124 @@ pub use names::{actuator_for_joint, actuator_id, body_id, geom_id, joint_id, sen
 pub use resize::{BoxGeomUpdate, resize_box_body};
 pub use version::{MUJOCO_VERSION, check_mujoco_version};
 
+use guard::Call;
 use gym_core::{Error, Result};
-use mujoco_rs::mujoco_c::{mjData, mjModel};
+use mujoco_rs::mujoco_c::{mjData, mjModel, mjtWarning};
 use mujoco_rs::wrappers::mj_data::MjData;
 use mujoco_rs::wrappers::mj_model::{MjModel, MjtDisableBit};
 
 /// The simulator data of one environment, owning its (private, editable) copy of the model.
 pub type Data = MjData<Box<MjModel>>;
 
+/// The largest magnitude accepted for a position or velocity in [`Sim::set_state`]: far
+/// beyond any posture or speed of robosuite's scenes, and four orders of magnitude below
+/// MuJoCo's own divergence threshold (`mjMAXVAL`, 1e10).
+pub const MAX_STATE_MAGNITUDE: f64 = 1e6;
+
+/// MuJoCo's warnings that mean the simulation diverged (MuJoCo then resets the data by
+/// itself): bad positions, velocities, accelerations, controls.
+const DIVERGENCE_WARNINGS: [(mjtWarning, &str); 4] = [
+    (mjtWarning::mjWARN_BADQPOS, "a position"),
+    (mjtWarning::mjWARN_BADQVEL, "a velocity"),
+    (mjtWarning::mjWARN_BADQACC, "an acceleration"),
+    (mjtWarning::mjWARN_BADCTRL, "a control"),
+];
+
 /// A compiled model with its data: what one environment instance simulates.
 ///
 /// The model is owned (not shared) so that per-episode randomisation, such as Lift's cube
 /// size, can edit it in place without recompiling.
+///
+/// MuJoCo's fatal errors do not end the process: [`Sim::forward`], [`Sim::step1`],
+/// [`Sim::step2`] and [`Sim::step`] return [`Error::Simulation`] (see the `guard` module), and
+/// the simulator then refuses every further step until [`Sim::reset_data`].
 #[derive(Debug)]
 pub struct Sim {
     data: Data,
+    failed: Option<String>,
 }
 
 impl Sim {
-    /// Wraps a compiled model, allocating its data.
+    /// Wraps a compiled model, allocating its data, and checks that MuJoCo can simulate it:
+    /// a trial `mj_forward` and `mj_step` from the model's reference state (then
+    /// `mj_resetData`), so that a model MuJoCo cannot step (an arena too small, ...) fails here
+    /// rather than at the first env step.
     ///
     /// # Errors
-    /// [`Error::Model`] when MuJoCo cannot allocate the data.
+    /// [`Error::Model`] when MuJoCo cannot allocate the data or raises an error in the trial.
     pub fn new(model: MjModel) -> Result<Self> {
+        // SAFETY: a compiled model; the shim allocates and frees one mjData.
+        unsafe { guard::trial_make_data(model.ffi()) }
+            .map_err(|e| Error::Model(format!("MuJoCo cannot allocate mjData: {e}")))?;
         let data = MjData::try_new(Box::new(model))
             .map_err(|e| Error::Model(format!("cannot allocate mjData: {e}")))?;
-        Ok(Self { data })
+        let mut sim = Self { data, failed: None };
+        sim.forward()
+            .and_then(|()| sim.step())
+            .map_err(|e| Error::Model(format!("the trial step failed: {e}")))?;
+        sim.reset_data();
+        Ok(sim)
+    }
+
+    /// Runs a MuJoCo function through the guard; on a fatal error marks the simulator failed.
+    fn guarded(&mut self, call: Call) -> Result<()> {
+        if let Some(message) = &self.failed {
+            return Err(Error::Simulation(format!(
+                "an earlier MuJoCo error ({message}) left the simulation unusable; reset first"
+            )));
+        }
+        // SAFETY: the model and data are owned by `self.data` and made for each other; this
+        // crate installs no MuJoCo callback.
+        let result = unsafe {
+            let d = self.data.ffi_mut() as *mut mjData;
+            let m = self.data.model().ffi() as *const mjModel;
+            guard::run(call, m, d)
+        };
+        result.map_err(|message| {
+            let error = Error::Simulation(format!(
+                "MuJoCo error: {message} (the simulation is unusable until reset)"
+            ));
+            self.failed = Some(message);
+            error
+        })
+    }
+
+    /// Whether a MuJoCo error left the simulator unusable (until [`Sim::reset_data`]).
+    pub fn failed(&self) -> bool {
+        self.failed.is_some()
+    }
+
+    /// Clears MuJoCo's divergence warning counters (bad position, velocity, acceleration and
+    /// control); [`Sim::check_diverged`] then reports what happened since.
+    pub fn clear_divergence(&mut self) {
+        // SAFETY: only warning counters are written, no size or pointer.
+        let warnings = unsafe { &mut self.data.ffi_mut().warning };
+        for (w, _) in DIVERGENCE_WARNINGS {
+            warnings[w as usize].number = 0;
+        }
+    }
+
+    /// Whether MuJoCo found a non-finite or huge (> 1e10) position, velocity, acceleration or
+    /// control since [`Sim::clear_divergence`] (MuJoCo then resets the data silently and
+    /// carries on).
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] naming what diverged and in which degree of freedom (or
+    /// actuator).
+    pub fn check_diverged(&self) -> Result<()> {
+        let warnings = &self.data.ffi().warning;
+        for (w, what) in DIVERGENCE_WARNINGS {
+            let stat = &warnings[w as usize];
+            if stat.number > 0 {
+                return Err(Error::Simulation(format!(
+                    "the simulation diverged: {what} became non-finite or larger than 1e10 \
+                     (index {}, time {}); MuJoCo reset the physics, so reset the env",
+                    stat.lastinfo,
+                    self.data.time()
+                )));
+            }
+        }
+        Ok(())
     }
 
     /// The model.
@@ -81,24 +174,35 @@ impl Sim {
         unsafe { self.data.model_mut() }
     }
 
-    /// `mj_resetData`: time 0, `qpos = qpos0`, zero velocities, controls and warm start.
+    /// `mj_resetData`: time 0, `qpos = qpos0`, zero velocities, controls and warm start; also
+    /// makes a simulator failed by a MuJoCo error usable again.
     pub fn reset_data(&mut self) {
         self.data.reset();
+        self.failed = None;
     }
 
     /// `mj_forward`: recomputes every derived quantity from the state.
-    pub fn forward(&mut self) {
-        self.data.forward();
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] for a MuJoCo error, now or earlier (see [`Sim`]).
+    pub fn forward(&mut self) -> Result<()> {
+        self.guarded(Call::Forward)
     }
 
     /// `mj_step1`: position and velocity stages (kinematics, Jacobian inputs, mass matrix, bias forces).
-    pub fn step1(&mut self) {
-        self.data.step1();
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] for a MuJoCo error, now or earlier (see [`Sim`]).
+    pub fn step1(&mut self) -> Result<()> {
+        self.guarded(Call::Step1)
     }
 
     /// `mj_step2`: actuation, acceleration, constraints and integration.
-    pub fn step2(&mut self) {
-        self.data.step2();
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] for a MuJoCo error, now or earlier (see [`Sim`]).
+    pub fn step2(&mut self) -> Result<()> {
+        self.guarded(Call::Step2)
     }
 
     /// `mj_step2` with sensor computation switched off (`mjDSBL_SENSOR`) for this call only.
@@ -109,17 +213,24 @@ impl Sim {
     /// were; the env uses it on every substep but the last of an env step, whose sensors are
     /// read by nobody. That skips a third of the cost of `mj_step2` for the Panda's wrist
     /// force-torque sensor (callgrind: 4.1 % of a Lift env step).
-    pub fn step2_without_sensors(&mut self) {
+    ///
+    /// # Errors
+    /// As [`Sim::step2`].
+    pub fn step2_without_sensors(&mut self) -> Result<()> {
         let sensor = MjtDisableBit::mjDSBL_SENSOR as i32;
         let flags = self.model().opt().disableflags;
         self.model_mut().opt_mut().disableflags = flags | sensor;
-        self.data.step2();
+        let result = self.guarded(Call::Step2);
         self.model_mut().opt_mut().disableflags = flags;
+        result
     }
 
     /// `mj_step` (physics only, no split).
-    pub fn step(&mut self) {
-        self.data.step();
+    ///
+    /// # Errors
+    /// [`Error::Simulation`] for a MuJoCo error, now or earlier (see [`Sim`]).
+    pub fn step(&mut self) -> Result<()> {
+        self.guarded(Call::Step)
     }
 
     /// The length of the flattened state `[time, qpos, qvel]`.
@@ -137,12 +248,12 @@ impl Sim {
         out
     }
 
-    /// Sets the flattened state `[time, qpos, qvel]` and runs `mj_forward`.
+    /// Checks a flattened state `[time, qpos, qvel]` for this model without applying it.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] when the length is wrong or a value is not finite; the
-    /// simulator is then left unchanged.
-    pub fn set_state(&mut self, state: &[f64]) -> Result<()> {
+    /// [`Error::InvalidArgument`] when the length is wrong, a value is not finite, or a
+    /// position or velocity exceeds [`MAX_STATE_MAGNITUDE`] in magnitude.
+    pub fn check_state(&self, state: &[f64]) -> Result<()> {
         let expected = self.state_len();
         if state.len() != expected {
             return Err(Error::invalid_argument(
@@ -159,12 +270,34 @@ impl Sim {
                 format!("value {i} is not finite ({})", state[i]),
             ));
         }
+        if let Some(i) = state[1..]
+            .iter()
+            .position(|x| x.abs() > MAX_STATE_MAGNITUDE)
+        {
+            return Err(Error::invalid_argument(
+                "state",
+                format!(
+                    "value {} is {}; positions and velocities must lie within ±{MAX_STATE_MAGNITUDE:e}",
+                    i + 1,
+                    state[i + 1]
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Sets the flattened state `[time, qpos, qvel]` and runs `mj_forward`.
+    ///
+    /// # Errors
+    /// As [`Sim::check_state`] (the simulator is then left unchanged); [`Error::Simulation`]
+    /// when `mj_forward` raises a MuJoCo error.
+    pub fn set_state(&mut self, state: &[f64]) -> Result<()> {
+        self.check_state(state)?;
         let nq = self.model().ffi().nq as usize;
         self.data.set_time(state[0]);
         self.data.qpos_mut().copy_from_slice(&state[1..1 + nq]);
         self.data.qvel_mut().copy_from_slice(&state[1 + nq..]);
-        self.data.forward();
-        Ok(())
+        self.forward()
     }
 
     /// The full integration state (`mjSTATE_INTEGRATION`: time, qpos, qvel, act, warm start,
@@ -180,14 +313,17 @@ impl Sim {
     /// # Errors
     /// [`Error::InvalidArgument`] when the length does not match this model.
     pub fn set_integration_state(&mut self, state: &[f64]) -> Result<()> {
+        if self.failed.is_some() {
+            // The whole state is overwritten; the reset restores MuJoCo's stack first.
+            self.reset_data();
+        }
         self.data
             .set_state(
                 state,
                 mujoco_rs::mujoco_c::mjtState::mjSTATE_INTEGRATION as u32,
             )
             .map_err(|e| Error::invalid_argument("state", format!("{e:?}")))?;
-        self.data.forward();
-        Ok(())
+        self.forward()
     }
 
     /// Bytes MuJoCo reserved for this data's arena and stack.

@@ -82,11 +82,18 @@ pub fn actuator_for_joint(model: &MjModel, joint: usize, joint_name: &str) -> Re
         .ok_or_else(|| Error::Model(format!("no actuator drives the joint `{joint_name}`")))
 }
 
-/// The address in `sensordata` of the sensor `name`.
+/// The address in `sensordata` of the sensor `name`, which must have `dim` values (so that
+/// reading `dim` values from the address reads this sensor and no other).
 ///
 /// # Errors
-/// [`Error::Model`] when there is no such sensor.
-pub fn sensor_adr(model: &MjModel, name: &str) -> Result<usize> {
+/// [`Error::Model`] when there is no such sensor or it has another dimension.
+pub fn sensor_adr(model: &MjModel, name: &str, dim: usize) -> Result<usize> {
     let id = lookup(model, mjtObj::mjOBJ_SENSOR, "sensor", name)?;
+    let got = model.sensor_dim()[id];
+    if usize::try_from(got).ok() != Some(dim) {
+        return Err(Error::Model(format!(
+            "the sensor `{name}` has {got} value(s); {dim} expected"
+        )));
+    }
     Ok(model.sensor_adr()[id] as usize)
 }

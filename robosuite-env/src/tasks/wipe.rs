@@ -310,6 +310,7 @@ impl TaskSpec for WipeSpec {
             force_adr: sensor_adr(
                 model,
                 &format!("gripper{}_{}_force_ee", robot.index(), arm.side()),
+                3,
             )?,
             eef_site: arm.eef_site(),
             latest_force: [0.0; 3],
