@@ -468,6 +468,65 @@ def nut_policy(env, name):
     return lambda obs: act(obs, np.asarray(obs[key]))
 
 
+def base_frame(env, robot):
+    """The rotation of robot `robot`'s base (OSC actions are in that frame)."""
+    body = env.sim.model.body_name2id(env.robots[robot].robot_model.root_body)
+    return np.array(env.sim.data.body_xmat[body]).reshape(3, 3)
+
+
+def two_arm_lift_policy(env, lift_height=0.15):
+    """Each arm (robot i's, or a bimanual robot's right then left) reaches 8 cm above handle
+    i with its fingers across the handle's bar, descends onto it and closes; once both have
+    closed, both lift. Deltas are turned into each robot's base frame."""
+    import robosuite.utils.transform_utils as T
+
+    bimanual = len(env.robots) == 1
+    prefixes = ["robot0_right_", "robot0_left_"] if bimanual else ["robot0_", "robot1_"]
+    frames = [base_frame(env, 0)] * 2 if bimanual else [base_frame(env, 0), base_frame(env, 1)]
+    state = {"phase": [0, 0], "t": [0, 0], "start": None, "lift_t": 0}
+
+    def arm(obs, i):
+        eef = obs[f"{prefixes[i]}eef_pos"]
+        handle = np.asarray(obs[f"handle{i}_xpos"])
+        if state["start"] is None:
+            state["start"] = [np.asarray(obs["handle0_xpos"]).copy(), np.asarray(obs["handle1_xpos"]).copy()]
+        state["t"][i] += 1
+        finger = T.quat2mat(obs[f"{prefixes[i]}eef_quat"])[:, 1]
+        bar = T.quat2mat(obs["pot_quat"])[:, 0]
+        err = wrap_angle(np.arctan2(bar[1], bar[0]) + np.pi / 2 - np.arctan2(finger[1], finger[0]))
+        if abs(err) > np.pi / 2:
+            err = wrap_angle(err + np.pi)
+        phase, t = state["phase"][i], state["t"][i]
+        grip, done = -1.0, False
+        if phase == 0:
+            target = handle + np.array([0, 0, 0.08])
+            done = (np.linalg.norm(target - eef) < 0.01 and abs(err) < 0.05) or t > 40
+        elif phase == 1:
+            target = handle
+            done = np.linalg.norm(target - eef) < 0.006 or t > 30
+        elif phase == 2:
+            target, grip, done = eef, 1.0, t > 10
+        else:
+            grip = 1.0
+            target = eef if min(state["phase"]) < 3 else state["start"][i] + np.array([0, 0, lift_height])
+        if done:
+            state["phase"][i], state["t"][i] = phase + 1, 0
+        a = np.zeros(7)
+        a[:3] = frames[i].T @ toward(eef, target)
+        a[5] = np.clip(err * 4.0, -1.0, 1.0) if phase < 2 else 0.0
+        a[6] = grip
+        return a
+
+    def act(obs):
+        a0, a1 = arm(obs, 0), arm(obs, 1)
+        if bimanual:
+            # robosuite's bimanual layout: right arm, left arm, right gripper, left gripper.
+            return np.concatenate([a0[:6], a1[:6], a0[6:], a1[6:]])
+        return np.concatenate([a0, a1])
+
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -480,6 +539,16 @@ POLICIES = {
     "Wipe": [("scripted", wipe_policy, 150), ("random", lambda env: random_policy(7, env.action_dim), 60)],
     "ToolHang": [("scripted", lambda env: bar_grasp_policy("tool"), 120), ("random", lambda env: random_policy(3, env.action_dim), 60)],
 }
+
+
+# Fixtures of other set-ups than robosuite's default: fixture name -> (task, robots, make
+# keyword arguments). Every other fixture is the task with the --robot robot.
+SETUPS = {
+    "TwoArmLift": ("TwoArmLift", ["Panda", "Panda"], {"env_configuration": "opposed"}),
+    "TwoArmLift-parallel": ("TwoArmLift", ["Panda", "Panda"], {"env_configuration": "parallel"}),
+}
+POLICIES["TwoArmLift"] = [("scripted", two_arm_lift_policy, 110), ("random", lambda env: random_policy(5, env.action_dim), 60)]
+POLICIES["TwoArmLift-parallel"] = POLICIES["TwoArmLift"]
 
 
 def scripted_and_random(scripted, steps, seed):
@@ -497,8 +566,8 @@ for _task, _nut in [("NutAssembly", "RoundNut"), ("NutAssemblySquare", "SquareNu
 POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, env.nuts[env.nut_id].name), 200, 13)
 
 
-def rollout(task, robot, seed, make_policy, steps):
-    env = make(task, seed, robots=robot)
+def rollout(task, robot, seed, make_policy, steps, kwargs):
+    env = make(task, seed, robots=robot, **kwargs)
     obs = env.reset()
     record = {
         "task_state": task_state(task, env),
@@ -529,9 +598,9 @@ def rollout(task, robot, seed, make_policy, steps):
     return record
 
 
-def placement(task, robot, resets):
+def placement(task, robot, resets, kwargs):
     """Smallest and largest initial position of every object's root body over resets."""
-    env = make(task, 1234, robots=robot)
+    env = make(task, 1234, robots=robot, **kwargs)
     m = env.sim.model._model
     lo, hi = {}, {}
     for _ in range(resets):
@@ -552,26 +621,29 @@ def placement(task, robot, resets):
     return {"resets": resets, "bodies": {k: {"min": lo[k].tolist(), "max": hi[k].tolist()} for k in lo}}
 
 
-def record(task, robot, out, resets):
-    env = make(task, 0, robots=robot)
+def record(fixture, robot, out, resets):
+    task, robot, kwargs = SETUPS.get(fixture, (fixture, robot, {}))
+    env = make(task, 0, robots=robot, **kwargs)
     env.reset()
     counts, names = scene(env)
     env.close()
     data = {
         "task": task,
-        "robot": robot,
+        "robot": robot if isinstance(robot, str) else robot[0],
+        **({} if isinstance(robot, str) else {"robots": robot}),
+        **({"kwargs": kwargs} if kwargs else {}),
         "robosuite": robosuite.__version__,
         "mujoco": mujoco.__version__,
         "counts": counts,
         "names": names,
         "rollouts": [],
-        "placement": placement(task, robot, resets),
+        "placement": placement(task, robot, resets, kwargs),
     }
-    for i, (kind, make_policy, steps) in enumerate(POLICIES[task]):
-        r = rollout(task, robot, 100 + i, make_policy, steps)
+    for i, (kind, make_policy, steps) in enumerate(POLICIES[fixture]):
+        r = rollout(task, robot, 100 + i, make_policy, steps, kwargs)
         r["kind"] = kind
         data["rollouts"].append(r)
-    stem = task if robot == "Panda" else f"{task}-{robot}"
+    stem = fixture if fixture in SETUPS or robot == "Panda" else f"{task}-{robot}"
     path = os.path.join(out, f"{stem}.json")
     with open(path, "w") as f:
         json.dump(data, f, separators=(",", ":"))

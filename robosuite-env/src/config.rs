@@ -44,6 +44,66 @@ pub struct EnvConfig {
     pub use_object_obs: bool,
     /// Seed of the environment RNG; `None` seeds from entropy at the first reset.
     pub seed: Option<u64>,
+    /// How the robots are set up (robosuite's `env_configuration`; default `Default`).
+    pub env_configuration: EnvConfiguration,
+}
+
+/// robosuite's `env_configuration`: how a two-arm task sets up its robots.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EnvConfiguration {
+    /// `"default"`: single-arm tasks' only setting; two single-arm robots stand `opposed`.
+    #[default]
+    Default,
+    /// `"opposed"` (or robosuite's older `"single-arm-opposed"`): two single-arm robots
+    /// facing each other across the table.
+    Opposed,
+    /// `"parallel"` (or `"single-arm-parallel"`): two single-arm robots side by side.
+    Parallel,
+    /// `"single-robot"`: one bimanual robot (robosuite sets it whenever one robot is given
+    /// to a two-arm task).
+    SingleRobot,
+}
+
+impl EnvConfiguration {
+    /// The names [`EnvConfiguration::parse`] accepts.
+    pub const NAMES: &'static [&'static str] = &[
+        "default",
+        "opposed",
+        "parallel",
+        "single-robot",
+        "single-arm-opposed",
+        "single-arm-parallel",
+    ];
+
+    /// robosuite's name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Default => "default",
+            Self::Opposed => "opposed",
+            Self::Parallel => "parallel",
+            Self::SingleRobot => "single-robot",
+        }
+    }
+
+    /// The configuration robosuite names `name` (its older names included).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] (argument `env_configuration`) listing the valid names.
+    pub fn parse(name: &str) -> Result<Self> {
+        match name {
+            "default" => Ok(Self::Default),
+            "opposed" | "single-arm-opposed" => Ok(Self::Opposed),
+            "parallel" | "single-arm-parallel" => Ok(Self::Parallel),
+            "single-robot" => Ok(Self::SingleRobot),
+            other => Err(Error::invalid_argument(
+                "env_configuration",
+                format!(
+                    "unknown configuration `{other}`; valid: {}",
+                    Self::NAMES.join(", ")
+                ),
+            )),
+        }
+    }
 }
 
 impl Default for EnvConfig {
@@ -60,6 +120,7 @@ impl Default for EnvConfig {
             initialization_noise: InitNoise::default(),
             use_object_obs: true,
             seed: None,
+            env_configuration: EnvConfiguration::Default,
         }
     }
 }
@@ -79,6 +140,7 @@ pub const CONFIG_KEYS: &[&str] = &[
     "initialization_noise_type",
     "controller_configs",
     "controller",
+    "env_configuration",
 ];
 
 impl EnvConfig {
@@ -133,6 +195,13 @@ impl EnvConfig {
                 format!("controller_configs[{robot}]"),
             ),
         }
+    }
+
+    /// Sets robosuite's `env_configuration`.
+    #[must_use]
+    pub fn with_env_configuration(mut self, configuration: EnvConfiguration) -> Self {
+        self.env_configuration = configuration;
+        self
     }
 
     /// Sets the horizon.
@@ -381,6 +450,12 @@ impl EnvConfig {
                             "a controller type such as \"OSC_POSITION\"",
                             other,
                         ));
+                    }
+                },
+                "env_configuration" => match v {
+                    InfoValue::Str(s) => c.env_configuration = EnvConfiguration::parse(s)?,
+                    other => {
+                        return Err(kind(key, "a configuration name such as \"opposed\"", other));
                     }
                 },
                 other => {

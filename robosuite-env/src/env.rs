@@ -118,22 +118,15 @@ pub fn compose_scene(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -
 
 fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Composed> {
     config.validate()?;
-    let need = spec.num_robots();
-    if config.robots.len() != need {
-        return Err(Error::invalid_argument(
-            "robots",
-            format!(
-                "{} needs {need} robot(s), got {} ({:?})",
-                spec.name(),
-                config.robots.len(),
-                config.robots
-            ),
-        ));
-    }
-    let mut robots = Vec::with_capacity(need);
-    let mut controllers = Vec::with_capacity(need);
-    for (i, name) in config.robots.iter().enumerate() {
-        let info = robot_info(name)?;
+    let infos = config
+        .robots
+        .iter()
+        .map(|name| robot_info(name))
+        .collect::<Result<Vec<_>>>()?;
+    let configuration = spec.check_robots(&infos, config.env_configuration)?;
+    let mut robots = Vec::with_capacity(infos.len());
+    let mut controllers = Vec::with_capacity(infos.len());
+    for (i, &info) in infos.iter().enumerate() {
         let (given, path) = config.controller_config(i);
         let resolved = match given {
             Some(c) => c.for_robot(assets, info.name, info.arms, &path)?,
@@ -145,7 +138,7 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
             .collect::<Result<Vec<_>>>()?;
         robots.push(RobotModel::build(assets, info, i, &grippers)?);
     }
-    let task_scene = spec.build(assets, &mut robots)?;
+    let task_scene = spec.build_configured(assets, &mut robots, configuration)?;
     let scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
     Ok(Composed {
         robots,

@@ -168,6 +168,15 @@ pub fn robot_names() -> Vec<&'static str> {
     ROBOTS.iter().map(|r| r.name).collect()
 }
 
+/// The names of the single-arm robots of [`ROBOTS`].
+pub fn single_arm_robot_names() -> Vec<&'static str> {
+    ROBOTS
+        .iter()
+        .filter(|r| r.arms.len() == 1)
+        .map(|r| r.name)
+        .collect()
+}
+
 /// The robot robosuite names `name`.
 ///
 /// # Errors

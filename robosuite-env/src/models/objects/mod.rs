@@ -12,6 +12,7 @@ pub mod cone;
 pub mod hollow_cylinder;
 pub mod hook_frame;
 mod material;
+pub mod pot_with_handles;
 pub mod primitive;
 pub mod ratcheting_wrench;
 #[cfg(test)]
