@@ -122,6 +122,9 @@ def active_object(task, env):
 def task_state(task, env):
     if task == "Lift":
         return [float(x) for x in env.cube.size]
+    if task == "TwoArmPegInHole":
+        # The peg radius drawn at the hard reset.
+        return [float(env.peg.size[0])]
     if task == "ToolHang":
         # No drawn model parameters; the state is ToolHang's observation cache, which a
         # replay restarts from the recorded reset state.
@@ -527,6 +530,23 @@ def two_arm_lift_policy(env, lift_height=0.15):
     return act
 
 
+def peg_approach_policy(env):
+    """Robot 0 carries the peg's body toward the hole's centre (10 cm along the plate's x
+    axis) while robot 1 holds still; deltas in robot 0's base frame."""
+    import robosuite.utils.transform_utils as T
+
+    frame = base_frame(env, 0)
+
+    def act(obs):
+        hole_x = T.quat2mat(obs["hole_quat"])[:, 0]
+        goal = np.asarray(obs["peg_to_hole"]) + 0.1 * hole_x
+        a = np.zeros(env.action_dim)
+        a[:3] = frame.T @ np.clip(goal * 5.0, -1.0, 1.0)
+        return a
+
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -549,6 +569,10 @@ SETUPS = {
 }
 POLICIES["TwoArmLift"] = [("scripted", two_arm_lift_policy, 110), ("random", lambda env: random_policy(5, env.action_dim), 60)]
 POLICIES["TwoArmLift-parallel"] = POLICIES["TwoArmLift"]
+SETUPS["TwoArmPegInHole"] = ("TwoArmPegInHole", ["Panda", "Panda"], {"env_configuration": "opposed"})
+SETUPS["TwoArmPegInHole-parallel"] = ("TwoArmPegInHole", ["Panda", "Panda"], {"env_configuration": "parallel"})
+POLICIES["TwoArmPegInHole"] = [("scripted", peg_approach_policy, 80), ("random", lambda env: random_policy(9, env.action_dim), 60)]
+POLICIES["TwoArmPegInHole-parallel"] = POLICIES["TwoArmPegInHole"]
 
 
 def scripted_and_random(scripted, steps, seed):

@@ -139,7 +139,10 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
         robots.push(RobotModel::build(assets, info, i, &grippers)?);
     }
     let task_scene = spec.build_configured(assets, &mut robots, configuration)?;
-    let scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
+    let mut scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
+    for object in &task_scene.attached {
+        scene.doc_mut().merge_assets(&object.assets);
+    }
     Ok(Composed {
         robots,
         controllers,

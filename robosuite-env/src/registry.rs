@@ -6,7 +6,7 @@ use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
 use crate::tasks::{
     DoorSpec, LiftSpec, NutAssemblySpec, PickPlaceSpec, StackSpec, TaskSpec, ToolHangSpec,
-    TwoArmLiftSpec, WipeSpec,
+    TwoArmLiftSpec, TwoArmPegInHoleSpec, WipeSpec,
 };
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
@@ -30,6 +30,7 @@ pub const ENV_NAMES: &[&str] = &[
     "Wipe",
     "ToolHang",
     "TwoArmLift",
+    "TwoArmPegInHole",
 ];
 
 /// The task registered under `name`, with robosuite's default settings.
@@ -44,6 +45,7 @@ pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
         "Wipe" => Ok(Box::new(WipeSpec::default())),
         "ToolHang" => Ok(Box::new(ToolHangSpec::default())),
         "TwoArmLift" => Ok(Box::new(TwoArmLiftSpec::default())),
+        "TwoArmPegInHole" => Ok(Box::new(TwoArmPegInHoleSpec::default())),
         other => {
             if let Some(spec) = PickPlaceSpec::variant(other) {
                 return Ok(Box::new(spec));

@@ -1,5 +1,6 @@
-//! Resizing a box-shaped body in place, the run-time equivalent of recompiling a model whose
-//! box was drawn with another size (robosuite re-draws Lift's cube at every hard reset).
+//! Resizing a box- or cylinder-shaped body in place, the run-time equivalent of recompiling
+//! a model whose primitive was drawn with another size (robosuite re-draws Lift's cube and
+//! TwoArmPegInHole's peg at every hard reset).
 
 use super::Sim;
 use gym_core::{Error, Result};
@@ -28,9 +29,6 @@ pub struct BoxGeomUpdate<'a> {
 /// # Errors
 /// [`Error::InvalidArgument`] for non-positive or non-finite half-extents.
 pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate<'_>, half: [f64; 3]) -> Result<()> {
-    let Some(&main) = target.geoms.first() else {
-        return Err(Error::invalid_argument("geoms", "no box geom to resize"));
-    };
     if half.iter().any(|h| !h.is_finite() || *h <= 0.0) {
         return Err(Error::invalid_argument(
             "half_extents",
@@ -38,18 +36,66 @@ pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate<'_>, half: [f64; 3])
         ));
     }
     let [x, y, z] = half;
-    let old_rbound = sim.model().geom_rbound()[main];
     let mass = target.density * 8.0 * x * y * z;
     let inertia = [
         mass * (y * y + z * z) / 3.0,
         mass * (x * x + z * z) / 3.0,
         mass * (x * x + y * y) / 3.0,
     ];
+    let rbound = (x * x + y * y + z * z).sqrt();
+    resize_body(sim, target, half, half, rbound, mass, inertia)
+}
+
+/// As [`resize_box_body`] for cylinder geoms (at the body's origin, along its z axis):
+/// radius `radius` and half-height `half_height`; mass and inertia of a solid cylinder.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for a non-positive or non-finite size.
+pub fn resize_cylinder_body(
+    sim: &mut Sim,
+    target: BoxGeomUpdate<'_>,
+    radius: f64,
+    half_height: f64,
+) -> Result<()> {
+    if ![radius, half_height]
+        .iter()
+        .all(|v| v.is_finite() && *v > 0.0)
+    {
+        return Err(Error::invalid_argument(
+            "size",
+            format!(
+                "a cylinder needs a positive radius and half-height, got {radius}, {half_height}"
+            ),
+        ));
+    }
+    let (r, h) = (radius, half_height);
+    let mass = target.density * std::f64::consts::PI * r * r * 2.0 * h;
+    let side = mass * (3.0 * r * r + 4.0 * h * h) / 12.0;
+    let inertia = [side, side, mass * r * r / 2.0];
+    let rbound = (r * r + h * h).sqrt();
+    resize_body(sim, target, [r, h, 0.0], [r, r, h], rbound, mass, inertia)
+}
+
+/// Writes a primitive body's new geom `size` (with the half-extents `half` of its bounding
+/// box and its bounding radius `rbound`), mass and inertia, then derives the rest as [`resize_box_body`] describes.
+fn resize_body(
+    sim: &mut Sim,
+    target: BoxGeomUpdate<'_>,
+    size: [f64; 3],
+    half: [f64; 3],
+    rbound: f64,
+    mass: f64,
+    inertia: [f64; 3],
+) -> Result<()> {
+    let Some(&main) = target.geoms.first() else {
+        return Err(Error::invalid_argument("geoms", "no geom to resize"));
+    };
+    let old_rbound = sim.model().geom_rbound()[main];
     {
         let model = sim.model_mut();
         for &g in target.geoms {
-            model.geom_size_mut()[g] = half;
-            model.geom_rbound_mut()[g] = (x * x + y * y + z * z).sqrt();
+            model.geom_size_mut()[g] = size;
+            model.geom_rbound_mut()[g] = rbound;
             model.geom_aabb_mut()[g][3..6].copy_from_slice(&half);
         }
         model.body_mass_mut()[target.body] = mass;

@@ -18,6 +18,7 @@ mod stack;
 mod tool_hang;
 mod two_arm;
 mod two_arm_lift;
+mod two_arm_peg_in_hole;
 mod wipe;
 
 pub use door::{Door, DoorSpec};
@@ -27,6 +28,7 @@ pub use pick_place::{PICK_PLACE_OBJECTS, PickPlace, PickPlaceSpec};
 pub use stack::{CUBE_A_HALF, CUBE_B_HALF, Stack, StackSpec};
 pub use tool_hang::{ToolHang, ToolHangSpec};
 pub use two_arm_lift::{TwoArmLift, TwoArmLiftSpec};
+pub use two_arm_peg_in_hole::{TwoArmPegInHole, TwoArmPegInHoleSpec};
 pub use wipe::{Wipe, WipeConfig, WipeSpec};
 
 use crate::assets::Assets;
@@ -58,6 +60,9 @@ pub struct TaskScene {
     pub arena: Arena,
     /// The objects.
     pub objects: Vec<ObjectModel>,
+    /// Objects the task attached inside a robot's model (TwoArmPegInHole's peg and hole):
+    /// only their assets are merged, after the objects'.
+    pub attached: Vec<ObjectModel>,
 }
 
 /// A task's configuration: robosuite's environment class before `_load_model`.

@@ -4,6 +4,7 @@
 
 use crate::config::EnvConfiguration;
 use crate::math::euler2mat;
+use crate::models::arenas::ArenaKind;
 use crate::models::robots::{ROBOTS, RobotInfo, RobotModel, single_arm_robot_names};
 use crate::robots::Robot;
 use crate::sim::Sim;
@@ -90,27 +91,20 @@ pub(crate) fn check_two_arm_robots(
     }
 }
 
-/// Where robosuite's two-arm table tasks put their robots (TwoArmLift, TwoArmHandover,
-/// TwoArmTransport's `_load_model`), from each robot's table offset at a table of length
-/// `table_length`:
+/// Where robosuite's two-arm tasks put their robots (their `_load_model`), from each
+/// robot's base offset in the arena `kind`:
 ///
 /// * `single-robot`: the robot at its table offset;
 /// * `opposed`: the offsets rotated by +π/2 (robot 0) and −π/2 (robot 1) about z, the bases
 ///   turned the same;
 /// * `parallel`: the offsets shifted by `∓parallel_shift` along y.
-pub(crate) fn place_table_robots(
+pub(crate) fn place_two_arm_robots(
     robots: &mut [RobotModel],
     configuration: EnvConfiguration,
-    table_length: f64,
+    kind: ArenaKind,
     parallel_shift: f64,
 ) {
-    let offset = |r: &RobotModel| {
-        r.info
-            .base_offsets
-            .for_arena(crate::models::arenas::ArenaKind::Table {
-                length: table_length,
-            })
-    };
+    let offset = |r: &RobotModel| r.info.base_offsets.for_arena(kind);
     match configuration {
         EnvConfiguration::SingleRobot | EnvConfiguration::Default => {
             if let Some(r) = robots.first_mut() {

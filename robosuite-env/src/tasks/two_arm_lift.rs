@@ -4,12 +4,12 @@
 use super::common::{FreeBody, dist, geoms_of, is_grasped, scale_reward, sub};
 use super::lift::TABLE_OFFSET;
 use super::placement::{Axis, Rotation, UniformRandomSampler};
-use super::two_arm::{ArmRef, check_two_arm_robots, place_table_robots, task_arms};
+use super::two_arm::{ArmRef, check_two_arm_robots, place_two_arm_robots, task_arms};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::config::EnvConfiguration;
 use crate::math::{quat2mat_f32, xyzw};
-use crate::models::arenas::Arena;
+use crate::models::arenas::{Arena, ArenaKind};
 use crate::models::objects::composite::GeneratedObject;
 use crate::models::objects::pot_with_handles::PotWithHandles;
 use crate::models::robots::{RobotInfo, RobotModel};
@@ -70,7 +70,14 @@ impl TaskSpec for TwoArmLiftSpec {
         robots: &mut [RobotModel],
         configuration: EnvConfiguration,
     ) -> Result<TaskScene> {
-        place_table_robots(robots, configuration, self.table_full_size[0], 0.25);
+        place_two_arm_robots(
+            robots,
+            configuration,
+            ArenaKind::Table {
+                length: self.table_full_size[0],
+            },
+            0.25,
+        );
         let mut arena = Arena::table(
             assets,
             "arenas/table_arena.xml",
@@ -83,6 +90,7 @@ impl TaskSpec for TwoArmLiftSpec {
         Ok(TaskScene {
             arena,
             objects: vec![pot],
+            attached: Vec::new(),
         })
     }
 
