@@ -125,6 +125,10 @@ def task_state(task, env):
     if task == "TwoArmPegInHole":
         # The peg radius drawn at the hard reset.
         return [float(env.peg.size[0])]
+    if task in ("TwoArmHandover", "TwoArmTransport"):
+        # The hammer's figures drawn at the hard reset.
+        h = env.hammer if task == "TwoArmHandover" else env.transport.payload
+        return [float(x) for x in (h.handle_radius, h.handle_length, h.handle_density, h.handle_friction, h.head_halfsize)]
     if task == "ToolHang":
         # No drawn model parameters; the state is ToolHang's observation cache, which a
         # replay restarts from the recorded reset state.
@@ -547,6 +551,68 @@ def peg_approach_policy(env):
     return act
 
 
+def handover_policy(env):
+    """Gripper 0 grasps the handle next to the head, lifts the hammer to the middle turning
+    its head towards robot 0, gripper 1 grasps the handle's far end, gripper 0 lets go and
+    rises. Deltas in each robot's base frame."""
+    import robosuite.utils.transform_utils as T
+
+    bimanual = len(env.robots) == 1
+    pf = ["robot0_right_", "robot0_left_"] if bimanual else ["robot0_", "robot1_"]
+    frames = [base_frame(env, 0)] * 2 if bimanual else [base_frame(env, 0), base_frame(env, 1)]
+    st = {"phase": 0, "t": 0}
+    def yaw_err(obs, i, axis):
+        finger = T.quat2mat(obs[f"{pf[i]}eef_quat"])[:, 1]
+        e = wrap_angle(np.arctan2(axis[1], axis[0]) + np.pi / 2 - np.arctan2(finger[1], finger[0]))
+        if abs(e) > np.pi / 2:
+            e = wrap_angle(e + np.pi)
+        return e
+    def act(obs):
+        st["t"] += 1
+        ph, t = st["phase"], st["t"]
+        axis = T.quat2mat(obs["hammer_quat"])[:, 2]
+        handle = np.asarray(obs["handle_xpos"])
+        L = env.hammer.handle_length
+        e0, e1 = obs[f"{pf[0]}eef_pos"], obs[f"{pf[1]}eef_pos"]
+        g0 = handle + axis * (L / 2 - 0.02)   # arm 0 holds next to the head
+        g1 = handle - axis * (L / 2 - 0.03)   # arm 1 takes the far end
+        t0, t1 = e0, e1
+        grip0, grip1, y0, y1, done = -1.0, -1.0, 0.0, 0.0, False
+        meet = np.array([0.0, 0.0, 1.1])
+        turn = wrap_angle(-np.pi / 2 - np.arctan2(axis[1], axis[0]))
+        if ph == 0:
+            t0 = g0 + np.array([0, 0, 0.08]); y0 = yaw_err(obs, 0, axis)
+            done = (np.linalg.norm(t0 - e0) < 0.01 and abs(y0) < 0.05) or t > 40
+        elif ph == 1:
+            t0 = g0; y0 = yaw_err(obs, 0, axis); done = np.linalg.norm(t0 - e0) < 0.006 or t > 30
+        elif ph == 2:
+            grip0, done = 1.0, t > 10
+        elif ph == 3:
+            grip0 = 1.0; t0 = e0 + (meet - handle); y0 = turn
+            done = (np.linalg.norm(meet - handle) < 0.01 and abs(turn) < 0.05) or t > 60
+        elif ph == 4:
+            grip0 = 1.0; t0 = e0 + (meet - handle)
+            t1 = g1 + np.array([0, 0, 0.08]); y1 = yaw_err(obs, 1, axis)
+            done = (np.linalg.norm(t1 - e1) < 0.01 and abs(y1) < 0.05) or t > 60
+        elif ph == 5:
+            grip0 = 1.0; t0 = e0 + (meet - handle)
+            t1 = g1; y1 = yaw_err(obs, 1, axis); done = np.linalg.norm(t1 - e1) < 0.006 or t > 30
+        elif ph == 6:
+            grip0 = grip1 = 1.0; t0 = e0 + (meet - handle); done = t > 10
+        elif ph == 7:
+            grip1 = 1.0; done = t > 10
+        else:
+            grip1 = 1.0; t0 = e0 + np.array([0, 0, 0.1])
+        if done:
+            st["phase"], st["t"] = ph + 1, 0
+        def one(i, tgt, yaw, grip):
+            a = np.zeros(7); a[:3] = frames[i].T @ toward(obs[f"{pf[i]}eef_pos"], tgt); a[5] = np.clip(yaw * 4.0, -1, 1); a[6] = grip
+            return a
+        a0, a1 = one(0, t0, y0, grip0), one(1, t1, y1, grip1)
+        return np.concatenate([a0, a1])
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -573,6 +639,10 @@ SETUPS["TwoArmPegInHole"] = ("TwoArmPegInHole", ["Panda", "Panda"], {"env_config
 SETUPS["TwoArmPegInHole-parallel"] = ("TwoArmPegInHole", ["Panda", "Panda"], {"env_configuration": "parallel"})
 POLICIES["TwoArmPegInHole"] = [("scripted", peg_approach_policy, 80), ("random", lambda env: random_policy(9, env.action_dim), 60)]
 POLICIES["TwoArmPegInHole-parallel"] = POLICIES["TwoArmPegInHole"]
+SETUPS["TwoArmHandover"] = ("TwoArmHandover", ["Panda", "Panda"], {"env_configuration": "opposed"})
+SETUPS["TwoArmHandover-parallel"] = ("TwoArmHandover", ["Panda", "Panda"], {"env_configuration": "parallel"})
+POLICIES["TwoArmHandover"] = [("scripted", handover_policy, 215), ("random", lambda env: random_policy(3, env.action_dim), 60)]
+POLICIES["TwoArmHandover-parallel"] = POLICIES["TwoArmHandover"]
 
 
 def scripted_and_random(scripted, steps, seed):

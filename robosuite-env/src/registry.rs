@@ -6,7 +6,7 @@ use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
 use crate::tasks::{
     DoorSpec, LiftSpec, NutAssemblySpec, PickPlaceSpec, StackSpec, TaskSpec, ToolHangSpec,
-    TwoArmLiftSpec, TwoArmPegInHoleSpec, WipeSpec,
+    TwoArmHandoverSpec, TwoArmLiftSpec, TwoArmPegInHoleSpec, WipeSpec,
 };
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
@@ -31,6 +31,7 @@ pub const ENV_NAMES: &[&str] = &[
     "ToolHang",
     "TwoArmLift",
     "TwoArmPegInHole",
+    "TwoArmHandover",
 ];
 
 /// The task registered under `name`, with robosuite's default settings.
@@ -46,6 +47,7 @@ pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
         "ToolHang" => Ok(Box::new(ToolHangSpec::default())),
         "TwoArmLift" => Ok(Box::new(TwoArmLiftSpec::default())),
         "TwoArmPegInHole" => Ok(Box::new(TwoArmPegInHoleSpec::default())),
+        "TwoArmHandover" => Ok(Box::new(TwoArmHandoverSpec::default())),
         other => {
             if let Some(spec) = PickPlaceSpec::variant(other) {
                 return Ok(Box::new(spec));

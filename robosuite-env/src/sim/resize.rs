@@ -165,3 +165,106 @@ fn update_statistics(sim: &mut Sim, body: usize, main: usize, old_rbound: f64) {
         }
     }
 }
+
+/// Gives `body` the geometry and mass of `donor_body` in `donor`, a small model compiled
+/// from the same body with other figures (an object whose several geoms robosuite re-draws
+/// at every hard reset, such as the hammer): per geom (in order) size, position,
+/// orientation, friction, bounding radius and box; the body's mass, inertia and inertial
+/// frame; its bounding-volume hierarchy; its dofs' length scales; then, as
+/// [`resize_box_body`], `mj_setConst` and the statistics (`meansize` moved by the change of
+/// the body's own size, `donor_size − old_size`, read from single-body donors). Leaves the
+/// data at `qpos0`.
+///
+/// # Errors
+/// [`Error::Model`] when the donor body's geoms, bounding volumes or dofs do not
+/// correspond to the body's.
+pub fn reshape_body_from(
+    sim: &mut Sim,
+    body: usize,
+    donor: &mujoco_rs::wrappers::mj_model::MjModel,
+    donor_body: usize,
+    size_change: f64,
+) -> Result<()> {
+    let count = |m: &mujoco_rs::wrappers::mj_model::MjModel, b: usize| {
+        (
+            m.body_geomadr()[b],
+            m.body_geomnum()[b],
+            m.body_bvhadr()[b],
+            m.body_bvhnum()[b],
+            m.body_dofadr()[b],
+            m.body_dofnum()[b],
+        )
+    };
+    let (ga, gn, ba, bn, da, dn) = count(sim.model(), body);
+    let (dga, dgn, dba, dbn, dda, ddn) = count(donor, donor_body);
+    if gn != dgn || bn != dbn || dn != ddn || ga < 0 || dga < 0 {
+        return Err(Error::Model(format!(
+            "the donor body has {dgn} geoms, {dbn} bounding volumes and {ddn} dofs; \
+             the body {gn}, {bn} and {dn}"
+        )));
+    }
+    let old_rbound = sim.model().geom_rbound()[ga as usize];
+    let geom_offset = ga - dga;
+    {
+        let model = sim.model_mut();
+        for k in 0..gn as usize {
+            let (g, dg) = (ga as usize + k, dga as usize + k);
+            model.geom_size_mut()[g] = donor.geom_size()[dg];
+            model.geom_pos_mut()[g] = donor.geom_pos()[dg];
+            model.geom_quat_mut()[g] = donor.geom_quat()[dg];
+            model.geom_friction_mut()[g] = donor.geom_friction()[dg];
+            model.geom_rbound_mut()[g] = donor.geom_rbound()[dg];
+            model.geom_aabb_mut()[g] = donor.geom_aabb()[dg];
+            model.geom_sameframe_mut()[g] = donor.geom_sameframe()[dg];
+        }
+        model.body_mass_mut()[body] = donor.body_mass()[donor_body];
+        model.body_inertia_mut()[body] = donor.body_inertia()[donor_body];
+        model.body_ipos_mut()[body] = donor.body_ipos()[donor_body];
+        model.body_iquat_mut()[body] = donor.body_iquat()[donor_body];
+        model.body_sameframe_mut()[body] = donor.body_sameframe()[donor_body];
+        if ba >= 0 && dba >= 0 {
+            for k in 0..bn as usize {
+                let (n, dn_) = (ba as usize + k, dba as usize + k);
+                if let (Some(to), Some(from)) =
+                    (model.bvh_aabb_mut().get_mut(n), donor.bvh_aabb().get(dn_))
+                {
+                    *to = *from;
+                }
+                model.bvh_depth_mut()[n] = donor.bvh_depth()[dn_];
+                let id = donor.bvh_nodeid()[dn_];
+                let child = donor.bvh_child()[dn_];
+                // SAFETY: the donor's hierarchy has the same number of nodes; node ids (global
+                // geom ids) are shifted to this body's geoms, and child indices (relative to
+                // the body's root node) are kept, so every index stays inside the arrays.
+                unsafe {
+                    model.bvh_nodeid_mut()[n] = if id >= 0 { id + geom_offset } else { id };
+                    model.bvh_child_mut()[n] = child;
+                }
+            }
+        }
+        if da >= 0 {
+            for k in 0..dn as usize {
+                model.dof_length_mut()[da as usize + k] = donor.dof_length()[dda as usize + k];
+            }
+        }
+    }
+    let (m, d) = sim.raw_mut();
+    // SAFETY: as in resize_box_body.
+    unsafe { mujoco_rs::mujoco_c::mj_setConst(m, d) };
+    let nbody = sim.model().ffi().nbody as usize;
+    update_statistics(sim, body, ga as usize, old_rbound);
+    // `update_statistics` moved meansize by the first geom's radius and rewrote the dof
+    // lengths from it: restore the donor's dof lengths and apply the body's own size change.
+    let model = sim.model_mut();
+    if da >= 0 {
+        for k in 0..dn as usize {
+            model.dof_length_mut()[da as usize + k] = donor.dof_length()[dda as usize + k];
+        }
+    }
+    if nbody > 1 {
+        let new_rbound = model.geom_rbound()[ga as usize];
+        let geom_shift = (new_rbound.max(1e-5) - old_rbound.max(1e-5)) / (nbody - 1) as f64;
+        model.stat_mut().meansize += size_change / (nbody - 1) as f64 - geom_shift;
+    }
+    Ok(())
+}

@@ -96,12 +96,13 @@ pub(crate) fn check_two_arm_robots(
 ///
 /// * `single-robot`: the robot at its table offset;
 /// * `opposed`: the offsets rotated by +π/2 (robot 0) and −π/2 (robot 1) about z, the bases
-///   turned the same;
+///   turned the same, then shifted by `∓opposed_shift` along y;
 /// * `parallel`: the offsets shifted by `∓parallel_shift` along y.
 pub(crate) fn place_two_arm_robots(
     robots: &mut [RobotModel],
     configuration: EnvConfiguration,
     kind: ArenaKind,
+    opposed_shift: f64,
     parallel_shift: f64,
 ) {
     let offset = |r: &RobotModel| r.info.base_offsets.for_arena(kind);
@@ -113,11 +114,12 @@ pub(crate) fn place_two_arm_robots(
             }
         }
         EnvConfiguration::Opposed => {
-            for (r, rotation) in robots.iter_mut().zip([PI / 2.0, -PI / 2.0]) {
+            let turns = [(PI / 2.0, -opposed_shift), (-PI / 2.0, opposed_shift)];
+            for (r, (rotation, shift)) in robots.iter_mut().zip(turns) {
                 let x = offset(r);
                 let rot = [0.0, 0.0, rotation];
                 let p = euler2mat(rot) * Vector3::new(x[0], x[1], x[2]);
-                r.set_base_xpos([p[0], p[1], p[2]]);
+                r.set_base_xpos([p[0], p[1] + shift, p[2]]);
                 r.set_base_ori(rot);
             }
         }

@@ -76,6 +76,7 @@ impl TaskSpec for TwoArmLiftSpec {
             ArenaKind::Table {
                 length: self.table_full_size[0],
             },
+            0.0,
             0.25,
         );
         let mut arena = Arena::table(

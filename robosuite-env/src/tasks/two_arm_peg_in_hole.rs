@@ -110,7 +110,7 @@ impl TaskSpec for TwoArmPegInHoleSpec {
         configuration: EnvConfiguration,
     ) -> Result<TaskScene> {
         self.validate()?;
-        place_two_arm_robots(robots, configuration, ArenaKind::Empty, 0.25);
+        place_two_arm_robots(robots, configuration, ArenaKind::Empty, 0.0, 0.25);
         let mut arena = Arena::empty(assets)?;
         arena.set_origin([0.0; 3])?;
         arena.set_camera(

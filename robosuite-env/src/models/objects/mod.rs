@@ -9,6 +9,7 @@
 
 pub mod composite;
 pub mod cone;
+pub mod hammer;
 pub mod hollow_cylinder;
 pub mod hook_frame;
 mod material;
