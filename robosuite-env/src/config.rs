@@ -20,7 +20,8 @@ use gym_core::{Error, Info, InfoValue, Result};
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnvConfig {
-    /// Robot names, one per robot the task needs (default `["Panda"]`).
+    /// Robot names, one per robot the task needs (robosuite's `robots`); empty (the
+    /// default): a Panda for each robot the task needs.
     pub robots: Vec<String>,
     /// Grippers, one choice per robot applied to each of its arms (robosuite's
     /// `gripper_types`); empty: every robot's default gripper.
@@ -109,7 +110,7 @@ impl EnvConfiguration {
 impl Default for EnvConfig {
     fn default() -> Self {
         Self {
-            robots: vec!["Panda".to_owned()],
+            robots: Vec::new(),
             gripper_types: Vec::new(),
             controller_configs: Vec::new(),
             horizon: 1000,
@@ -204,6 +205,15 @@ impl EnvConfig {
         self
     }
 
+    /// This configuration with its robots resolved for a task that needs `count` robots:
+    /// unchanged when robots are given, else a Panda for each.
+    pub fn with_default_robots(mut self, count: usize) -> Self {
+        if self.robots.is_empty() {
+            self.robots = vec!["Panda".to_owned(); count];
+        }
+        self
+    }
+
     /// Sets the horizon.
     #[must_use]
     pub fn with_horizon(mut self, horizon: u64) -> Self {
@@ -271,19 +281,13 @@ impl EnvConfig {
     /// # Errors
     /// [`Error::InvalidArgument`] naming the argument and what would be valid.
     pub fn validate(&self) -> Result<()> {
-        if self.robots.is_empty() {
-            return Err(Error::invalid_argument(
-                "robots",
-                format!(
-                    "give at least one robot; valid: {}",
-                    crate::models::robots::robot_names().join(", ")
-                ),
-            ));
-        }
         for r in &self.robots {
             robot_info(r)?;
         }
-        if !self.gripper_types.is_empty() && self.gripper_types.len() != self.robots.len() {
+        if !self.robots.is_empty()
+            && !self.gripper_types.is_empty()
+            && self.gripper_types.len() != self.robots.len()
+        {
             return Err(Error::invalid_argument(
                 "gripper_types",
                 format!(
@@ -320,7 +324,7 @@ impl EnvConfig {
             ));
         }
         let n = self.controller_configs.len();
-        if n > 1 && n != self.robots.len() {
+        if n > 1 && !self.robots.is_empty() && n != self.robots.len() {
             return Err(Error::invalid_argument(
                 "controller_configs",
                 format!(

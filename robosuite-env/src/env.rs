@@ -102,6 +102,7 @@ pub struct RobosuiteEnv {
 
 /// The robots and task scene composed for a configuration, before compiling.
 struct Composed {
+    configuration: crate::config::EnvConfiguration,
     robots: Vec<RobotModel>,
     controllers: Vec<(CompositeControllerConfig, String)>,
     task_scene: TaskScene,
@@ -117,6 +118,7 @@ pub fn compose_scene(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -
 }
 
 fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Composed> {
+    let config = &config.clone().with_default_robots(spec.num_robots());
     config.validate()?;
     let infos = config
         .robots
@@ -144,6 +146,7 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
         scene.doc_mut().merge_assets(&object.assets);
     }
     Ok(Composed {
+        configuration,
         robots,
         controllers,
         task_scene,
@@ -209,9 +212,12 @@ impl RobosuiteEnv {
         spec: &dyn TaskSpec,
         composed: Composed,
         model: MjModel,
-        mut config: EnvConfig,
+        config: EnvConfig,
         source: ModelSource,
     ) -> Result<Self> {
+        // The robots and the robot set-up the scene was composed with.
+        let mut config = config.with_default_robots(spec.num_robots());
+        config.env_configuration = composed.configuration;
         config.reward_shaping = Some(
             config
                 .reward_shaping

@@ -94,6 +94,9 @@ task_tests! {
     nut_assembly_single_passes_check_env, nut_assembly_single_passes_the_property_suite => "NutAssemblySingle";
     nut_assembly_square_passes_check_env, nut_assembly_square_passes_the_property_suite => "NutAssemblySquare";
     nut_assembly_round_passes_check_env, nut_assembly_round_passes_the_property_suite => "NutAssemblyRound";
+    two_arm_lift_passes_check_env, two_arm_lift_passes_the_property_suite => "TwoArmLift";
+    two_arm_peg_in_hole_passes_check_env, two_arm_peg_in_hole_passes_the_property_suite => "TwoArmPegInHole";
+    two_arm_handover_passes_check_env, two_arm_handover_passes_the_property_suite => "TwoArmHandover";
 }
 
 #[test]

@@ -15,7 +15,7 @@ use crate::models::robots::{GripperChoice, RobotInfo, RobotModel};
 use crate::observables::{ObsSpec, Observable, observe_all, specs};
 use crate::robots::Robot;
 use crate::sim::{BoxGeomUpdate, Sim, body_id, resize_cylinder_body};
-use gym_core::{EnvRng, Error, Result};
+use gym_core::{DType, EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
 
@@ -221,15 +221,33 @@ impl TaskSpec for TwoArmPegInHoleSpec {
             Observable::f64("peg_quat", 4, "object", |t: &TwoArmPegInHole, sim, out| {
                 out.copy_from_slice(&xyzw(sim.data().xquat()[t.peg_body]));
             }),
-            Observable::f64("angle", 1, "object", |t: &TwoArmPegInHole, sim, out| {
-                out[0] = t.orientation(sim).2;
-            }),
-            Observable::f64("t", 1, "object", |t: &TwoArmPegInHole, sim, out| {
-                out[0] = t.orientation(sim).0;
-            }),
-            Observable::f64("d", 1, "object", |t: &TwoArmPegInHole, sim, out| {
-                out[0] = t.orientation(sim).1;
-            }),
+            Observable::new(
+                "angle",
+                &[],
+                DType::F64,
+                "object",
+                |t: &TwoArmPegInHole, sim, out| {
+                    out[0] = t.orientation(sim).2;
+                },
+            ),
+            Observable::new(
+                "t",
+                &[],
+                DType::F64,
+                "object",
+                |t: &TwoArmPegInHole, sim, out| {
+                    out[0] = t.orientation(sim).0;
+                },
+            ),
+            Observable::new(
+                "d",
+                &[],
+                DType::F64,
+                "object",
+                |t: &TwoArmPegInHole, sim, out| {
+                    out[0] = t.orientation(sim).1;
+                },
+            ),
         ];
         Ok(Box::new(task))
     }
