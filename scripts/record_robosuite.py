@@ -613,6 +613,46 @@ def handover_policy(env):
     return act
 
 
+def transport_policy(env):
+    """Gripper 0 grasps the lid's handle and lifts the lid; gripper 1 grasps the trash and
+    lifts it (no yaw alignment). Deltas in each robot's base frame."""
+    bimanual = len(env.robots) == 1
+    pf = ["robot0_right_", "robot0_left_"] if bimanual else ["robot0_", "robot1_"]
+    frames = [base_frame(env, 0)] * 2 if bimanual else [base_frame(env, 0), base_frame(env, 1)]
+    keys = ["lid_handle_pos", "trash_pos"]
+    state = {"phase": [0, 0], "t": [0, 0]}
+
+    def arm(obs, i):
+        eef, obj = obs[f"{pf[i]}eef_pos"], np.asarray(obs[keys[i]])
+        state["t"][i] += 1
+        phase, t = state["phase"][i], state["t"][i]
+        grip, done = -1.0, False
+        if phase == 0:
+            target = obj + np.array([0, 0, 0.08])
+            done = np.linalg.norm(target - eef) < 0.01 or t > 40
+        elif phase == 1:
+            target = obj
+            done = np.linalg.norm(target - eef) < 0.006 or t > 30
+        elif phase == 2:
+            target, grip, done = eef, 1.0, t > 10
+        else:
+            target, grip = eef + np.array([0, 0, 0.05]), 1.0
+        if done:
+            state["phase"][i], state["t"][i] = phase + 1, 0
+        a = np.zeros(7)
+        a[:3] = frames[i].T @ toward(eef, target)
+        a[6] = grip
+        return a
+
+    def act(obs):
+        a0, a1 = arm(obs, 0), arm(obs, 1)
+        if bimanual:
+            return np.concatenate([a0[:6], a1[:6], a0[6:], a1[6:]])
+        return np.concatenate([a0, a1])
+
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -643,6 +683,10 @@ SETUPS["TwoArmHandover"] = ("TwoArmHandover", ["Panda", "Panda"], {"env_configur
 SETUPS["TwoArmHandover-parallel"] = ("TwoArmHandover", ["Panda", "Panda"], {"env_configuration": "parallel"})
 POLICIES["TwoArmHandover"] = [("scripted", handover_policy, 215), ("random", lambda env: random_policy(3, env.action_dim), 60)]
 POLICIES["TwoArmHandover-parallel"] = POLICIES["TwoArmHandover"]
+SETUPS["TwoArmTransport"] = ("TwoArmTransport", ["Panda", "Panda"], {"env_configuration": "opposed"})
+SETUPS["TwoArmTransport-parallel"] = ("TwoArmTransport", ["Panda", "Panda"], {"env_configuration": "parallel"})
+POLICIES["TwoArmTransport"] = [("scripted", transport_policy, 120), ("random", lambda env: random_policy(17, env.action_dim), 60)]
+POLICIES["TwoArmTransport-parallel"] = POLICIES["TwoArmTransport"]
 
 
 def scripted_and_random(scripted, steps, seed):

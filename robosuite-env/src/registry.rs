@@ -6,7 +6,7 @@ use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
 use crate::tasks::{
     DoorSpec, LiftSpec, NutAssemblySpec, PickPlaceSpec, StackSpec, TaskSpec, ToolHangSpec,
-    TwoArmHandoverSpec, TwoArmLiftSpec, TwoArmPegInHoleSpec, WipeSpec,
+    TwoArmHandoverSpec, TwoArmLiftSpec, TwoArmPegInHoleSpec, TwoArmTransportSpec, WipeSpec,
 };
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
@@ -32,6 +32,7 @@ pub const ENV_NAMES: &[&str] = &[
     "TwoArmLift",
     "TwoArmPegInHole",
     "TwoArmHandover",
+    "TwoArmTransport",
 ];
 
 /// The task registered under `name`, with robosuite's default settings.
@@ -48,6 +49,7 @@ pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
         "TwoArmLift" => Ok(Box::new(TwoArmLiftSpec::default())),
         "TwoArmPegInHole" => Ok(Box::new(TwoArmPegInHoleSpec::default())),
         "TwoArmHandover" => Ok(Box::new(TwoArmHandoverSpec::default())),
+        "TwoArmTransport" => Ok(Box::new(TwoArmTransportSpec::default())),
         other => {
             if let Some(spec) = PickPlaceSpec::variant(other) {
                 return Ok(Box::new(spec));

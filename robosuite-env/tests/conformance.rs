@@ -97,6 +97,7 @@ task_tests! {
     two_arm_lift_passes_check_env, two_arm_lift_passes_the_property_suite => "TwoArmLift";
     two_arm_peg_in_hole_passes_check_env, two_arm_peg_in_hole_passes_the_property_suite => "TwoArmPegInHole";
     two_arm_handover_passes_check_env, two_arm_handover_passes_the_property_suite => "TwoArmHandover";
+    two_arm_transport_passes_check_env, two_arm_transport_passes_the_property_suite => "TwoArmTransport";
 }
 
 #[test]

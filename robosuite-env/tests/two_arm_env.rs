@@ -109,6 +109,49 @@ const TWO_ARM_HANDOVER_OBS: &[(&str, &[usize], DType)] = &[
     ("object-state", &[16], DType::F64),
 ];
 
+/// robosuite 1.5.2's TwoArmTransport observation keys, shapes and dtypes (two Pandas,
+/// `opposed`), in order (transcribed from `robosuite-1.5.2-observations.json`; robosuite's
+/// bools are int8 here, as Wipe's `robot0_contact`).
+const TWO_ARM_TRANSPORT_OBS: &[(&str, &[usize], DType)] = &[
+    ("robot0_joint_pos", &[7], DType::F64),
+    ("robot0_joint_pos_cos", &[7], DType::F64),
+    ("robot0_joint_pos_sin", &[7], DType::F64),
+    ("robot0_joint_vel", &[7], DType::F64),
+    ("robot0_joint_acc", &[7], DType::F64),
+    ("robot0_eef_pos", &[3], DType::F64),
+    ("robot0_eef_quat", &[4], DType::F64),
+    ("robot0_eef_quat_site", &[4], DType::F32),
+    ("robot0_gripper_qpos", &[2], DType::F64),
+    ("robot0_gripper_qvel", &[2], DType::F64),
+    ("robot1_joint_pos", &[7], DType::F64),
+    ("robot1_joint_pos_cos", &[7], DType::F64),
+    ("robot1_joint_pos_sin", &[7], DType::F64),
+    ("robot1_joint_vel", &[7], DType::F64),
+    ("robot1_joint_acc", &[7], DType::F64),
+    ("robot1_eef_pos", &[3], DType::F64),
+    ("robot1_eef_quat", &[4], DType::F64),
+    ("robot1_eef_quat_site", &[4], DType::F32),
+    ("robot1_gripper_qpos", &[2], DType::F64),
+    ("robot1_gripper_qvel", &[2], DType::F64),
+    ("payload_pos", &[3], DType::F64),
+    ("payload_quat", &[4], DType::F32),
+    ("trash_pos", &[3], DType::F64),
+    ("trash_quat", &[4], DType::F32),
+    ("lid_handle_pos", &[3], DType::F64),
+    ("lid_handle_quat", &[4], DType::F32),
+    ("target_bin_pos", &[3], DType::F64),
+    ("trash_bin_pos", &[3], DType::F64),
+    ("payload_in_target_bin", &[], DType::I8),
+    ("trash_in_trash_bin", &[], DType::I8),
+    ("gripper0_to_payload", &[3], DType::F64),
+    ("gripper0_to_lid_handle", &[3], DType::F64),
+    ("gripper1_to_payload", &[3], DType::F64),
+    ("gripper1_to_trash", &[3], DType::F64),
+    ("robot0_proprio-state", &[50], DType::F64),
+    ("robot1_proprio-state", &[50], DType::F64),
+    ("object-state", &[41], DType::F64),
+];
+
 fn pandas(task: &str, configuration: EnvConfiguration) -> RobosuiteEnv {
     make_with(
         task,
@@ -137,6 +180,7 @@ fn observation_layouts_and_action_spaces_equal_robosuites() {
         ("TwoArmLift", TWO_ARM_LIFT_OBS, 14),
         ("TwoArmPegInHole", TWO_ARM_PEG_IN_HOLE_OBS, 12),
         ("TwoArmHandover", TWO_ARM_HANDOVER_OBS, 14),
+        ("TwoArmTransport", TWO_ARM_TRANSPORT_OBS, 14),
     ] {
         for configuration in [EnvConfiguration::Opposed, EnvConfiguration::Parallel] {
             let mut env = pandas(task, configuration);
@@ -162,7 +206,12 @@ fn observation_layouts_and_action_spaces_equal_robosuites() {
 
 #[test]
 fn default_robots_are_two_pandas_opposed() {
-    for task in ["TwoArmLift", "TwoArmPegInHole", "TwoArmHandover"] {
+    for task in [
+        "TwoArmLift",
+        "TwoArmPegInHole",
+        "TwoArmHandover",
+        "TwoArmTransport",
+    ] {
         let env = make(task).unwrap();
         assert_eq!(env.config().robots, ["Panda", "Panda"], "{task}");
         assert_eq!(env.config().env_configuration, EnvConfiguration::Opposed);
@@ -369,6 +418,66 @@ fn hammer_figures_are_drawn_per_reset_and_lifted_hammer_is_rewarded() {
 }
 
 #[test]
+fn transport_places_the_group_and_rewards_only_success() {
+    let mut env = make_with(
+        "TwoArmTransport",
+        EnvConfig::default().with_reward_shaping(true),
+    )
+    .unwrap();
+    let (obs, _) = env.reset(Some(4), None).unwrap();
+    // The lid on the start bin, the payload in it, the trash in the target bin.
+    let (payload, trash, lid) = (
+        get(&obs, "payload_pos"),
+        get(&obs, "trash_pos"),
+        get(&obs, "lid_handle_pos"),
+    );
+    let m = env.sim().model();
+    let start = env.sim().data().xpos()[body_id(m, "transport_start_bin_root").unwrap()];
+    let target = get(&obs, "target_bin_pos");
+    assert!((payload[0] - start[0]).abs() < 1e-12 && (payload[1] - start[1]).abs() < 1e-12);
+    assert!((lid[0] - start[0]).abs() < 1e-9 && lid[2] > start[2] + 0.075);
+    assert!((trash[0] - target[0]).abs() < 1e-12 && (trash[1] - target[1]).abs() < 1e-12);
+    assert!(
+        start[1] < 0.0 && target[1] > 0.0,
+        "table 0 at y < 0, table 1 at y > 0"
+    );
+    // The payload's head is drawn per reset; its other figures are fixed.
+    let f = env.task().save_state();
+    assert_eq!(f[..4], [0.015, 0.2, 150.0, 4.0]);
+    assert!((0.015..=0.018).contains(&f[4]));
+    // Shaping: robosuite warns, turns it off and returns 0; then sparse.
+    let step = env.step(&zeros(14)).unwrap();
+    assert_eq!(step.reward, 0.0);
+    assert!(!env.check_success());
+    // Let things settle: the trash rests on the target bin's base, not the trash bin's.
+    for _ in 0..10 {
+        assert!(!env.step(&zeros(14)).unwrap().done());
+    }
+    let obs = env.observation();
+    assert_eq!(get(&obs, "payload_in_target_bin"), [0.0]);
+    assert_eq!(get(&obs, "trash_in_trash_bin"), [0.0]);
+    // Payload dropped into the target bin, trash into the trash bin: success, reward 1.
+    let m = env.sim().model();
+    let qpos = |j: &str| m.jnt_qposadr()[joint_id(m, j).unwrap()] as usize;
+    let (p, t) = (qpos("payload_joint0"), qpos("trash_joint0"));
+    let trash_bin = get(&obs, "trash_bin_pos");
+    let mut state = env.get_state();
+    state[1 + p..1 + p + 3].copy_from_slice(&[target[0], target[1], target[2] + 0.04]);
+    state[1 + t..1 + t + 3].copy_from_slice(&[trash_bin[0], trash_bin[1], trash_bin[2] + 0.03]);
+    env.set_state(&state).unwrap();
+    let mut rewards = Vec::new();
+    for _ in 0..10 {
+        let step = env.step(&zeros(14)).unwrap();
+        rewards.push(step.reward);
+    }
+    let obs = env.observation();
+    assert_eq!(get(&obs, "payload_in_target_bin"), [1.0]);
+    assert_eq!(get(&obs, "trash_in_trash_bin"), [1.0]);
+    assert!(env.check_success());
+    assert_eq!(rewards.last(), Some(&1.0));
+}
+
+#[test]
 fn recorded_scripted_policies_reach_success() {
     for (fixture, at_least) in [
         ("TwoArmLift", 40),
@@ -463,7 +572,12 @@ fn bad_robot_set_ups_are_typed_errors_listing_what_is_valid() {
 
 #[test]
 fn two_arm_episodes_are_deterministic() {
-    for task in ["TwoArmLift", "TwoArmPegInHole", "TwoArmHandover"] {
+    for task in [
+        "TwoArmLift",
+        "TwoArmPegInHole",
+        "TwoArmHandover",
+        "TwoArmTransport",
+    ] {
         let run = || {
             let mut env = make(task).unwrap();
             env.reset(Some(11), None).unwrap();

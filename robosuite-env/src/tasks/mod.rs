@@ -20,6 +20,7 @@ mod two_arm;
 mod two_arm_handover;
 mod two_arm_lift;
 mod two_arm_peg_in_hole;
+mod two_arm_transport;
 mod wipe;
 
 pub use door::{Door, DoorSpec};
@@ -31,6 +32,7 @@ pub use tool_hang::{ToolHang, ToolHangSpec};
 pub use two_arm_handover::{TwoArmHandover, TwoArmHandoverSpec};
 pub use two_arm_lift::{TwoArmLift, TwoArmLiftSpec};
 pub use two_arm_peg_in_hole::{TwoArmPegInHole, TwoArmPegInHoleSpec};
+pub use two_arm_transport::{TwoArmTransport, TwoArmTransportSpec};
 pub use wipe::{Wipe, WipeConfig, WipeSpec};
 
 use crate::assets::Assets;

@@ -7,6 +7,7 @@
 //! [`composite`]: robosuite's composite objects and composite bodies, with ToolHang's
 //! [`stand_with_mount`], [`hook_frame`] and [`ratcheting_wrench`] built on them).
 
+pub mod bin;
 pub mod composite;
 pub mod cone;
 pub mod hammer;
