@@ -687,6 +687,10 @@ SETUPS["TwoArmTransport"] = ("TwoArmTransport", ["Panda", "Panda"], {"env_config
 SETUPS["TwoArmTransport-parallel"] = ("TwoArmTransport", ["Panda", "Panda"], {"env_configuration": "parallel"})
 POLICIES["TwoArmTransport"] = [("scripted", transport_policy, 120), ("random", lambda env: random_policy(17, env.action_dim), 60)]
 POLICIES["TwoArmTransport-parallel"] = POLICIES["TwoArmTransport"]
+# One bimanual Baxter (robosuite's "single-robot" set-up).
+for _task in ["TwoArmLift", "TwoArmPegInHole", "TwoArmHandover", "TwoArmTransport"]:
+    SETUPS[f"{_task}-Baxter"] = (_task, ["Baxter"], {})
+    POLICIES[f"{_task}-Baxter"] = POLICIES[_task]
 
 
 def scripted_and_random(scripted, steps, seed):

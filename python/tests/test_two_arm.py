@@ -15,6 +15,7 @@ TWO_ARM = [
     ("TwoArmLift", 14, 19, 50),
     ("TwoArmPegInHole", 12, 17, 46),
     ("TwoArmHandover", 14, 16, 50),
+    ("TwoArmTransport", 14, 41, 50),
 ]
 
 
