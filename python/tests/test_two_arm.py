@@ -72,6 +72,17 @@ def test_gymnasium_make_takes_two_arm_kwargs() -> None:
     env.close()
 
 
+@pytest.mark.parametrize("task,dim,obj,proprio", TWO_ARM)
+def test_one_baxter_is_the_single_robot_set_up(task: str, dim: int, obj: int, proprio: int) -> None:
+    env = suite.make(task, robots="Baxter", horizon=5)
+    obs = env.reset()
+    assert env.action_dim == dim
+    assert obs["object-state"].shape == (obj,)
+    assert "robot0_right_eef_pos" in obs and "robot0_left_eef_pos" in obs
+    assert "robot1_proprio-state" not in obs
+    assert GymWrapper(env).keys == ["object-state", "robot0_proprio-state"]
+
+
 def test_bad_two_arm_set_ups_raise_value_errors_listing_what_is_valid() -> None:
     with pytest.raises(ValueError, match="bimanual"):
         suite.make("TwoArmLift", robots="Panda")
@@ -81,5 +92,7 @@ def test_bad_two_arm_set_ups_raise_value_errors_listing_what_is_valid() -> None:
         suite.make("TwoArmLift", robots=["Panda", "Panda"], env_configuration="diagonal")
     with pytest.raises(ValueError, match="only `default`"):
         suite.make("Lift", robots="Panda", env_configuration="opposed")
+    with pytest.raises(ValueError, match="bimanual"):
+        suite.make("Lift", robots="Baxter")
     with pytest.raises(ValueError, match="gripper_types"):
         suite.make("TwoArmPegInHole", robots=["Panda", "Panda"], gripper_types="PandaGripper")

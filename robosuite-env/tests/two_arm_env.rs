@@ -571,6 +571,60 @@ fn bad_robot_set_ups_are_typed_errors_listing_what_is_valid() {
 }
 
 #[test]
+fn one_baxter_is_robosuites_single_robot_set_up() {
+    for (task, dim) in [
+        ("TwoArmLift", 14),
+        ("TwoArmPegInHole", 12),
+        ("TwoArmHandover", 14),
+        ("TwoArmTransport", 14),
+    ] {
+        let mut env = make_with(task, EnvConfig::default().with_robots(["Baxter"])).unwrap();
+        assert_eq!(
+            env.config().env_configuration,
+            EnvConfiguration::SingleRobot
+        );
+        assert_eq!(env.action_dim(), dim, "{task}");
+        let (obs, _) = env.reset(Some(0), None).unwrap();
+        let keys = env.observation_keys();
+        for side in ["right", "left"] {
+            assert!(keys.contains(&format!("robot0_{side}_eef_pos")), "{task}");
+        }
+        assert!(!keys.iter().any(|k| k.starts_with("robot1_")), "{task}");
+        assert_eq!(get(&obs, "robot0_joint_pos").len(), 14);
+        assert!(!env.step(&zeros(dim)).unwrap().done());
+    }
+    // Gripper 0 is the right arm, gripper 1 the left one.
+    let mut env = make_with("TwoArmLift", EnvConfig::default().with_robots(["Baxter"])).unwrap();
+    let (obs, _) = env.reset(Some(0), None).unwrap();
+    for (i, side) in [(0, "right"), (1, "left")] {
+        let (h, e, d) = (
+            get(&obs, &format!("handle{i}_xpos")),
+            get(&obs, &format!("robot0_{side}_eef_pos")),
+            get(&obs, &format!("gripper{i}_to_handle{i}")),
+        );
+        for k in 0..3 {
+            assert_eq!(d[k], h[k] - e[k]);
+        }
+    }
+    // A bimanual robot takes no single-arm task and does not pair up.
+    let (name, reason) = invalid_argument(make_with(
+        "Lift",
+        EnvConfig::default().with_robots(["Baxter"]),
+    ));
+    assert_eq!(name, "robots");
+    assert!(
+        reason.contains("bimanual") && reason.contains("Panda"),
+        "{reason}"
+    );
+    let (name, reason) = invalid_argument(make_with(
+        "TwoArmLift",
+        EnvConfig::default().with_robots(["Baxter", "Panda"]),
+    ));
+    assert_eq!(name, "robots");
+    assert!(reason.contains("Baxter"), "{reason}");
+}
+
+#[test]
 fn two_arm_episodes_are_deterministic() {
     for task in [
         "TwoArmLift",
