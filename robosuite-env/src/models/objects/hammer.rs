@@ -169,6 +169,20 @@ fn material(assets: &Assets, texture: &str, name: &str) -> Result<CustomMaterial
     )
 }
 
+/// robosuite's quaternion (wxyz) turning the neck and face cylinders onto x: its literal
+/// 0.707106, not 1/√2.
+#[allow(clippy::approx_constant)]
+const ONTO_X: [f64; 4] = [0.707106, 0.0, 0.707106, 0.0];
+
+/// One head part of the hammer: shape, size, location, orientation (wxyz), name.
+struct HeadPart {
+    kind: GeomType,
+    size: Vec<f64>,
+    location: [f64; 3],
+    quat: [f64; 4],
+    name: &'static str,
+}
+
 /// The hammer's geoms, in robosuite's order.
 pub const HAMMER_GEOMS: [&str; 5] = ["handle", "head", "neck", "face", "claw"];
 
@@ -228,29 +242,36 @@ impl Hammer {
         handle.friction = Some([f.handle_friction, 0.005, 0.0001]);
         handle.density = Some(f.handle_density);
         let mut geoms = vec![handle];
-        let parts: [(GeomType, Vec<f64>, [f64; 3], [f64; 4], &str); 4] = [
-            (
+        let part = |kind, size: Vec<f64>, location, quat, name| HeadPart {
+            kind,
+            size,
+            location,
+            quat,
+            name,
+        };
+        let parts = [
+            part(
                 GeomType::Box,
                 vec![h * 2.0, h, h],
                 [0.0, 0.0, head_z],
                 [1.0, 0.0, 0.0, 0.0],
                 "head",
             ),
-            (
+            part(
                 GeomType::Cylinder,
                 vec![h * 0.8, h * 0.2],
                 [h * 2.2, 0.0, head_z],
-                [0.707106, 0.0, 0.707106, 0.0],
+                ONTO_X,
                 "neck",
             ),
-            (
+            part(
                 GeomType::Cylinder,
                 vec![h, h * 0.4],
                 [h * 2.8, 0.0, head_z],
-                [0.707106, 0.0, 0.707106, 0.0],
+                ONTO_X,
                 "face",
             ),
-            (
+            part(
                 GeomType::Box,
                 vec![h * 0.7072, h * 0.95, h * 0.7072],
                 [-h * 2.0, 0.0, head_z],
@@ -258,10 +279,10 @@ impl Hammer {
                 "claw",
             ),
         ];
-        for (kind, size, location, quat, name) in parts {
-            let mut g = CompositeGeom::new(kind, &size, location)
-                .quat(quat)
-                .named(name);
+        for p in parts {
+            let mut g = CompositeGeom::new(p.kind, &p.size, p.location)
+                .quat(p.quat)
+                .named(p.name);
             g.material = metal.clone();
             g.density = Some(head_density);
             geoms.push(g);
