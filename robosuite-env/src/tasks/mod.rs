@@ -74,7 +74,9 @@ pub trait TaskSpec: Send + Sync + std::fmt::Debug {
     /// robosuite's environment name, such as `"Lift"`.
     fn name(&self) -> &str;
 
-    /// The number of robots the task needs.
+    /// The number of robots the task takes by default (a Panda each when
+    /// [`crate::EnvConfig::robots`] is empty); [`TaskSpec::check_robots`] says what else it
+    /// takes (the two-arm tasks also take one bimanual robot).
     fn num_robots(&self) -> usize {
         1
     }
