@@ -625,6 +625,37 @@ fn one_baxter_is_robosuites_single_robot_set_up() {
 }
 
 #[test]
+fn every_controller_runs_on_both_of_baxters_arms() {
+    let assets = robosuite_env::assets::Assets::locate().unwrap();
+    for kind in robosuite_env::controllers::config::ARM_CONTROLLER_TYPES {
+        let part =
+            robosuite_env::controllers::config::load_part_controller_config(&assets, kind).unwrap();
+        let config = robosuite_env::controllers::ControllerConfig::from_value(&part, "c").unwrap();
+        let mut env = make_with(
+            "TwoArmLift",
+            EnvConfig::default()
+                .with_robots(["Baxter"])
+                .with_controller(config),
+        )
+        .unwrap_or_else(|e| panic!("{kind}: {e}"));
+        let arm_dim = match *kind {
+            "OSC_POSE" | "IK_POSE" => 6,
+            "OSC_POSITION" => 3,
+            _ => 7,
+        };
+        assert_eq!(env.action_dim(), 2 * arm_dim + 2, "{kind}");
+        for arm in env.robots()[0].arms() {
+            assert_eq!(arm.controller().name(), *kind);
+        }
+        env.reset(Some(0), None).unwrap();
+        assert!(
+            !env.step(&zeros(env.action_dim())).unwrap().done(),
+            "{kind}"
+        );
+    }
+}
+
+#[test]
 fn two_arm_episodes_are_deterministic() {
     for task in [
         "TwoArmLift",
