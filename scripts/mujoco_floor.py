@@ -46,7 +46,7 @@ def floor(fixture, index):
     r = fixture["rollouts"][index]
     env = suite.make(
         fixture["task"],
-        robots=fixture["robot"],
+        robots=fixture.get("robots", fixture["robot"]),
         has_renderer=False,
         has_offscreen_renderer=False,
         use_camera_obs=False,

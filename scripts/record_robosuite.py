@@ -122,6 +122,13 @@ def active_object(task, env):
 def task_state(task, env):
     if task == "Lift":
         return [float(x) for x in env.cube.size]
+    if task == "TwoArmPegInHole":
+        # The peg radius drawn at the hard reset.
+        return [float(env.peg.size[0])]
+    if task in ("TwoArmHandover", "TwoArmTransport"):
+        # The hammer's figures drawn at the hard reset.
+        h = env.hammer if task == "TwoArmHandover" else env.transport.payload
+        return [float(x) for x in (h.handle_radius, h.handle_length, h.handle_density, h.handle_friction, h.head_halfsize)]
     if task == "ToolHang":
         # No drawn model parameters; the state is ToolHang's observation cache, which a
         # replay restarts from the recorded reset state.
@@ -468,6 +475,184 @@ def nut_policy(env, name):
     return lambda obs: act(obs, np.asarray(obs[key]))
 
 
+def base_frame(env, robot):
+    """The rotation of robot `robot`'s base (OSC actions are in that frame)."""
+    body = env.sim.model.body_name2id(env.robots[robot].robot_model.root_body)
+    return np.array(env.sim.data.body_xmat[body]).reshape(3, 3)
+
+
+def two_arm_lift_policy(env, lift_height=0.15):
+    """Each arm (robot i's, or a bimanual robot's right then left) reaches 8 cm above handle
+    i with its fingers across the handle's bar, descends onto it and closes; once both have
+    closed, both lift. Deltas are turned into each robot's base frame."""
+    import robosuite.utils.transform_utils as T
+
+    bimanual = len(env.robots) == 1
+    prefixes = ["robot0_right_", "robot0_left_"] if bimanual else ["robot0_", "robot1_"]
+    frames = [base_frame(env, 0)] * 2 if bimanual else [base_frame(env, 0), base_frame(env, 1)]
+    state = {"phase": [0, 0], "t": [0, 0], "start": None, "lift_t": 0}
+
+    def arm(obs, i):
+        eef = obs[f"{prefixes[i]}eef_pos"]
+        handle = np.asarray(obs[f"handle{i}_xpos"])
+        if state["start"] is None:
+            state["start"] = [np.asarray(obs["handle0_xpos"]).copy(), np.asarray(obs["handle1_xpos"]).copy()]
+        state["t"][i] += 1
+        finger = T.quat2mat(obs[f"{prefixes[i]}eef_quat"])[:, 1]
+        bar = T.quat2mat(obs["pot_quat"])[:, 0]
+        err = wrap_angle(np.arctan2(bar[1], bar[0]) + np.pi / 2 - np.arctan2(finger[1], finger[0]))
+        if abs(err) > np.pi / 2:
+            err = wrap_angle(err + np.pi)
+        phase, t = state["phase"][i], state["t"][i]
+        grip, done = -1.0, False
+        if phase == 0:
+            target = handle + np.array([0, 0, 0.08])
+            done = (np.linalg.norm(target - eef) < 0.01 and abs(err) < 0.05) or t > 40
+        elif phase == 1:
+            target = handle
+            done = np.linalg.norm(target - eef) < 0.006 or t > 30
+        elif phase == 2:
+            target, grip, done = eef, 1.0, t > 10
+        else:
+            grip = 1.0
+            target = eef if min(state["phase"]) < 3 else state["start"][i] + np.array([0, 0, lift_height])
+        if done:
+            state["phase"][i], state["t"][i] = phase + 1, 0
+        a = np.zeros(7)
+        a[:3] = frames[i].T @ toward(eef, target)
+        a[5] = np.clip(err * 4.0, -1.0, 1.0) if phase < 2 else 0.0
+        a[6] = grip
+        return a
+
+    def act(obs):
+        a0, a1 = arm(obs, 0), arm(obs, 1)
+        if bimanual:
+            # robosuite's bimanual layout: right arm, left arm, right gripper, left gripper.
+            return np.concatenate([a0[:6], a1[:6], a0[6:], a1[6:]])
+        return np.concatenate([a0, a1])
+
+    return act
+
+
+def peg_approach_policy(env):
+    """Robot 0 carries the peg's body toward the hole's centre (10 cm along the plate's x
+    axis) while robot 1 holds still; deltas in robot 0's base frame."""
+    import robosuite.utils.transform_utils as T
+
+    frame = base_frame(env, 0)
+
+    def act(obs):
+        hole_x = T.quat2mat(obs["hole_quat"])[:, 0]
+        goal = np.asarray(obs["peg_to_hole"]) + 0.1 * hole_x
+        a = np.zeros(env.action_dim)
+        a[:3] = frame.T @ np.clip(goal * 5.0, -1.0, 1.0)
+        return a
+
+    return act
+
+
+def handover_policy(env):
+    """Gripper 0 grasps the handle next to the head, lifts the hammer to the middle turning
+    its head towards robot 0, gripper 1 grasps the handle's far end, gripper 0 lets go and
+    rises. Deltas in each robot's base frame."""
+    import robosuite.utils.transform_utils as T
+
+    bimanual = len(env.robots) == 1
+    pf = ["robot0_right_", "robot0_left_"] if bimanual else ["robot0_", "robot1_"]
+    frames = [base_frame(env, 0)] * 2 if bimanual else [base_frame(env, 0), base_frame(env, 1)]
+    st = {"phase": 0, "t": 0}
+    def yaw_err(obs, i, axis):
+        finger = T.quat2mat(obs[f"{pf[i]}eef_quat"])[:, 1]
+        e = wrap_angle(np.arctan2(axis[1], axis[0]) + np.pi / 2 - np.arctan2(finger[1], finger[0]))
+        if abs(e) > np.pi / 2:
+            e = wrap_angle(e + np.pi)
+        return e
+    def act(obs):
+        st["t"] += 1
+        ph, t = st["phase"], st["t"]
+        axis = T.quat2mat(obs["hammer_quat"])[:, 2]
+        handle = np.asarray(obs["handle_xpos"])
+        L = env.hammer.handle_length
+        e0, e1 = obs[f"{pf[0]}eef_pos"], obs[f"{pf[1]}eef_pos"]
+        g0 = handle + axis * (L / 2 - 0.02)   # arm 0 holds next to the head
+        g1 = handle - axis * (L / 2 - 0.03)   # arm 1 takes the far end
+        t0, t1 = e0, e1
+        grip0, grip1, y0, y1, done = -1.0, -1.0, 0.0, 0.0, False
+        meet = np.array([0.0, 0.0, 1.1])
+        turn = wrap_angle(-np.pi / 2 - np.arctan2(axis[1], axis[0]))
+        if ph == 0:
+            t0 = g0 + np.array([0, 0, 0.08]); y0 = yaw_err(obs, 0, axis)
+            done = (np.linalg.norm(t0 - e0) < 0.01 and abs(y0) < 0.05) or t > 40
+        elif ph == 1:
+            t0 = g0; y0 = yaw_err(obs, 0, axis); done = np.linalg.norm(t0 - e0) < 0.006 or t > 30
+        elif ph == 2:
+            grip0, done = 1.0, t > 10
+        elif ph == 3:
+            grip0 = 1.0; t0 = e0 + (meet - handle); y0 = turn
+            done = (np.linalg.norm(meet - handle) < 0.01 and abs(turn) < 0.05) or t > 60
+        elif ph == 4:
+            grip0 = 1.0; t0 = e0 + (meet - handle)
+            t1 = g1 + np.array([0, 0, 0.08]); y1 = yaw_err(obs, 1, axis)
+            done = (np.linalg.norm(t1 - e1) < 0.01 and abs(y1) < 0.05) or t > 60
+        elif ph == 5:
+            grip0 = 1.0; t0 = e0 + (meet - handle)
+            t1 = g1; y1 = yaw_err(obs, 1, axis); done = np.linalg.norm(t1 - e1) < 0.006 or t > 30
+        elif ph == 6:
+            grip0 = grip1 = 1.0; t0 = e0 + (meet - handle); done = t > 10
+        elif ph == 7:
+            grip1 = 1.0; done = t > 10
+        else:
+            grip1 = 1.0; t0 = e0 + np.array([0, 0, 0.1])
+        if done:
+            st["phase"], st["t"] = ph + 1, 0
+        def one(i, tgt, yaw, grip):
+            a = np.zeros(7); a[:3] = frames[i].T @ toward(obs[f"{pf[i]}eef_pos"], tgt); a[5] = np.clip(yaw * 4.0, -1, 1); a[6] = grip
+            return a
+        a0, a1 = one(0, t0, y0, grip0), one(1, t1, y1, grip1)
+        return np.concatenate([a0, a1])
+    return act
+
+
+def transport_policy(env):
+    """Gripper 0 grasps the lid's handle and lifts the lid; gripper 1 grasps the trash and
+    lifts it (no yaw alignment). Deltas in each robot's base frame."""
+    bimanual = len(env.robots) == 1
+    pf = ["robot0_right_", "robot0_left_"] if bimanual else ["robot0_", "robot1_"]
+    frames = [base_frame(env, 0)] * 2 if bimanual else [base_frame(env, 0), base_frame(env, 1)]
+    keys = ["lid_handle_pos", "trash_pos"]
+    state = {"phase": [0, 0], "t": [0, 0]}
+
+    def arm(obs, i):
+        eef, obj = obs[f"{pf[i]}eef_pos"], np.asarray(obs[keys[i]])
+        state["t"][i] += 1
+        phase, t = state["phase"][i], state["t"][i]
+        grip, done = -1.0, False
+        if phase == 0:
+            target = obj + np.array([0, 0, 0.08])
+            done = np.linalg.norm(target - eef) < 0.01 or t > 40
+        elif phase == 1:
+            target = obj
+            done = np.linalg.norm(target - eef) < 0.006 or t > 30
+        elif phase == 2:
+            target, grip, done = eef, 1.0, t > 10
+        else:
+            target, grip = eef + np.array([0, 0, 0.05]), 1.0
+        if done:
+            state["phase"][i], state["t"][i] = phase + 1, 0
+        a = np.zeros(7)
+        a[:3] = frames[i].T @ toward(eef, target)
+        a[6] = grip
+        return a
+
+    def act(obs):
+        a0, a1 = arm(obs, 0), arm(obs, 1)
+        if bimanual:
+            return np.concatenate([a0[:6], a1[:6], a0[6:], a1[6:]])
+        return np.concatenate([a0, a1])
+
+    return act
+
+
 def random_policy(seed, dim):
     rng = np.random.default_rng(seed)
     return lambda obs: rng.uniform(-1.0, 1.0, dim)
@@ -480,6 +665,32 @@ POLICIES = {
     "Wipe": [("scripted", wipe_policy, 150), ("random", lambda env: random_policy(7, env.action_dim), 60)],
     "ToolHang": [("scripted", lambda env: bar_grasp_policy("tool"), 120), ("random", lambda env: random_policy(3, env.action_dim), 60)],
 }
+
+
+# Fixtures of other set-ups than robosuite's default: fixture name -> (task, robots, make
+# keyword arguments). Every other fixture is the task with the --robot robot.
+SETUPS = {
+    "TwoArmLift": ("TwoArmLift", ["Panda", "Panda"], {"env_configuration": "opposed"}),
+    "TwoArmLift-parallel": ("TwoArmLift", ["Panda", "Panda"], {"env_configuration": "parallel"}),
+}
+POLICIES["TwoArmLift"] = [("scripted", two_arm_lift_policy, 110), ("random", lambda env: random_policy(5, env.action_dim), 60)]
+POLICIES["TwoArmLift-parallel"] = POLICIES["TwoArmLift"]
+SETUPS["TwoArmPegInHole"] = ("TwoArmPegInHole", ["Panda", "Panda"], {"env_configuration": "opposed"})
+SETUPS["TwoArmPegInHole-parallel"] = ("TwoArmPegInHole", ["Panda", "Panda"], {"env_configuration": "parallel"})
+POLICIES["TwoArmPegInHole"] = [("scripted", peg_approach_policy, 80), ("random", lambda env: random_policy(9, env.action_dim), 60)]
+POLICIES["TwoArmPegInHole-parallel"] = POLICIES["TwoArmPegInHole"]
+SETUPS["TwoArmHandover"] = ("TwoArmHandover", ["Panda", "Panda"], {"env_configuration": "opposed"})
+SETUPS["TwoArmHandover-parallel"] = ("TwoArmHandover", ["Panda", "Panda"], {"env_configuration": "parallel"})
+POLICIES["TwoArmHandover"] = [("scripted", handover_policy, 215), ("random", lambda env: random_policy(3, env.action_dim), 60)]
+POLICIES["TwoArmHandover-parallel"] = POLICIES["TwoArmHandover"]
+SETUPS["TwoArmTransport"] = ("TwoArmTransport", ["Panda", "Panda"], {"env_configuration": "opposed"})
+SETUPS["TwoArmTransport-parallel"] = ("TwoArmTransport", ["Panda", "Panda"], {"env_configuration": "parallel"})
+POLICIES["TwoArmTransport"] = [("scripted", transport_policy, 120), ("random", lambda env: random_policy(17, env.action_dim), 60)]
+POLICIES["TwoArmTransport-parallel"] = POLICIES["TwoArmTransport"]
+# One bimanual Baxter (robosuite's "single-robot" set-up).
+for _task in ["TwoArmLift", "TwoArmPegInHole", "TwoArmHandover", "TwoArmTransport"]:
+    SETUPS[f"{_task}-Baxter"] = (_task, ["Baxter"], {})
+    POLICIES[f"{_task}-Baxter"] = POLICIES[_task]
 
 
 def scripted_and_random(scripted, steps, seed):
@@ -497,8 +708,8 @@ for _task, _nut in [("NutAssembly", "RoundNut"), ("NutAssemblySquare", "SquareNu
 POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, env.nuts[env.nut_id].name), 200, 13)
 
 
-def rollout(task, robot, seed, make_policy, steps):
-    env = make(task, seed, robots=robot)
+def rollout(task, robot, seed, make_policy, steps, kwargs):
+    env = make(task, seed, robots=robot, **kwargs)
     obs = env.reset()
     record = {
         "task_state": task_state(task, env),
@@ -529,9 +740,9 @@ def rollout(task, robot, seed, make_policy, steps):
     return record
 
 
-def placement(task, robot, resets):
+def placement(task, robot, resets, kwargs):
     """Smallest and largest initial position of every object's root body over resets."""
-    env = make(task, 1234, robots=robot)
+    env = make(task, 1234, robots=robot, **kwargs)
     m = env.sim.model._model
     lo, hi = {}, {}
     for _ in range(resets):
@@ -552,26 +763,29 @@ def placement(task, robot, resets):
     return {"resets": resets, "bodies": {k: {"min": lo[k].tolist(), "max": hi[k].tolist()} for k in lo}}
 
 
-def record(task, robot, out, resets):
-    env = make(task, 0, robots=robot)
+def record(fixture, robot, out, resets):
+    task, robot, kwargs = SETUPS.get(fixture, (fixture, robot, {}))
+    env = make(task, 0, robots=robot, **kwargs)
     env.reset()
     counts, names = scene(env)
     env.close()
     data = {
         "task": task,
-        "robot": robot,
+        "robot": robot if isinstance(robot, str) else robot[0],
+        **({} if isinstance(robot, str) else {"robots": robot}),
+        **({"kwargs": kwargs} if kwargs else {}),
         "robosuite": robosuite.__version__,
         "mujoco": mujoco.__version__,
         "counts": counts,
         "names": names,
         "rollouts": [],
-        "placement": placement(task, robot, resets),
+        "placement": placement(task, robot, resets, kwargs),
     }
-    for i, (kind, make_policy, steps) in enumerate(POLICIES[task]):
-        r = rollout(task, robot, 100 + i, make_policy, steps)
+    for i, (kind, make_policy, steps) in enumerate(POLICIES[fixture]):
+        r = rollout(task, robot, 100 + i, make_policy, steps, kwargs)
         r["kind"] = kind
         data["rollouts"].append(r)
-    stem = task if robot == "Panda" else f"{task}-{robot}"
+    stem = fixture if fixture in SETUPS or robot == "Panda" else f"{task}-{robot}"
     path = os.path.join(out, f"{stem}.json")
     with open(path, "w") as f:
         json.dump(data, f, separators=(",", ":"))

@@ -69,7 +69,6 @@ _FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
     "use_camera_obs": (False,),
     "render_gpu_device_id": (-1,),
     "lite_physics": (True,),
-    "env_configuration": ("default",),
     "base_types": ("default",),
     "mount_types": ("default",),
     "placement_initializer": (None,),
@@ -97,7 +96,7 @@ _RENDER_ONLY_KWARGS = (
 
 #: Every keyword argument :func:`make` accepts.
 SUPPORTED_KWARGS: tuple[str, ...] = (
-    ("robots", "gripper_types", "controller_configs", "initialization_noise", "model_xml")
+    ("robots", "env_configuration", "gripper_types", "controller_configs", "initialization_noise", "model_xml")
     + _DIRECT_KWARGS
     + tuple(_FIXED_KWARGS)
     + _RENDER_ONLY_KWARGS
@@ -152,7 +151,10 @@ def load_part_controller_config(custom_fpath: str | PathLike[str] | None = None,
 
 def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[str, Any]:
     """robosuite keyword arguments → the Rust configuration's keys (validated)."""
-    if isinstance(robots, str):
+    if robots is None:
+        # robosuite requires robots; by default a Panda for each robot the task takes.
+        robots_list = ["Panda"] * _native.task_robot_count(env_name)
+    elif isinstance(robots, str):
         robots_list = [robots]
     else:
         robots_list = list(robots)
@@ -173,6 +175,10 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
                 raise ValueError(f"{env_name}: {key}={value!r} is not supported by robosuite_rs ({hint})")
         elif key in _RENDER_ONLY_KWARGS:
             continue
+        elif key == "env_configuration":
+            if not isinstance(value, str):
+                raise ValueError(f"env_configuration must be a string such as 'opposed', got {value!r}")
+            config["env_configuration"] = value
         elif key == "gripper_types":
             choices = value if isinstance(value, (list, tuple)) else [value] * len(robots_list)
             if len(choices) != len(robots_list):
@@ -338,12 +344,16 @@ class RobosuiteEnv:
 
 def make(
     env_name: str,
-    robots: str | list[str] = "Panda",
+    robots: str | list[str] | None = None,
     *,
     model_xml: str | PathLike[str] | None = None,
     **kwargs: Any,
 ) -> RobosuiteEnv:
     """robosuite's ``suite.make``: the task ``env_name`` with robosuite's keyword arguments.
+
+    ``robots``: a robot name or one per robot (``None``: a Panda for each robot the task
+    takes; two for the two-arm tasks); ``env_configuration``: ``"default"``, or for the
+    two-arm tasks ``"opposed"`` / ``"parallel"`` (robosuite's set-ups).
 
     Supported: ``horizon``, ``control_freq``, ``reward_scale`` (``None`` allowed),
     ``reward_shaping``, ``ignore_done``, ``use_object_obs``, ``seed``,
@@ -378,7 +388,7 @@ def _restore_env(make_args: tuple[str, dict[str, Any], str | None], state: str) 
     return env
 
 
-def scene_xml(env_name: str, robots: str | list[str] = "Panda", **kwargs: Any) -> str:
+def scene_xml(env_name: str, robots: str | list[str] | None = None, **kwargs: Any) -> str:
     """The MJCF text of the scene :func:`make` builds for ``env_name`` (robosuite's names);
     save it and pass the path as ``make(..., model_xml=path)``.
 
@@ -402,7 +412,7 @@ def _count(name: str, value: Any) -> int:
 def make_vec(
     env_name: str,
     num_envs: int,
-    robots: str | list[str] = "Panda",
+    robots: str | list[str] | None = None,
     *,
     keys: list[str] | None = None,
     flatten_obs: bool = True,
@@ -442,7 +452,7 @@ def make_pool(
     env_name: str,
     num_envs: int,
     batch_size: int,
-    robots: str | list[str] = "Panda",
+    robots: str | list[str] | None = None,
     *,
     keys: list[str] | None = None,
     flatten_obs: bool = True,

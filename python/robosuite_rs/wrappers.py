@@ -82,7 +82,7 @@ class GymWrapper(RustEnv):
     wrapper and ``env`` share the same simulation, as in robosuite.
 
     * ``keys``: observation keys to use; default ``object-state`` then
-      ``robot0_proprio-state`` (robosuite's default order).
+      ``robot{i}_proprio-state`` for each robot (robosuite's default order).
     * ``flatten_obs=True``: observations are one ``float32`` vector and
       ``observation_space`` is a ``float32`` Box; otherwise a Dict of the chosen keys.
     * ``action_space`` is a ``float32`` Box (robosuite's ``action_spec`` bounds).

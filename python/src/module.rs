@@ -153,6 +153,15 @@ fn robosuite_env_names() -> Vec<String> {
         .collect()
 }
 
+/// How many robots the robosuite task `env_name` takes by default (two for the two-arm
+/// tasks, one otherwise).
+#[pyfunction]
+fn task_robot_count(env_name: &str) -> PyResult<usize> {
+    Ok(robosuite_env::make_task(env_name)
+        .map_err(to_pyerr)?
+        .num_robots())
+}
+
 /// The keyword arguments the Rust configuration accepts.
 #[pyfunction]
 fn config_keys() -> Vec<String> {
@@ -223,6 +232,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registered_ids, m)?)?;
     m.add_function(wrap_pyfunction!(scene_xml, m)?)?;
     m.add_function(wrap_pyfunction!(robosuite_env_names, m)?)?;
+    m.add_function(wrap_pyfunction!(task_robot_count, m)?)?;
     m.add_function(wrap_pyfunction!(config_keys, m)?)?;
     m.add_function(wrap_pyfunction!(load_composite_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(load_part_controller_config, m)?)?;

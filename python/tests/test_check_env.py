@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
 
-import robosuite_rs  # noqa: F401  (registers the ids)
+import robosuite_rs  # registers the ids
 from robosuite_rs.registration import register_envs
 from robosuite_rs.wrappers import GymWrapper
 
@@ -40,9 +40,12 @@ ROBOTS = ["Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"]
 @pytest.mark.parametrize("robot", ROBOTS)
 def test_check_env_on_every_task_with_every_robot(robot: str) -> None:
     # The Panda is covered above; every other single-arm robot on every task, with its
-    # default gripper (Wipe: the wiping tool) and default controller.
+    # default gripper (Wipe: the wiping tool) and default controller; the two-arm tasks
+    # with two of it.
     for env_id in IDS:
-        env = gym.make(env_id, horizon=30, robots=robot)
+        name = env_id.split("/")[1].rsplit("-v", 1)[0]
+        count = robosuite_rs._native.task_robot_count(name)
+        env = gym.make(env_id, horizon=30, robots=[robot] * count)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             check_env(env.unwrapped)

@@ -20,7 +20,8 @@ use gym_core::{Error, Info, InfoValue, Result};
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnvConfig {
-    /// Robot names, one per robot the task needs (default `["Panda"]`).
+    /// Robot names, one per robot the task needs (robosuite's `robots`); empty (the
+    /// default): a Panda for each robot the task needs.
     pub robots: Vec<String>,
     /// Grippers, one choice per robot applied to each of its arms (robosuite's
     /// `gripper_types`); empty: every robot's default gripper.
@@ -44,12 +45,72 @@ pub struct EnvConfig {
     pub use_object_obs: bool,
     /// Seed of the environment RNG; `None` seeds from entropy at the first reset.
     pub seed: Option<u64>,
+    /// How the robots are set up (robosuite's `env_configuration`; default `Default`).
+    pub env_configuration: EnvConfiguration,
+}
+
+/// robosuite's `env_configuration`: how a two-arm task sets up its robots.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EnvConfiguration {
+    /// `"default"`: single-arm tasks' only setting; two single-arm robots stand `opposed`.
+    #[default]
+    Default,
+    /// `"opposed"` (or robosuite's older `"single-arm-opposed"`): two single-arm robots
+    /// facing each other across the table.
+    Opposed,
+    /// `"parallel"` (or `"single-arm-parallel"`): two single-arm robots side by side.
+    Parallel,
+    /// `"single-robot"`: one bimanual robot (robosuite sets it whenever one robot is given
+    /// to a two-arm task).
+    SingleRobot,
+}
+
+impl EnvConfiguration {
+    /// The names [`EnvConfiguration::parse`] accepts.
+    pub const NAMES: &'static [&'static str] = &[
+        "default",
+        "opposed",
+        "parallel",
+        "single-robot",
+        "single-arm-opposed",
+        "single-arm-parallel",
+    ];
+
+    /// robosuite's name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Default => "default",
+            Self::Opposed => "opposed",
+            Self::Parallel => "parallel",
+            Self::SingleRobot => "single-robot",
+        }
+    }
+
+    /// The configuration robosuite names `name` (its older names included).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] (argument `env_configuration`) listing the valid names.
+    pub fn parse(name: &str) -> Result<Self> {
+        match name {
+            "default" => Ok(Self::Default),
+            "opposed" | "single-arm-opposed" => Ok(Self::Opposed),
+            "parallel" | "single-arm-parallel" => Ok(Self::Parallel),
+            "single-robot" => Ok(Self::SingleRobot),
+            other => Err(Error::invalid_argument(
+                "env_configuration",
+                format!(
+                    "unknown configuration `{other}`; valid: {}",
+                    Self::NAMES.join(", ")
+                ),
+            )),
+        }
+    }
 }
 
 impl Default for EnvConfig {
     fn default() -> Self {
         Self {
-            robots: vec!["Panda".to_owned()],
+            robots: Vec::new(),
             gripper_types: Vec::new(),
             controller_configs: Vec::new(),
             horizon: 1000,
@@ -60,6 +121,7 @@ impl Default for EnvConfig {
             initialization_noise: InitNoise::default(),
             use_object_obs: true,
             seed: None,
+            env_configuration: EnvConfiguration::Default,
         }
     }
 }
@@ -79,6 +141,7 @@ pub const CONFIG_KEYS: &[&str] = &[
     "initialization_noise_type",
     "controller_configs",
     "controller",
+    "env_configuration",
 ];
 
 /// The most physics substeps one env step may run: 5 s of simulated time per env step at
@@ -163,6 +226,22 @@ impl EnvConfig {
         }
     }
 
+    /// Sets robosuite's `env_configuration`.
+    #[must_use]
+    pub fn with_env_configuration(mut self, configuration: EnvConfiguration) -> Self {
+        self.env_configuration = configuration;
+        self
+    }
+
+    /// This configuration with its robots resolved for a task that needs `count` robots:
+    /// unchanged when robots are given, else a Panda for each.
+    pub fn with_default_robots(mut self, count: usize) -> Self {
+        if self.robots.is_empty() {
+            self.robots = vec!["Panda".to_owned(); count];
+        }
+        self
+    }
+
     /// Sets the horizon.
     #[must_use]
     pub fn with_horizon(mut self, horizon: u64) -> Self {
@@ -230,19 +309,13 @@ impl EnvConfig {
     /// # Errors
     /// [`Error::InvalidArgument`] naming the argument and what would be valid.
     pub fn validate(&self) -> Result<()> {
-        if self.robots.is_empty() {
-            return Err(Error::invalid_argument(
-                "robots",
-                format!(
-                    "give at least one robot; valid: {}",
-                    crate::models::robots::robot_names().join(", ")
-                ),
-            ));
-        }
         for r in &self.robots {
             robot_info(r)?;
         }
-        if !self.gripper_types.is_empty() && self.gripper_types.len() != self.robots.len() {
+        if !self.robots.is_empty()
+            && !self.gripper_types.is_empty()
+            && self.gripper_types.len() != self.robots.len()
+        {
             return Err(Error::invalid_argument(
                 "gripper_types",
                 format!(
@@ -270,7 +343,7 @@ impl EnvConfig {
             ));
         }
         let n = self.controller_configs.len();
-        if n > 1 && n != self.robots.len() {
+        if n > 1 && !self.robots.is_empty() && n != self.robots.len() {
             return Err(Error::invalid_argument(
                 "controller_configs",
                 format!(
@@ -400,6 +473,12 @@ impl EnvConfig {
                             "a controller type such as \"OSC_POSITION\"",
                             other,
                         ));
+                    }
+                },
+                "env_configuration" => match v {
+                    InfoValue::Str(s) => c.env_configuration = EnvConfiguration::parse(s)?,
+                    other => {
+                        return Err(kind(key, "a configuration name such as \"opposed\"", other));
                     }
                 },
                 other => {

@@ -102,6 +102,7 @@ pub struct RobosuiteEnv {
 
 /// The robots and task scene composed for a configuration, before compiling.
 struct Composed {
+    configuration: crate::config::EnvConfiguration,
     robots: Vec<RobotModel>,
     controllers: Vec<(CompositeControllerConfig, String)>,
     task_scene: TaskScene,
@@ -117,23 +118,17 @@ pub fn compose_scene(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -
 }
 
 fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Composed> {
+    let config = &config.clone().with_default_robots(spec.num_robots());
     config.validate()?;
-    let need = spec.num_robots();
-    if config.robots.len() != need {
-        return Err(Error::invalid_argument(
-            "robots",
-            format!(
-                "{} needs {need} robot(s), got {} ({:?})",
-                spec.name(),
-                config.robots.len(),
-                config.robots
-            ),
-        ));
-    }
-    let mut robots = Vec::with_capacity(need);
-    let mut controllers = Vec::with_capacity(need);
-    for (i, name) in config.robots.iter().enumerate() {
-        let info = robot_info(name)?;
+    let infos = config
+        .robots
+        .iter()
+        .map(|name| robot_info(name))
+        .collect::<Result<Vec<_>>>()?;
+    let configuration = spec.check_robots(&infos, config.env_configuration)?;
+    let mut robots = Vec::with_capacity(infos.len());
+    let mut controllers = Vec::with_capacity(infos.len());
+    for (i, &info) in infos.iter().enumerate() {
         let (given, path) = config.controller_config(i);
         let resolved = match given {
             Some(c) => c.for_robot(assets, info.name, info.arms, &path)?,
@@ -145,9 +140,13 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
             .collect::<Result<Vec<_>>>()?;
         robots.push(RobotModel::build(assets, info, i, &grippers)?);
     }
-    let task_scene = spec.build(assets, &mut robots)?;
-    let scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
+    let task_scene = spec.build_configured(assets, &mut robots, configuration)?;
+    let mut scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
+    for object in &task_scene.attached {
+        scene.doc_mut().merge_assets(&object.assets);
+    }
     Ok(Composed {
+        configuration,
         robots,
         controllers,
         task_scene,
@@ -213,9 +212,12 @@ impl RobosuiteEnv {
         spec: &dyn TaskSpec,
         composed: Composed,
         model: MjModel,
-        mut config: EnvConfig,
+        config: EnvConfig,
         source: ModelSource,
     ) -> Result<Self> {
+        // The robots and the robot set-up the scene was composed with.
+        let mut config = config.with_default_robots(spec.num_robots());
+        config.env_configuration = composed.configuration;
         config.reward_shaping = Some(
             config
                 .reward_shaping

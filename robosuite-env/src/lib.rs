@@ -43,7 +43,7 @@ pub mod saved;
 pub mod sim;
 pub mod tasks;
 
-pub use config::EnvConfig;
+pub use config::{EnvConfig, EnvConfiguration};
 pub use env::{EnvSnapshot, ModelSource, RobosuiteEnv};
 pub use registry::{
     ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,

@@ -5,7 +5,8 @@ use crate::assets::Assets;
 use crate::config::EnvConfig;
 use crate::env::RobosuiteEnv;
 use crate::tasks::{
-    DoorSpec, LiftSpec, NutAssemblySpec, PickPlaceSpec, StackSpec, TaskSpec, ToolHangSpec, WipeSpec,
+    DoorSpec, LiftSpec, NutAssemblySpec, PickPlaceSpec, StackSpec, TaskSpec, ToolHangSpec,
+    TwoArmHandoverSpec, TwoArmLiftSpec, TwoArmPegInHoleSpec, TwoArmTransportSpec, WipeSpec,
 };
 use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
@@ -28,6 +29,10 @@ pub const ENV_NAMES: &[&str] = &[
     "Door",
     "Wipe",
     "ToolHang",
+    "TwoArmLift",
+    "TwoArmPegInHole",
+    "TwoArmHandover",
+    "TwoArmTransport",
 ];
 
 /// The task registered under `name`, with robosuite's default settings.
@@ -41,6 +46,10 @@ pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
         "Door" => Ok(Box::new(DoorSpec::default())),
         "Wipe" => Ok(Box::new(WipeSpec::default())),
         "ToolHang" => Ok(Box::new(ToolHangSpec::default())),
+        "TwoArmLift" => Ok(Box::new(TwoArmLiftSpec::default())),
+        "TwoArmPegInHole" => Ok(Box::new(TwoArmPegInHoleSpec::default())),
+        "TwoArmHandover" => Ok(Box::new(TwoArmHandoverSpec::default())),
+        "TwoArmTransport" => Ok(Box::new(TwoArmTransportSpec::default())),
         other => {
             if let Some(spec) = PickPlaceSpec::variant(other) {
                 return Ok(Box::new(spec));

@@ -94,6 +94,10 @@ task_tests! {
     nut_assembly_single_passes_check_env, nut_assembly_single_passes_the_property_suite => "NutAssemblySingle";
     nut_assembly_square_passes_check_env, nut_assembly_square_passes_the_property_suite => "NutAssemblySquare";
     nut_assembly_round_passes_check_env, nut_assembly_round_passes_the_property_suite => "NutAssemblyRound";
+    two_arm_lift_passes_check_env, two_arm_lift_passes_the_property_suite => "TwoArmLift";
+    two_arm_peg_in_hole_passes_check_env, two_arm_peg_in_hole_passes_the_property_suite => "TwoArmPegInHole";
+    two_arm_handover_passes_check_env, two_arm_handover_passes_the_property_suite => "TwoArmHandover";
+    two_arm_transport_passes_check_env, two_arm_transport_passes_the_property_suite => "TwoArmTransport";
 }
 
 #[test]
@@ -109,12 +113,16 @@ fn every_task_reports_success_in_info() {
     }
 }
 
-/// Every task on `robot` against `check_env` (its own default gripper and controller).
+/// Every task on `robot` against `check_env` (its own default gripper and controller; the
+/// two-arm tasks with two of it, `opposed`).
 fn every_task_on(robot: &str) {
     for name in ENV_NAMES {
+        let count = robosuite_env::make_task(name).unwrap().num_robots();
         let mut env = make_with(
             name,
-            EnvConfig::default().with_horizon(30).with_robots([robot]),
+            EnvConfig::default()
+                .with_horizon(30)
+                .with_robots(vec![robot; count]),
         )
         .unwrap_or_else(|e| panic!("{name} on {robot} builds: {e}"));
         let what = format!("{name} on {robot}");
@@ -130,8 +138,8 @@ fn every_task_on(robot: &str) {
     }
 }
 
-/// One test per robot other than the Panda (which the tests above cover), so they run in
-/// parallel.
+/// One test per single-arm robot other than the Panda (which the tests above cover), so
+/// they run in parallel. (Baxter, the bimanual robot, is covered by the two-arm tests.)
 macro_rules! robot_tests {
     ($($test:ident => $robot:literal;)*) => {
         $(
@@ -144,8 +152,8 @@ macro_rules! robot_tests {
         #[test]
         fn every_robot_is_covered() {
             let covered = ["Panda", $($robot),*];
-            for robot in robosuite_env::models::robots::ROBOTS {
-                assert!(covered.contains(&robot.name), "{} has no conformance test", robot.name);
+            for robot in robosuite_env::models::robots::single_arm_robot_names() {
+                assert!(covered.contains(&robot), "{robot} has no conformance test");
             }
         }
     };

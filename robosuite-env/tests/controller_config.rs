@@ -14,7 +14,7 @@ use robosuite_env::controllers::config::{
     PerAxis, load_composite_controller_config, load_part_controller_config, robot_default,
 };
 use robosuite_env::controllers::{ArmControllerConfig, ArmPartConfig, ControllerConfig};
-use robosuite_env::models::robots::robot_names;
+use robosuite_env::models::robots::single_arm_robot_names;
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
 use serde_json::{Value, json};
 
@@ -137,7 +137,7 @@ fn arm_dim(kind: &str, n: usize) -> usize {
 #[test]
 fn every_controller_runs_on_every_robot_with_robosuites_layout() {
     let a = assets();
-    for robot in robot_names() {
+    for robot in single_arm_robot_names() {
         for kind in ARM_CONTROLLER_TYPES {
             let part = load_part_controller_config(&a, kind).unwrap();
             let mut env =

@@ -168,6 +168,130 @@ impl Arena {
         })
     }
 
+    /// robosuite's `MultiTableArena(table_offsets, table_rots=0, table_full_sizes,
+    /// table_frictions, has_legs=True)` from `arenas/multi_table_arena.xml`: after the
+    /// mocap targets, per offset a body `table{i}` (top at the offset) with the collision
+    /// box `table{i}_collision`, the visual box `table{i}_visual`, the site `table{i}_top`
+    /// and four visual legs `table{i}_leg{k}_visual`.
+    ///
+    /// # Errors
+    /// [`Error::Model`] when the file is missing or malformed;
+    /// [`Error::InvalidArgument`] for non-positive or non-finite figures.
+    pub fn multi_table(
+        assets: &Assets,
+        offsets: &[[f64; 3]],
+        full_size: [f64; 3],
+        friction: [f64; 3],
+    ) -> Result<Self> {
+        check_size("table_full_sizes", &full_size)?;
+        if offsets
+            .iter()
+            .flatten()
+            .chain(&friction)
+            .any(|v| !v.is_finite())
+        {
+            return Err(Error::invalid_argument(
+                "table_offsets",
+                format!("must be finite, got {offsets:?}, friction {friction:?}"),
+            ));
+        }
+        let mut doc = load(assets, "arenas/multi_table_arena.xml")?;
+        let half = full_size.map(|v| v / 2.0);
+        for (i, offset) in offsets.iter().enumerate() {
+            let name = format!("table{i}");
+            let mut body = element(
+                "body",
+                &[
+                    ("name", name.clone()),
+                    (
+                        "pos",
+                        array_to_string(&[offset[0], offset[1], offset[2] - half[2]]),
+                    ),
+                ],
+            );
+            let shape = |extra: Vec<(&str, String)>| {
+                let mut attrs = extra;
+                attrs.extend([
+                    ("pos", "0 0 0".to_owned()),
+                    ("quat", "1 0 0 0".to_owned()),
+                    ("size", array_to_string(&half)),
+                    ("type", "box".to_owned()),
+                ]);
+                element("geom", &attrs)
+            };
+            append(
+                &mut body,
+                shape(vec![
+                    ("name", format!("{name}_collision")),
+                    ("group", "0".to_owned()),
+                    ("friction", array_to_string(&friction)),
+                ]),
+            );
+            append(
+                &mut body,
+                shape(vec![
+                    ("name", format!("{name}_visual")),
+                    ("group", "1".to_owned()),
+                    ("conaffinity", "0".to_owned()),
+                    ("contype", "0".to_owned()),
+                    ("material", "table_ceramic".to_owned()),
+                ]),
+            );
+            append(
+                &mut body,
+                element(
+                    "site",
+                    &[
+                        ("name", format!("{name}_top")),
+                        ("pos", array_to_string(&[0.0, 0.0, half[2]])),
+                        ("size", "0.001 0.001 0.001".to_owned()),
+                        ("rgba", "0 0 0 0".to_owned()),
+                    ],
+                ),
+            );
+            let dx = [0.1, -0.1, -0.1, 0.1];
+            let dy = [0.1, 0.1, -0.1, -0.1];
+            for (k, (dx, dy)) in dx.iter().zip(dy).enumerate() {
+                let mut x = 0.0;
+                if half[0] > (dx * 2.0f64).abs() {
+                    x += dx.signum() * half[0] - dx;
+                }
+                let mut y = 0.0;
+                if half[1] > (dy * 2.0f64).abs() {
+                    y += dy.signum() * half[1] - dy;
+                }
+                let z = (offset[2] - half[2]) / 2.0;
+                append(
+                    &mut body,
+                    element(
+                        "geom",
+                        &[
+                            ("name", format!("{name}_leg{k}_visual")),
+                            ("pos", array_to_string(&[x, y, -z])),
+                            ("type", "cylinder".to_owned()),
+                            ("size", array_to_string(&[0.025, z])),
+                            ("group", "1".to_owned()),
+                            ("conaffinity", "0".to_owned()),
+                            ("contype", "0".to_owned()),
+                            ("material", "table_legs_metal".to_owned()),
+                        ],
+                    ),
+                );
+            }
+            append(doc.worldbody_mut(), body);
+        }
+        finish(&mut doc);
+        floor_at_origin(&mut doc)?;
+        Ok(Self {
+            doc,
+            kind: ArenaKind::Table {
+                length: full_size[0],
+            },
+            table_full_size: full_size,
+            table_offset: offsets.first().copied().unwrap_or_default(),
+        })
+    }
+
     /// robosuite's `BinsArena(bin1_pos, table_full_size, table_friction)` from
     /// `arenas/bins_arena.xml` (the bins are fixed in the file; only the floor is placed).
     ///

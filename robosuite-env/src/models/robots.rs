@@ -160,12 +160,44 @@ pub const XARM7: RobotInfo = RobotInfo {
     ..SINGLE_ARM
 };
 
+/// robosuite's `Baxter` (Rethink Robotics, bimanual: a right and a left arm of 7 joints),
+/// on the Rethink minimal mount with a Rethink gripper on each arm.
+pub const BAXTER: RobotInfo = RobotInfo {
+    name: "Baxter",
+    file: "robots/baxter/robot.xml",
+    arms: &["right", "left"],
+    eef_bodies: &["right_hand", "left_hand"],
+    init_qpos: &[
+        0.403, -0.636, 0.114, 1.432, 0.735, 1.205, -0.269, -0.403, -0.636, -0.114, 1.432, -0.735,
+        1.205, 0.269,
+    ],
+    damping: None,
+    default_mount: super::bases::RETHINK_MINIMAL_MOUNT,
+    default_grippers: &["RethinkGripper", "RethinkGripper"],
+    base_offsets: BaseOffsets {
+        bins: [-0.5, -0.1, 0.0],
+        empty: [-0.29, 0.0, 0.0],
+        table_x: -0.26,
+    },
+    top_offset: [0.0, 0.0, 1.0],
+    horizontal_radius: 0.5,
+};
+
 /// Every robot [`robot_info`] knows.
-pub const ROBOTS: &[RobotInfo] = &[PANDA, SAWYER, IIWA, JACO, KINOVA3, UR5E, XARM7];
+pub const ROBOTS: &[RobotInfo] = &[PANDA, SAWYER, IIWA, JACO, KINOVA3, UR5E, XARM7, BAXTER];
 
 /// The names of [`ROBOTS`].
 pub fn robot_names() -> Vec<&'static str> {
     ROBOTS.iter().map(|r| r.name).collect()
+}
+
+/// The names of the single-arm robots of [`ROBOTS`].
+pub fn single_arm_robot_names() -> Vec<&'static str> {
+    ROBOTS
+        .iter()
+        .filter(|r| r.arms.len() == 1)
+        .map(|r| r.name)
+        .collect()
 }
 
 /// The robot robosuite names `name`.

@@ -9,7 +9,7 @@ mod version;
 
 pub use contacts::{GeomSet, any_contact_between, any_contact_with};
 pub use names::{actuator_for_joint, actuator_id, body_id, geom_id, joint_id, sensor_adr, site_id};
-pub use resize::{BoxGeomUpdate, resize_box_body};
+pub use resize::{BoxGeomUpdate, reshape_body_from, resize_box_body, resize_cylinder_body};
 pub use version::{MUJOCO_VERSION, check_mujoco_version};
 
 use guard::Call;

@@ -86,6 +86,7 @@ impl TaskSpec for DoorSpec {
         Ok(TaskScene {
             arena,
             objects: vec![door_object(assets, self.use_latch)?],
+            attached: Vec::new(),
         })
     }
 

@@ -111,6 +111,7 @@ impl TaskSpec for LiftSpec {
         Ok(TaskScene {
             arena,
             objects: vec![cube.build()?],
+            attached: Vec::new(),
         })
     }
 

@@ -16,6 +16,11 @@ mod pick_place;
 pub mod placement;
 mod stack;
 mod tool_hang;
+mod two_arm;
+mod two_arm_handover;
+mod two_arm_lift;
+mod two_arm_peg_in_hole;
+mod two_arm_transport;
 mod wipe;
 
 pub use door::{Door, DoorSpec};
@@ -24,12 +29,17 @@ pub use nut_assembly::{NUTS, NutAssembly, NutAssemblySpec};
 pub use pick_place::{PICK_PLACE_OBJECTS, PickPlace, PickPlaceSpec};
 pub use stack::{CUBE_A_HALF, CUBE_B_HALF, Stack, StackSpec};
 pub use tool_hang::{ToolHang, ToolHangSpec};
+pub use two_arm_handover::{TwoArmHandover, TwoArmHandoverSpec};
+pub use two_arm_lift::{TwoArmLift, TwoArmLiftSpec};
+pub use two_arm_peg_in_hole::{TwoArmPegInHole, TwoArmPegInHoleSpec};
+pub use two_arm_transport::{TwoArmTransport, TwoArmTransportSpec};
 pub use wipe::{Wipe, WipeConfig, WipeSpec};
 
 use crate::assets::Assets;
+use crate::config::EnvConfiguration;
 use crate::models::arenas::Arena;
 use crate::models::objects::ObjectModel;
-use crate::models::robots::{GripperChoice, RobotModel};
+use crate::models::robots::{GripperChoice, RobotInfo, RobotModel};
 use crate::observables::ObsSpec;
 use crate::robots::Robot;
 use crate::sim::Sim;
@@ -54,6 +64,9 @@ pub struct TaskScene {
     pub arena: Arena,
     /// The objects.
     pub objects: Vec<ObjectModel>,
+    /// Objects the task attached inside a robot's model (TwoArmPegInHole's peg and hole):
+    /// only their assets are merged, after the objects'.
+    pub attached: Vec<ObjectModel>,
 }
 
 /// A task's configuration: robosuite's environment class before `_load_model`.
@@ -61,9 +74,60 @@ pub trait TaskSpec: Send + Sync + std::fmt::Debug {
     /// robosuite's environment name, such as `"Lift"`.
     fn name(&self) -> &str;
 
-    /// The number of robots the task needs.
+    /// The number of robots the task takes by default (a Panda each when
+    /// [`crate::EnvConfig::robots`] is empty); [`TaskSpec::check_robots`] says what else it
+    /// takes (the two-arm tasks also take one bimanual robot).
     fn num_robots(&self) -> usize {
         1
+    }
+
+    /// robosuite's `_check_robot_configuration`: checks the robots and the requested
+    /// `env_configuration` and returns the configuration the task runs with. The default is
+    /// a single-arm task's: [`TaskSpec::num_robots`] single-arm robots and `"default"`.
+    ///
+    /// # Errors
+    /// [`gym_core::Error::InvalidArgument`] naming `robots` or `env_configuration` and
+    /// listing what is valid.
+    fn check_robots(
+        &self,
+        robots: &[RobotInfo],
+        configuration: EnvConfiguration,
+    ) -> Result<EnvConfiguration> {
+        let need = self.num_robots();
+        if robots.len() != need {
+            return Err(gym_core::Error::invalid_argument(
+                "robots",
+                format!(
+                    "{} needs {need} single-arm robot(s), got {} ({:?}); valid robots: {}",
+                    self.name(),
+                    robots.len(),
+                    robots.iter().map(|r| r.name).collect::<Vec<_>>(),
+                    crate::models::robots::single_arm_robot_names().join(", ")
+                ),
+            ));
+        }
+        if let Some(r) = robots.iter().find(|r| r.arms.len() != 1) {
+            return Err(gym_core::Error::invalid_argument(
+                "robots",
+                format!(
+                    "{} is a single-arm task and {} is bimanual; valid robots: {}",
+                    self.name(),
+                    r.name,
+                    crate::models::robots::single_arm_robot_names().join(", ")
+                ),
+            ));
+        }
+        if configuration != EnvConfiguration::Default {
+            return Err(gym_core::Error::invalid_argument(
+                "env_configuration",
+                format!(
+                    "{} is a single-arm task: only `default` is valid, got `{}`",
+                    self.name(),
+                    configuration.as_str()
+                ),
+            ));
+        }
+        Ok(configuration)
     }
 
     /// The gripper the task needs on arm `arm` of robot `robot` given the configured
@@ -100,6 +164,20 @@ pub trait TaskSpec: Send + Sync + std::fmt::Debug {
     /// [`gym_core::Error::Model`] when a model file is missing or malformed;
     /// [`gym_core::Error::InvalidArgument`] for an invalid task configuration.
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene>;
+
+    /// [`TaskSpec::build`] for the configuration [`TaskSpec::check_robots`] returned (how
+    /// two-arm tasks place their robots). The default ignores it.
+    ///
+    /// # Errors
+    /// As [`TaskSpec::build`].
+    fn build_configured(
+        &self,
+        assets: &Assets,
+        robots: &mut [RobotModel],
+        _configuration: EnvConfiguration,
+    ) -> Result<TaskScene> {
+        self.build(assets, robots)
+    }
 
     /// Binds the task to the compiled scene: resolves every body, joint, geom and site it
     /// uses.

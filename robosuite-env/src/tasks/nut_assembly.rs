@@ -154,7 +154,11 @@ impl TaskSpec for NutAssemblySpec {
                 )
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(TaskScene { arena, objects })
+        Ok(TaskScene {
+            arena,
+            objects,
+            attached: Vec::new(),
+        })
     }
 
     fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>> {

@@ -243,7 +243,11 @@ impl TaskSpec for PickPlaceSpec {
                 true,
             )?);
         }
-        Ok(TaskScene { arena, objects })
+        Ok(TaskScene {
+            arena,
+            objects,
+            attached: Vec::new(),
+        })
     }
 
     fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>> {

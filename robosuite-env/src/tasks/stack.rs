@@ -63,6 +63,7 @@ impl TaskSpec for StackSpec {
         Ok(TaskScene {
             arena,
             objects: vec![cube_a.build()?, cube_b.build()?],
+            attached: Vec::new(),
         })
     }
 

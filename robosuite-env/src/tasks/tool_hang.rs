@@ -142,6 +142,7 @@ impl TaskSpec for ToolHangSpec {
         Ok(TaskScene {
             arena,
             objects: vec![o.stand.build()?, o.frame.build()?, o.tool.build()?],
+            attached: Vec::new(),
         })
     }
 

@@ -250,6 +250,7 @@ impl TaskSpec for WipeSpec {
         Ok(TaskScene {
             arena,
             objects: Vec::new(),
+            attached: Vec::new(),
         })
     }
 

@@ -15,8 +15,14 @@ use std::path::PathBuf;
 pub struct Fixture {
     /// The task.
     pub task: String,
-    /// The robot.
+    /// The robot (the first one, where the task has several).
     pub robot: String,
+    /// Every robot, where the task has several.
+    #[serde(default)]
+    pub robots: Option<Vec<String>>,
+    /// robosuite's other `make` arguments of the recording (`env_configuration`).
+    #[serde(default)]
+    pub kwargs: IndexMap<String, String>,
     /// robosuite's counts (`nq`, `nv`, `nu`, `nbody`, ...).
     pub counts: IndexMap<String, i64>,
     /// Every element's name by kind, in model order.
@@ -176,13 +182,31 @@ fn is_object_pos_key(key: &str) -> bool {
         && !key.starts_with("gripper")
 }
 
-/// An environment for `fixture` with robosuite's defaults.
+/// The configuration `fixture` was recorded with: its robots and `env_configuration`,
+/// robosuite's defaults otherwise.
+pub fn config_for(fixture: &Fixture) -> EnvConfig {
+    let robots = fixture
+        .robots
+        .clone()
+        .unwrap_or_else(|| vec![fixture.robot.clone()]);
+    let mut config = EnvConfig::default().with_robots(robots);
+    for (key, value) in &fixture.kwargs {
+        match key.as_str() {
+            "env_configuration" => {
+                config = config.with_env_configuration(
+                    robosuite_env::EnvConfiguration::parse(value).expect("a known configuration"),
+                );
+            }
+            other => panic!("{}: unknown recorded argument `{other}`", fixture.task),
+        }
+    }
+    config
+}
+
+/// An environment for `fixture` with its recorded configuration.
 pub fn env_for(fixture: &Fixture) -> RobosuiteEnv {
-    make_with(
-        &fixture.task,
-        EnvConfig::default().with_robots([fixture.robot.clone()]),
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", fixture.task))
+    make_with(&fixture.task, config_for(fixture))
+        .unwrap_or_else(|e| panic!("{}: {e}", fixture.task))
 }
 
 /// Replays `rollout` from its recorded reset in `env` and measures the differences.

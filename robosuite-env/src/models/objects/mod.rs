@@ -7,11 +7,14 @@
 //! [`composite`]: robosuite's composite objects and composite bodies, with ToolHang's
 //! [`stand_with_mount`], [`hook_frame`] and [`ratcheting_wrench`] built on them).
 
+pub mod bin;
 pub mod composite;
 pub mod cone;
+pub mod hammer;
 pub mod hollow_cylinder;
 pub mod hook_frame;
 mod material;
+pub mod pot_with_handles;
 pub mod primitive;
 pub mod ratcheting_wrench;
 #[cfg(test)]
