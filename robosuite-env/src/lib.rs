@@ -35,6 +35,8 @@ pub mod math;
 pub mod mjcf;
 pub mod models;
 pub mod observables;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod registry;
 pub mod robots;
 pub mod sim;
