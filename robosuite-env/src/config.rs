@@ -1,6 +1,7 @@
 //! Environment configuration (robosuite's constructor arguments) with validation.
 
 use crate::assets::Assets;
+pub use crate::cameras::{CameraConfig, ImageConvention, Segmentation};
 use crate::controllers::ControllerConfig;
 use crate::controllers::config::load_part_controller_config;
 use crate::models::grippers::gripper_info;
@@ -44,6 +45,9 @@ pub struct EnvConfig {
     pub use_object_obs: bool,
     /// Seed of the environment RNG; `None` seeds from entropy at the first reset.
     pub seed: Option<u64>,
+    /// robosuite's camera arguments (`use_camera_obs`, `has_offscreen_renderer`,
+    /// `camera_names`, ...) and the render mode's camera; see [`CameraConfig`].
+    pub cameras: CameraConfig,
 }
 
 impl Default for EnvConfig {
@@ -60,6 +64,7 @@ impl Default for EnvConfig {
             initialization_noise: InitNoise::default(),
             use_object_obs: true,
             seed: None,
+            cameras: CameraConfig::default(),
         }
     }
 }
@@ -79,6 +84,18 @@ pub const CONFIG_KEYS: &[&str] = &[
     "initialization_noise_type",
     "controller_configs",
     "controller",
+    "use_camera_obs",
+    "has_offscreen_renderer",
+    "camera_names",
+    "camera_heights",
+    "camera_widths",
+    "camera_depths",
+    "camera_segmentations",
+    "render_camera",
+    "render_height",
+    "render_width",
+    "render_mode",
+    "image_convention",
 ];
 
 impl EnvConfig {
@@ -191,6 +208,13 @@ impl EnvConfig {
         self
     }
 
+    /// Sets the camera arguments.
+    #[must_use]
+    pub fn with_cameras(mut self, cameras: CameraConfig) -> Self {
+        self.cameras = cameras;
+        self
+    }
+
     /// The number of physics substeps per env step: `int((1 / control_freq) / 0.002)`, as
     /// robosuite truncates.
     pub fn substeps(&self, timestep: f64) -> usize {
@@ -260,7 +284,8 @@ impl EnvConfig {
                 ),
             ));
         }
-        self.initialization_noise.validate()
+        self.initialization_noise.validate()?;
+        self.cameras.validate()
     }
 
     /// A configuration from keyword arguments (the registry's `make(id, kwargs)`), starting
@@ -383,6 +408,7 @@ impl EnvConfig {
                         ));
                     }
                 },
+                k if crate::cameras::CAMERA_KEYS.contains(&k) => c.cameras.set_kwarg(k, v)?,
                 other => {
                     return Err(Error::UnknownKey {
                         key: other.to_owned(),

@@ -28,6 +28,8 @@
 //!   [`register_envs`]).
 
 pub mod assets;
+pub mod camera_rig;
+pub mod cameras;
 pub mod config;
 pub mod controllers;
 pub mod env;
@@ -35,9 +37,9 @@ pub mod math;
 pub mod mjcf;
 pub mod models;
 pub mod observables;
+pub mod registry;
 #[cfg(feature = "render")]
 pub mod render;
-pub mod registry;
 pub mod robots;
 pub mod sim;
 pub mod tasks;

@@ -21,7 +21,13 @@ struct Frame {
     seg: Vec<i32>,
 }
 
-fn draw(renderer: &mut OffscreenRenderer, sim: &mut Sim, camera: &str, w: usize, h: usize) -> Frame {
+fn draw(
+    renderer: &mut OffscreenRenderer,
+    sim: &mut Sim,
+    camera: &str,
+    w: usize,
+    h: usize,
+) -> Frame {
     let id = sim
         .model()
         .name_to_id(MjtObjBase::mjOBJ_CAMERA, camera)
@@ -59,18 +65,30 @@ fn renders_lift_cameras_headless_deterministically_and_on_other_threads() {
     colours.dedup();
     assert!(colours.len() > 100, "only {} colours", colours.len());
     assert!(f.depth.iter().all(|d| *d > 0.0 && *d < 1.0));
-    let metres: Vec<f64> = f.depth.iter().map(|d| real_depth(sim.model(), *d)).collect();
+    let metres: Vec<f64> = f
+        .depth
+        .iter()
+        .map(|d| real_depth(sim.model(), *d))
+        .collect();
     let nearest = metres.iter().cloned().fold(f64::INFINITY, f64::min);
     // agentview sits about 0.5 m in front of the table's edge and 1.35 m high.
     assert!(nearest > 0.3 && nearest < 3.0, "nearest {nearest} m");
     // Segmentation names geoms: the table top and the cube are in view.
-    let table = sim.model().name_to_id(MjtObjBase::mjOBJ_GEOM, "table_visual").unwrap() as i32;
+    let table = sim
+        .model()
+        .name_to_id(MjtObjBase::mjOBJ_GEOM, "table_visual")
+        .unwrap() as i32;
     assert!(f.seg.contains(&table));
     let names: Vec<String> = f
         .seg
         .iter()
         .filter(|id| **id >= 0)
-        .map(|id| sim.model().id_to_name(MjtObjBase::mjOBJ_GEOM, *id as usize).unwrap_or("").to_owned())
+        .map(|id| {
+            sim.model()
+                .id_to_name(MjtObjBase::mjOBJ_GEOM, *id as usize)
+                .unwrap_or("")
+                .to_owned()
+        })
         .collect();
     // robosuite's defaults: visual geoms (group 1) drawn, collision geoms (group 0) hidden.
     assert!(names.iter().any(|n| n == "fixed_mount0_pedestal_vis"));

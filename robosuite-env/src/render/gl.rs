@@ -54,9 +54,8 @@ impl GlContext {
     /// [`Error::Render`] naming the missing library when libEGL cannot be loaded, or saying
     /// why no device opened a context.
     pub fn new() -> Result<Self> {
-        let devices = Device::query_devices().map_err(|e| {
-            Error::Render(format!("cannot load libEGL.so.1 ({e}); {EGL_HINT}"))
-        })?;
+        let devices = Device::query_devices()
+            .map_err(|e| Error::Render(format!("cannot load libEGL.so.1 ({e}); {EGL_HINT}")))?;
         let mut last = None;
         for device in devices {
             match Self::on_device(&device) {

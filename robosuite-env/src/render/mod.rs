@@ -180,7 +180,11 @@ impl OffscreenRenderer {
             if r.out.rgb.is_some() || r.out.depth.is_some() {
                 scene.render(&viewport, context);
                 context
-                    .read_pixels(r.out.rgb.as_deref_mut(), r.out.depth.as_deref_mut(), &viewport)
+                    .read_pixels(
+                        r.out.rgb.as_deref_mut(),
+                        r.out.depth.as_deref_mut(),
+                        &viewport,
+                    )
                     .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
             }
             if let Some(seg) = r.out.segmentation.as_deref_mut() {

@@ -1,0 +1,255 @@
+//! The cameras of one environment: its observed cameras resolved against the model, their
+//! frames, and the offscreen renderer that draws them and Gymnasium's `render()` frames.
+//! Without the `render` feature, asking for any of it is an [`Error::Unsupported`].
+
+use crate::cameras::{CameraConfig, CameraObs, ImageConvention, blank_frames, camera_specs};
+use crate::observables::ObsSpec;
+use crate::sim::Data;
+use gym_core::{ArrayValue, Error, Frame, RenderMode, Result};
+use mujoco_rs::prelude::{MjModel, MjtObjBase};
+
+/// Observed cameras with their frames, and the render-mode camera.
+#[derive(Debug)]
+pub struct CameraRig {
+    cameras: Vec<(CameraObs, usize)>,
+    specs: Vec<ObsSpec>,
+    frames: Vec<ArrayValue>,
+    convention: ImageConvention,
+    render_mode: Option<RenderMode>,
+    render_camera: (usize, usize, usize),
+    #[cfg(feature = "render")]
+    renderer: crate::render::OffscreenRenderer,
+}
+
+/// The id of camera `name`, or an error listing the model's cameras.
+fn camera_id(model: &MjModel, key: &str, name: &str) -> Result<usize> {
+    model
+        .name_to_id(MjtObjBase::mjOBJ_CAMERA, name)
+        .ok_or_else(|| {
+            let valid: Vec<&str> = (0..model.ffi().ncam as usize)
+                .filter_map(|i| model.id_to_name(MjtObjBase::mjOBJ_CAMERA, i))
+                .collect();
+            Error::invalid_argument(
+                key,
+                format!("unknown camera `{name}`; valid: {}", valid.join(", ")),
+            )
+        })
+}
+
+impl CameraRig {
+    /// The rig `config` asks for on `model` (`None` when it needs no renderer).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an invalid configuration or an unknown camera (the
+    /// message lists the model's cameras); [`Error::Unsupported`] in a build without the
+    /// `render` feature; [`Error::Render`] when no OpenGL context can be opened (the message
+    /// names the missing library).
+    pub fn new(config: &CameraConfig, model: &MjModel) -> Result<Option<Self>> {
+        config.validate()?;
+        if !config.needs_renderer() {
+            return Ok(None);
+        }
+        let cameras = config
+            .cameras()
+            .into_iter()
+            .map(|c| camera_id(model, "camera_names", &c.name).map(|id| (c, id)))
+            .collect::<Result<Vec<_>>>()?;
+        let render_camera = (
+            camera_id(model, "render_camera", &config.render_camera)?,
+            config.render_width,
+            config.render_height,
+        );
+        let plain: Vec<CameraObs> = cameras.iter().map(|(c, _)| c.clone()).collect();
+        let specs = camera_specs(&plain);
+        let frames = blank_frames(&specs);
+        #[cfg(feature = "render")]
+        {
+            let mut width = config.render_width;
+            let mut height = config.render_height;
+            for (c, _) in &cameras {
+                width = width.max(c.width);
+                height = height.max(c.height);
+            }
+            let renderer = crate::render::OffscreenRenderer::new(model, width, height)?;
+            Ok(Some(Self {
+                cameras,
+                specs,
+                frames,
+                convention: config.image_convention,
+                render_mode: config.render_mode,
+                render_camera,
+                renderer,
+            }))
+        }
+        #[cfg(not(feature = "render"))]
+        {
+            let _ = (cameras, specs, frames, render_camera);
+            Err(Error::Unsupported(
+                "camera observations and render modes need a build with the `render` feature \
+                 (cargo feature robosuite-env/render)"
+                    .into(),
+            ))
+        }
+    }
+
+    /// The camera observables, in robosuite's order.
+    pub fn specs(&self) -> &[ObsSpec] {
+        &self.specs
+    }
+
+    /// The frames of the last [`CameraRig::observe`], one per spec.
+    pub fn frames(&self) -> &[ArrayValue] {
+        &self.frames
+    }
+
+    /// The render mode chosen at construction.
+    pub fn render_mode(&self) -> Option<RenderMode> {
+        self.render_mode
+    }
+
+    /// Draws every observed camera into its frames.
+    ///
+    /// # Errors
+    /// [`Error::Render`] when the OpenGL context fails.
+    pub fn observe(&mut self, data: &mut Data) -> Result<()> {
+        if self.cameras.is_empty() {
+            return Ok(());
+        }
+        #[cfg(feature = "render")]
+        {
+            use crate::render::{Outputs, Request};
+            let mut frames = self.frames.iter_mut();
+            let mut requests = Vec::with_capacity(self.cameras.len());
+            for (c, id) in &self.cameras {
+                let mut out = Outputs::default();
+                if let Some(ArrayValue::U8(a)) = frames.next() {
+                    out.rgb = a.as_slice_mut();
+                }
+                if c.depth
+                    && let Some(ArrayValue::F32(a)) = frames.next()
+                {
+                    out.depth = a.as_slice_mut();
+                }
+                // One element segmentation per camera is drawn; further ones are copies.
+                let mut first_seg: Option<&mut ArrayValue> = None;
+                for _ in &c.segmentations {
+                    let f = frames.next();
+                    if first_seg.is_none() {
+                        first_seg = f;
+                    }
+                }
+                if let Some(ArrayValue::I32(a)) = first_seg {
+                    out.segmentation = a.as_slice_mut();
+                }
+                requests.push(Request {
+                    camera: *id,
+                    width: c.width,
+                    height: c.height,
+                    out,
+                });
+            }
+            self.renderer.render(data, &mut requests)?;
+            drop(requests);
+            self.copy_repeated_segmentations();
+            if self.convention == ImageConvention::OpenCv {
+                for f in &mut self.frames {
+                    gym_core::for_each_array!(f, a => flip_rows(a));
+                }
+            }
+            Ok(())
+        }
+        #[cfg(not(feature = "render"))]
+        {
+            let _ = data;
+            Err(Error::Unsupported(
+                "built without the `render` feature".into(),
+            ))
+        }
+    }
+
+    #[cfg(feature = "render")]
+    fn copy_repeated_segmentations(&mut self) {
+        let mut at = 0;
+        for (c, _) in &self.cameras {
+            at += 1 + usize::from(c.depth);
+            for k in 1..c.segmentations.len() {
+                let (head, tail) = self.frames.split_at_mut(at + k);
+                if let (ArrayValue::I32(s), ArrayValue::I32(d)) = (&head[at], &mut tail[0]) {
+                    d.assign(s);
+                }
+            }
+            at += c.segmentations.len();
+        }
+    }
+
+    /// Gymnasium's `render()`: the render camera at the render size, top row first (`u8`
+    /// RGB for `rgb_array`, raw `f32` depth for `depth_array`); `None` without a render mode.
+    ///
+    /// # Errors
+    /// [`Error::Render`] when the OpenGL context fails.
+    pub fn render(&mut self, data: &mut Data) -> Result<Option<Frame>> {
+        let Some(mode) = self.render_mode else {
+            return Ok(None);
+        };
+        #[cfg(feature = "render")]
+        {
+            use crate::render::{Outputs, Request};
+            let (camera, width, height) = self.render_camera;
+            let frame = match mode {
+                RenderMode::DepthArray => {
+                    let mut depth = ndarray::Array2::<f32>::zeros((height, width));
+                    let mut req = [Request {
+                        camera,
+                        width,
+                        height,
+                        out: Outputs {
+                            depth: depth.as_slice_mut(),
+                            ..Outputs::default()
+                        },
+                    }];
+                    self.renderer.render(data, &mut req)?;
+                    flip_rows(&mut depth);
+                    Frame::Depth(depth)
+                }
+                _ => {
+                    let mut rgb = ndarray::Array3::<u8>::zeros((height, width, 3));
+                    let mut req = [Request {
+                        camera,
+                        width,
+                        height,
+                        out: Outputs {
+                            rgb: rgb.as_slice_mut(),
+                            ..Outputs::default()
+                        },
+                    }];
+                    self.renderer.render(data, &mut req)?;
+                    flip_rows(&mut rgb);
+                    Frame::Rgb(rgb)
+                }
+            };
+            Ok(Some(frame))
+        }
+        #[cfg(not(feature = "render"))]
+        {
+            let _ = (data, mode);
+            Err(Error::Unsupported(
+                "built without the `render` feature".into(),
+            ))
+        }
+    }
+}
+
+/// Reverses the row order (axis 0) of a standard-layout array in place.
+#[cfg(feature = "render")]
+fn flip_rows<T, D: ndarray::Dimension>(a: &mut ndarray::Array<T, D>) {
+    let rows = a.shape().first().copied().unwrap_or(0);
+    if let Some(flat) = a.as_slice_mut()
+        && rows > 1
+    {
+        let row = flat.len() / rows;
+        for i in 0..rows / 2 {
+            let (top, bottom) = flat.split_at_mut((rows - 1 - i) * row);
+            top[i * row..(i + 1) * row].swap_with_slice(&mut bottom[..row]);
+        }
+    }
+}
