@@ -10,6 +10,7 @@ use mujoco_rs::prelude::{MjModel, MjtObjBase};
 
 /// Observed cameras with their frames, and the render-mode camera.
 #[derive(Debug)]
+#[cfg_attr(not(feature = "render"), allow(dead_code))]
 pub struct CameraRig {
     cameras: Vec<(CameraObs, usize)>,
     specs: Vec<ObsSpec>,

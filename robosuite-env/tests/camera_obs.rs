@@ -292,3 +292,24 @@ fn bad_camera_options_are_typed_errors_at_make() {
         Err(Error::Unsupported(_))
     ));
 }
+
+#[test]
+fn gym_wrapper_default_keys_are_robosuites_and_images_stay_uint8() {
+    let fx = fixture();
+    let env = lift(cameras_like_fixture()).unwrap();
+    let keys = adapters::gym_wrapper::default_keys(env.observation_space());
+    let theirs: Vec<String> = fx["gym_default_keys"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_str().unwrap().to_owned())
+        .collect();
+    assert_eq!(keys, theirs);
+    let image = env.observation_space().get("agentview_image").unwrap();
+    let gym_core::AnySpace::Box(b) = image else {
+        panic!("a Box")
+    };
+    assert_eq!(b.dtype(), DType::U8);
+    let (low, high) = b.bounds_f64();
+    assert!(low.iter().all(|v| *v == 0.0) && high.iter().all(|v| *v == 255.0));
+}
