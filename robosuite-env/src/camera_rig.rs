@@ -120,8 +120,8 @@ impl CameraRig {
         {
             use crate::render::{Outputs, Request};
             let mut frames = self.frames.iter_mut();
-            let mut requests = Vec::with_capacity(self.cameras.len());
-            for (c, id) in &self.cameras {
+            // Requests are made one at a time from the frames: nothing is allocated.
+            let requests = self.cameras.iter().map(|(c, id)| {
                 let mut out = Outputs::default();
                 if let Some(ArrayValue::U8(a)) = frames.next() {
                     out.rgb = a.as_slice_mut();
@@ -142,15 +142,14 @@ impl CameraRig {
                 if let Some(ArrayValue::I32(a)) = first_seg {
                     out.segmentation = a.as_slice_mut();
                 }
-                requests.push(Request {
+                Request {
                     camera: *id,
                     width: c.width,
                     height: c.height,
                     out,
-                });
-            }
-            self.renderer.render(data, &mut requests)?;
-            drop(requests);
+                }
+            });
+            self.renderer.render_each(data, requests)?;
             self.copy_repeated_segmentations();
             if self.convention == ImageConvention::OpenCv {
                 for f in &mut self.frames {

@@ -131,33 +131,37 @@ impl OffscreenRenderer {
     /// [`OffscreenRenderer::max_size`] or a buffer of the wrong length (nothing is drawn);
     /// [`Error::Render`] when the context cannot be made current.
     pub fn render(&mut self, data: &mut Data, requests: &mut [Request<'_>]) -> Result<()> {
-        let ncam = data.model().ffi().ncam as usize;
         for r in requests.iter() {
-            if r.camera >= ncam {
-                return Err(Error::invalid_argument(
-                    "camera",
-                    format!("camera id {} out of range (the model has {ncam})", r.camera),
-                ));
-            }
-            if r.width == 0 || r.height == 0 || r.width > self.size.0 || r.height > self.size.1 {
-                return Err(Error::invalid_argument(
-                    "size",
-                    format!(
-                        "{}x{} does not fit the renderer's {}x{} buffer",
-                        r.width, r.height, self.size.0, self.size.1
-                    ),
-                ));
-            }
-            let n = r.width * r.height;
-            let bad = r.out.rgb.as_ref().is_some_and(|b| b.len() != 3 * n)
-                || r.out.depth.as_ref().is_some_and(|b| b.len() != n)
-                || r.out.segmentation.as_ref().is_some_and(|b| b.len() != n);
-            if bad {
-                return Err(Error::invalid_argument(
-                    "outputs",
-                    format!("buffers must hold {}x{} pixels", r.width, r.height),
-                ));
-            }
+            check(self.size, data, r)?;
+        }
+        self.render_each(
+            data,
+            requests.iter_mut().map(|r| Request {
+                camera: r.camera,
+                width: r.width,
+                height: r.height,
+                out: Outputs {
+                    rgb: r.out.rgb.as_deref_mut(),
+                    depth: r.out.depth.as_deref_mut(),
+                    segmentation: r.out.segmentation.as_deref_mut(),
+                },
+            }),
+        )
+    }
+
+    /// [`OffscreenRenderer::render`] for requests made one at a time (no list of them is
+    /// kept, so a render pass allocates nothing); each is checked just before it is drawn.
+    ///
+    /// # Errors
+    /// As [`OffscreenRenderer::render`]; the requests before a bad one are drawn.
+    pub fn render_each<'a>(
+        &mut self,
+        data: &mut Data,
+        requests: impl IntoIterator<Item = Request<'a>>,
+    ) -> Result<()> {
+        let mut requests = requests.into_iter().peekable();
+        if requests.peek().is_none() {
+            return Ok(());
         }
         let Self {
             context,
@@ -166,37 +170,104 @@ impl OffscreenRenderer {
             perturb,
             seg_rgb,
             seg_ids,
+            size,
             gl,
-            ..
         } = self;
         let context = context
             .as_ref()
             .ok_or_else(|| Error::Render("the rendering context was freed".into()))?;
         let _current = gl.make_current()?;
-        for r in requests.iter_mut() {
-            let mut camera = MjvCamera::new_fixed(r.camera);
-            scene.update(data, option, perturb, &mut camera);
-            let viewport = MjrRectangle::new(0, 0, r.width as i32, r.height as i32);
-            if r.out.rgb.is_some() || r.out.depth.is_some() {
-                scene.render(&viewport, context);
-                context
-                    .read_pixels(
-                        r.out.rgb.as_deref_mut(),
-                        r.out.depth.as_deref_mut(),
-                        &viewport,
-                    )
-                    .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
-            }
-            if let Some(seg) = r.out.segmentation.as_deref_mut() {
-                set_segmentation_flags(scene, true);
-                scene.render(&viewport, context);
-                set_segmentation_flags(scene, false);
-                seg_rgb.resize(3 * r.width * r.height, 0);
-                context
-                    .read_pixels(Some(seg_rgb), None, &viewport)
-                    .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
-                decode_segmentation(scene, seg_rgb, seg_ids, seg);
-            }
+        let mut pass = Pass {
+            context,
+            scene,
+            option,
+            perturb,
+            seg_rgb,
+            seg_ids,
+        };
+        for mut r in requests {
+            check(*size, data, &r)?;
+            pass.draw(data, &mut r)?;
+        }
+        Ok(())
+    }
+}
+
+/// The renderer's parts one render pass uses, borrowed while the context is current.
+struct Pass<'p> {
+    context: &'p MjrContext,
+    scene: &'p mut MjvScene,
+    option: &'p MjvOption,
+    perturb: &'p MjvPerturb,
+    seg_rgb: &'p mut Vec<u8>,
+    seg_ids: &'p mut Vec<i32>,
+}
+
+/// Checks one request against the model and the offscreen buffer of `size`.
+fn check(size: (usize, usize), data: &Data, r: &Request<'_>) -> Result<()> {
+    let ncam = data.model().ffi().ncam as usize;
+    if r.camera >= ncam {
+        return Err(Error::invalid_argument(
+            "camera",
+            format!("camera id {} out of range (the model has {ncam})", r.camera),
+        ));
+    }
+    if r.width == 0 || r.height == 0 || r.width > size.0 || r.height > size.1 {
+        return Err(Error::invalid_argument(
+            "size",
+            format!(
+                "{}x{} does not fit the renderer's {}x{} buffer",
+                r.width, r.height, size.0, size.1
+            ),
+        ));
+    }
+    let n = r.width * r.height;
+    let bad = r.out.rgb.as_ref().is_some_and(|b| b.len() != 3 * n)
+        || r.out.depth.as_ref().is_some_and(|b| b.len() != n)
+        || r.out.segmentation.as_ref().is_some_and(|b| b.len() != n);
+    if bad {
+        return Err(Error::invalid_argument(
+            "outputs",
+            format!("buffers must hold {}x{} pixels", r.width, r.height),
+        ));
+    }
+    Ok(())
+}
+
+impl Pass<'_> {
+    /// Draws one checked request; the context must be current.
+    fn draw(&mut self, data: &mut Data, r: &mut Request<'_>) -> Result<()> {
+        let Self {
+            context,
+            scene,
+            option,
+            perturb,
+            seg_rgb,
+            seg_ids,
+        } = self;
+        let context: &MjrContext = context;
+        let mut camera = MjvCamera::new_fixed(r.camera);
+        scene.update(data, option, perturb, &mut camera);
+        let viewport = MjrRectangle::new(0, 0, r.width as i32, r.height as i32);
+        if r.out.rgb.is_some() || r.out.depth.is_some() {
+            scene.render(&viewport, context);
+            context
+                .read_pixels(
+                    r.out.rgb.as_deref_mut(),
+                    r.out.depth.as_deref_mut(),
+                    &viewport,
+                )
+                .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
+        }
+        if let Some(seg) = r.out.segmentation.as_deref_mut() {
+            set_segmentation_flags(scene, true);
+            scene.render(&viewport, context);
+            set_segmentation_flags(scene, false);
+            seg_rgb.resize(3 * r.width * r.height, 0);
+            context
+                .read_pixels(Some(seg_rgb), None, &viewport)
+                .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
+            decode_segmentation(scene, seg_rgb, seg_ids, seg);
         }
         Ok(())
     }
