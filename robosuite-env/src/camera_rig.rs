@@ -37,6 +37,25 @@ fn camera_id(model: &MjModel, key: &str, name: &str) -> Result<usize> {
         })
 }
 
+/// Gives `model` the look robosuite renders, when `config` needs a renderer: every site
+/// hidden (robosuite's reset calls `visualize` with every setting off, which negates the
+/// alpha of the robots', grippers' and objects' sites; the arenas' are transparent), and,
+/// when a camera observes a segmentation, every site shrunk to `1e-8` (as
+/// `RobotEnv._setup_observables` does). Only rendering values change, not the physics.
+pub fn prepare_model(config: &CameraConfig, model: &mut MjModel) {
+    if !config.needs_renderer() {
+        return;
+    }
+    for rgba in model.site_rgba_mut() {
+        rgba[3] = -rgba[3].abs();
+    }
+    if config.use_camera_obs && !config.camera_segmentations.iter().all(Vec::is_empty) {
+        for size in model.site_size_mut() {
+            *size = [1e-8; 3];
+        }
+    }
+}
+
 impl CameraRig {
     /// The rig `config` asks for on `model` (`None` when it needs no renderer).
     ///

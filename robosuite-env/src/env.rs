@@ -267,6 +267,8 @@ impl RobosuiteEnv {
         let task_start = total_len(&obs_specs);
         // robosuite's `RobotEnv` adds the camera observables after the robots' and before
         // the task's; frames live outside the buffer.
+        let mut model = model;
+        crate::camera_rig::prepare_model(&config.cameras, &mut model);
         let cameras = CameraRig::new(&config.cameras, &model)?;
         if let Some(rig) = &cameras {
             obs_specs.extend(rig.specs().iter().cloned());
