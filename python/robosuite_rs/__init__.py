@@ -434,7 +434,7 @@ def make(
     ``has_renderer`` (``False`` only: there is no on-screen viewer), robosuite's camera
     arguments ``use_camera_obs``, ``has_offscreen_renderer``, ``camera_names``,
     ``camera_heights``, ``camera_widths``, ``camera_depths``, ``camera_segmentations``
-    (``"element"`` only) — camera observations are off by default here (robosuite turns
+    (``"element"``, ``"instance"``, ``"class"``) — camera observations are off by default here (robosuite turns
     them on) — and Gymnasium's ``render_mode`` (``"rgb_array"``, ``"depth_array"`` or
     ``None``) drawn from ``render_camera`` (default ``"frontview"``) at
     ``render_width`` × ``render_height`` (default 256), ``model_xml`` (a robosuite-style scene file to run

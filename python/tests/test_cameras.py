@@ -163,6 +163,27 @@ def test_vector_env_with_images() -> None:
     vec.close()
 
 
+def test_segmentation_levels_per_camera() -> None:
+    env = lift(
+        use_camera_obs=True,
+        has_offscreen_renderer=True,
+        camera_names=["agentview", "frontview"],
+        camera_heights=48,
+        camera_widths=48,
+        camera_segmentations=[["instance", "class"], None],
+    )
+    obs = env.reset(seed=0)
+    seg_keys = [k for k in obs if "_segmentation_" in k]
+    assert seg_keys == ["agentview_segmentation_instance", "agentview_segmentation_class"]
+    inst = obs["agentview_segmentation_instance"]
+    assert inst.dtype == np.int32 and inst.shape == (48, 48, 1)
+    # robosuite's instances on Lift: cube, Panda0, RethinkMount0, PandaGripper0_right.
+    assert set(np.unique(inst).tolist()) <= {0, 1, 2, 3, 4} and (inst == 1).any()
+    # One instance per class on Lift: the same ids.
+    assert np.array_equal(inst, obs["agentview_segmentation_class"])
+    env.close()
+
+
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [

@@ -2,7 +2,9 @@
 //! frames, and the offscreen renderer that draws them and Gymnasium's `render()` frames.
 //! Without the `render` feature, asking for any of it is an [`Error::Unsupported`].
 
-use crate::cameras::{CameraConfig, CameraObs, ImageConvention, blank_frames, camera_specs};
+use crate::cameras::{
+    CameraConfig, CameraObs, ImageConvention, Segmentation, blank_frames, camera_specs,
+};
 use crate::observables::ObsSpec;
 use crate::sim::Data;
 use gym_core::{ArrayValue, Error, Frame, RenderMode, Result};
@@ -18,8 +20,85 @@ pub struct CameraRig {
     convention: ImageConvention,
     render_mode: Option<RenderMode>,
     render_camera: (usize, usize, usize),
+    /// Per geom id: its instance and its class id (robosuite's segmentation ids, 0 for a
+    /// geom of no group).
+    instance_ids: Vec<i32>,
+    class_ids: Vec<i32>,
     #[cfg(feature = "render")]
     renderer: crate::render::OffscreenRenderer,
+}
+
+/// One model part for robosuite's instance and class segmentations (an entry of its
+/// `instances_to_ids`, in order): a robot, mount, gripper or object, whose geoms are the
+/// named geoms with its prefix, or a top-level arena body, whose geoms are its subtree's
+/// visual (group 1) geoms.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SegmentGroup {
+    /// The instance (unique).
+    pub instance: String,
+    /// The class (shared by instances of one kind, such as two `BoxObject`s).
+    pub class: String,
+    /// Where its geoms are.
+    pub geoms: GroupGeoms,
+}
+
+/// How a [`SegmentGroup`] finds its geoms in the model.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum GroupGeoms {
+    /// The geoms whose names start with this prefix (`robot0_`, `cube_`, ...).
+    Prefix(String),
+    /// The visual (group 1) geoms of this body's subtree.
+    Body(String),
+}
+
+/// Per geom id, the 1-based index of its group (by instance or by class, in order of first
+/// appearance), 0 for a geom in none: robosuite's `mapping.get(id, -1) + 1`.
+fn segment_ids(model: &MjModel, groups: &[SegmentGroup], by_class: bool) -> Vec<i32> {
+    let ngeom = model.ffi().ngeom.max(0) as usize;
+    let mut ids = vec![0; ngeom];
+    let mut names: Vec<&str> = Vec::new();
+    let parents = model.body_parentid();
+    let (geom_body, geom_group) = (model.geom_bodyid(), model.geom_group());
+    for g in groups {
+        let key = if by_class { &g.class } else { &g.instance };
+        let id = match names.iter().position(|n| n == key) {
+            Some(i) => i,
+            None => {
+                names.push(key);
+                names.len() - 1
+            }
+        } as i32
+            + 1;
+        let body = match &g.geoms {
+            GroupGeoms::Body(name) => model.name_to_id(MjtObjBase::mjOBJ_BODY, name),
+            GroupGeoms::Prefix(_) => None,
+        };
+        for (geom, slot) in ids.iter_mut().enumerate() {
+            let member = match &g.geoms {
+                GroupGeoms::Prefix(prefix) => model
+                    .id_to_name(MjtObjBase::mjOBJ_GEOM, geom)
+                    .is_some_and(|n| n.starts_with(prefix.as_str())),
+                GroupGeoms::Body(_) => {
+                    body.is_some_and(|b| {
+                        let mut at = geom_body[geom] as usize;
+                        loop {
+                            if at == b {
+                                break true;
+                            }
+                            if at == 0 {
+                                break false;
+                            }
+                            at = parents[at] as usize;
+                        }
+                    }) && geom_group[geom] == 1
+                }
+            };
+            if member && *slot == 0 {
+                *slot = id;
+            }
+        }
+    }
+    ids
 }
 
 /// The id of camera `name`, or an error listing the model's cameras.
@@ -64,7 +143,11 @@ impl CameraRig {
     /// message lists the model's cameras); [`Error::Unsupported`] in a build without the
     /// `render` feature; [`Error::Render`] when no OpenGL context can be opened (the message
     /// names the missing library).
-    pub fn new(config: &CameraConfig, model: &MjModel) -> Result<Option<Self>> {
+    pub fn new(
+        config: &CameraConfig,
+        model: &MjModel,
+        groups: &[SegmentGroup],
+    ) -> Result<Option<Self>> {
         config.validate()?;
         if !config.needs_renderer() {
             return Ok(None);
@@ -82,6 +165,17 @@ impl CameraRig {
         let plain: Vec<CameraObs> = cameras.iter().map(|(c, _)| c.clone()).collect();
         let specs = camera_specs(&plain);
         let frames = blank_frames(&specs);
+        let levels = || cameras.iter().flat_map(|(c, _)| &c.segmentations);
+        let instance_ids = if levels().any(|l| *l == Segmentation::Instance) {
+            segment_ids(model, groups, false)
+        } else {
+            Vec::new()
+        };
+        let class_ids = if levels().any(|l| *l == Segmentation::Class) {
+            segment_ids(model, groups, true)
+        } else {
+            Vec::new()
+        };
         #[cfg(feature = "render")]
         {
             let mut width = config.render_width;
@@ -98,12 +192,21 @@ impl CameraRig {
                 convention: config.image_convention,
                 render_mode: config.render_mode,
                 render_camera,
+                instance_ids,
+                class_ids,
                 renderer,
             }))
         }
         #[cfg(not(feature = "render"))]
         {
-            let _ = (cameras, specs, frames, render_camera);
+            let _ = (
+                cameras,
+                specs,
+                frames,
+                render_camera,
+                instance_ids,
+                class_ids,
+            );
             Err(Error::Unsupported(
                 "camera observations and render modes need a build with the `render` feature \
                  (cargo feature robosuite-env/render)"
@@ -150,7 +253,8 @@ impl CameraRig {
                 {
                     out.depth = a.as_slice_mut();
                 }
-                // One element segmentation per camera is drawn; further ones are copies.
+                // One element segmentation per camera is drawn (into its first segmentation
+                // frame); the others are mapped from it.
                 let mut first_seg: Option<&mut ArrayValue> = None;
                 for _ in &c.segmentations {
                     let f = frames.next();
@@ -169,7 +273,7 @@ impl CameraRig {
                 }
             });
             self.renderer.render_each(data, requests)?;
-            self.copy_repeated_segmentations();
+            self.map_segmentations();
             if self.convention == ImageConvention::OpenCv {
                 for f in &mut self.frames {
                     gym_core::for_each_array!(f, a => flip_rows(a));
@@ -186,19 +290,50 @@ impl CameraRig {
         }
     }
 
+    /// Turns each camera's drawn element segmentation (in its first segmentation frame)
+    /// into its levels: the other frames first, from the drawn one, then the first in place.
     #[cfg(feature = "render")]
-    fn copy_repeated_segmentations(&mut self) {
+    fn map_segmentations(&mut self) {
         let mut at = 0;
         for (c, _) in &self.cameras {
             at += 1 + usize::from(c.depth);
-            for k in 1..c.segmentations.len() {
-                let (head, tail) = self.frames.split_at_mut(at + k);
-                if let (ArrayValue::I32(s), ArrayValue::I32(d)) = (&head[at], &mut tail[0]) {
-                    d.assign(s);
+            let Some((&first, rest)) = c.segmentations.split_first() else {
+                continue;
+            };
+            let (head, tail) = self.frames.split_at_mut(at + 1);
+            if let ArrayValue::I32(drawn) = &mut head[at] {
+                for (level, frame) in rest.iter().zip(tail.iter_mut()) {
+                    if let ArrayValue::I32(out) = frame {
+                        out.zip_mut_with(drawn, |o, &d| *o = d);
+                        Self::map_with(*level, &self.instance_ids, &self.class_ids, out);
+                    }
                 }
+                Self::map_with(first, &self.instance_ids, &self.class_ids, drawn);
             }
             at += c.segmentations.len();
         }
+    }
+
+    /// Maps geom ids (`-1`: background) to `level`'s ids in place.
+    #[cfg(feature = "render")]
+    fn map_with(
+        level: Segmentation,
+        instance: &[i32],
+        class: &[i32],
+        ids: &mut ndarray::ArrayD<i32>,
+    ) {
+        let table = match level {
+            Segmentation::Element => return,
+            Segmentation::Instance => instance,
+            Segmentation::Class => class,
+        };
+        ids.mapv_inplace(|g| {
+            usize::try_from(g)
+                .ok()
+                .and_then(|g| table.get(g))
+                .copied()
+                .unwrap_or(0)
+        });
     }
 
     /// Gymnasium's `render()`: the render camera at the render size, top row first (`u8`

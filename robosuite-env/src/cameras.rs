@@ -261,14 +261,6 @@ impl CameraConfig {
                 check_size(name, v)?;
             }
         }
-        for seg in self.camera_segmentations.iter().flatten() {
-            if *seg != Segmentation::Element {
-                return Err(Error::Unsupported(format!(
-                    "camera_segmentations `{}`: only `element` segmentation is implemented",
-                    seg.as_str()
-                )));
-            }
-        }
         Ok(())
     }
 
