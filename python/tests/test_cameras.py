@@ -4,6 +4,9 @@
 from __future__ import annotations
 
 import json
+import sys
+import threading
+import time
 import warnings
 from pathlib import Path
 from typing import Any
@@ -161,6 +164,41 @@ def test_vector_env_with_images() -> None:
     obs, *_ = vec.step(vec.action_space.sample())
     assert obs["agentview_image"].shape == (2, SIZE, SIZE, 3) and obs in vec.observation_space
     vec.close()
+
+
+def test_gil_is_released_while_rendering_and_stepping() -> None:
+    env = gym.make(
+        "robosuite_rs/Lift-v0", render_mode="rgb_array", render_width=64, render_height=64, flatten_obs=False, **CAMERAS
+    )
+    env.reset(seed=0)
+    count = 0
+    stop = False
+
+    def spin() -> None:
+        nonlocal count
+        while not stop:
+            count += 1
+
+    # With a long switch interval the spinning thread only runs while the main thread has
+    # released the GIL: here, only inside the Rust calls.
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(0.5)
+    thread = threading.Thread(target=spin)
+    thread.start()
+    try:
+        time.sleep(0.01)
+        before = count
+        env.render()
+        during_render = count - before
+        before = count
+        env.step(env.action_space.sample())
+        during_step = count - before
+    finally:
+        stop = True
+        thread.join()
+        sys.setswitchinterval(old)
+        env.close()
+    assert during_render > 0 and during_step > 0
 
 
 def test_segmentation_levels_per_camera() -> None:
