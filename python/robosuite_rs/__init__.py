@@ -236,7 +236,9 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
         robots_list = [robots]
     else:
         robots_list = list(robots)
-    config: dict[str, Any] = {"robots": robots_list}
+    # robosuite's default: an offscreen renderer (used only by camera observations and
+    # render modes), so `use_camera_obs=True` alone works as in robosuite.
+    config: dict[str, Any] = {"robots": robots_list, "has_offscreen_renderer": True}
     for key, value in kwargs.items():
         if key in _DIRECT_KWARGS:
             if value is None and key not in ("reward_scale", "seed"):
@@ -434,10 +436,11 @@ def make(
     ``has_renderer`` (``False`` only: there is no on-screen viewer), robosuite's camera
     arguments ``use_camera_obs``, ``has_offscreen_renderer``, ``camera_names``,
     ``camera_heights``, ``camera_widths``, ``camera_depths``, ``camera_segmentations``
-    (``"element"``, ``"instance"``, ``"class"``) — camera observations are off by default here (robosuite turns
-    them on) — and Gymnasium's ``render_mode`` (``"rgb_array"``, ``"depth_array"`` or
-    ``None``) drawn from ``render_camera`` (default ``"frontview"``) at
-    ``render_width`` × ``render_height`` (default 256), ``model_xml`` (a robosuite-style scene file to run
+    (``"element"``, ``"instance"``, ``"class"``) — camera observations are off by default
+    here (robosuite turns them on); ``has_offscreen_renderer`` defaults to ``True`` as in
+    robosuite — and Gymnasium's ``render_mode`` (``"rgb_array"``, ``"depth_array"`` or
+    ``None``) drawn from ``render_camera`` (default ``"frontview"``) at ``render_width`` ×
+    ``render_height`` (default 256), ``model_xml`` (a robosuite-style scene file to run
     the task on, e.g. one saved from robosuite with ``env.sim.model.get_xml()``).
 
     Raises:

@@ -55,6 +55,14 @@ def test_keys_shapes_and_dtypes_are_robosuites() -> None:
     env.close()
 
 
+def test_use_camera_obs_alone_works_as_in_robosuite() -> None:
+    # robosuite's has_offscreen_renderer defaults to True, camera_names to agentview.
+    env = lift(use_camera_obs=True, camera_heights=16, camera_widths=16)
+    assert env.has_offscreen_renderer and env.camera_names == ["agentview"]
+    assert env.reset(seed=0)["agentview_image"].shape == (16, 16, 3)
+    env.close()
+
+
 def test_gym_wrapper_default_keys_and_uint8_dict_spaces() -> None:
     env = lift(**CAMERAS)
     g = GymWrapper(env)
