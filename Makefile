@@ -4,8 +4,8 @@
 #   make test   every test (Rust and Python)
 #   make fuzz   the fuzz suite, longer
 #
-# Both need only a Rust toolchain, python3 with pip, and pkg-config (installed with
-# apt-get when missing and possible). MuJoCo 3.17.0 is fetched by the build itself
+# Both need only a Rust toolchain, python3 with pip, pkg-config and libEGL with Mesa's
+# software renderer (installed with apt-get when missing and possible). MuJoCo 3.17.0 is fetched by the build itself
 # (build-support/README.md).
 
 CARGO ?= cargo
@@ -19,8 +19,8 @@ demo: prerequisites
 test: test-rust test-python
 
 test-rust: prerequisites
-	$(CARGO) test --workspace --all-targets --features gym-core/proptest-support
-	$(CARGO) test --workspace --doc
+	$(CARGO) test --workspace --all-targets --features gym-core/proptest-support,robosuite-env/render
+	$(CARGO) test --workspace --doc --features robosuite-env/render
 
 test-python: prerequisites
 	bash python/scripts/test.sh
@@ -49,6 +49,7 @@ prerequisites:
 	@command -v $(PYTHON) >/dev/null || { echo "make: $(PYTHON) not found; install Python 3 with pip"; exit 1; }
 	@$(PYTHON) -m pip --version >/dev/null 2>&1 || { echo "make: pip is missing; install it (python3 -m ensurepip)"; exit 1; }
 	@command -v pkg-config >/dev/null || sh build-support/install-pkg-config.sh
+	@sh build-support/install-render-libs.sh
 
 clean:
 	$(CARGO) clean

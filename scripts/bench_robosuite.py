@@ -1,6 +1,8 @@
 """Throughput of robosuite 1.5.2's GymWrapper with random actions (one process, one env).
 
 Prints JSON: task, steps_per_s (including resets at the horizon), reset_ms.
+With --cameras NAME[,NAME] (and --size N) the env observes those cameras at N x N
+(use_camera_obs=True; run with MUJOCO_GL=egl for headless rendering).
 Run through scripts/bench_vs_robosuite.sh, which installs robosuite in a scratch venv.
 """
 import argparse
@@ -16,9 +18,16 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--task", default="Lift")
     parser.add_argument("--seconds", type=float, default=15.0)
+    parser.add_argument("--cameras", default="", help="comma-separated camera names")
+    parser.add_argument("--size", type=int, default=84)
     args = parser.parse_args()
-    env = GymWrapper(suite.make(args.task, robots="Panda", has_renderer=False,
-                                has_offscreen_renderer=False, use_camera_obs=False))
+    cameras = [c for c in args.cameras.split(",") if c]
+    camera_kwargs = (
+        dict(has_offscreen_renderer=True, use_camera_obs=True, camera_names=cameras,
+             camera_heights=args.size, camera_widths=args.size)
+        if cameras else dict(has_offscreen_renderer=False, use_camera_obs=False)
+    )
+    env = GymWrapper(suite.make(args.task, robots="Panda", has_renderer=False, **camera_kwargs))
     rng = np.random.default_rng(0)
     low, high = env.action_space.low, env.action_space.high
     env.reset(seed=0)
@@ -41,7 +50,7 @@ def main() -> None:
     for _ in range(5):
         env.reset()
     reset_ms = (time.perf_counter() - t) / 5 * 1000
-    print(json.dumps({"task": args.task, "steps_per_s": steps / elapsed, "steps": steps,
+    print(json.dumps({"task": args.task, "cameras": cameras, "size": args.size, "steps_per_s": steps / elapsed, "steps": steps,
                       "resets": resets, "reset_ms": reset_ms}))
 
 

@@ -106,6 +106,10 @@ pub enum Error {
     /// A feature that this build does not provide.
     #[error("not supported: {0}")]
     Unsupported(String),
+    /// Offscreen rendering failed or is unavailable (for example libEGL is missing); the
+    /// message names the missing library or what failed.
+    #[error("rendering error: {0}")]
+    Render(String),
     /// The environment was closed and cannot be used any more.
     #[error("the environment is closed")]
     Closed,

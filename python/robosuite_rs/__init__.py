@@ -65,31 +65,38 @@ _DIRECT_KWARGS = (
 # robosuite arguments accepted only with these values (anything else raises).
 _FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
     "has_renderer": (False,),
-    "has_offscreen_renderer": (False,),
-    "use_camera_obs": (False,),
     "render_gpu_device_id": (-1,),
     "lite_physics": (True,),
     "base_types": ("default",),
     "mount_types": ("default",),
     "placement_initializer": (None,),
     "renderer_config": (None,),
+    "render_collision_mesh": (False,),
+    "render_visual_mesh": (True,),
     "table_full_size": ((0.8, 0.8, 0.05),),
     "table_friction": ((1.0, 5e-3, 1e-4),),
     "table_offset": ((0, 0, 0.8),),
 }
 
-# robosuite arguments that only matter for rendering or cameras, which are off: accepted
-# with any value because they change nothing while has_renderer, has_offscreen_renderer
-# and use_camera_obs are False.
-_RENDER_ONLY_KWARGS = (
-    "render_camera",
-    "render_collision_mesh",
-    "render_visual_mesh",
+# robosuite's camera arguments plus Gymnasium's render mode (and its frame size), passed
+# to the Rust configuration (robosuite_env::cameras::CameraConfig), which validates them.
+_CAMERA_KWARGS = (
+    "use_camera_obs",
+    "has_offscreen_renderer",
     "camera_names",
     "camera_heights",
     "camera_widths",
     "camera_depths",
     "camera_segmentations",
+    "render_camera",
+    "render_mode",
+    "render_height",
+    "render_width",
+)
+
+# robosuite arguments that only concern its on-screen viewer or model reloading: accepted
+# with any value (they change nothing here).
+_RENDER_ONLY_KWARGS = (
     "renderer",
     "hard_reset",
 )
@@ -99,8 +106,82 @@ SUPPORTED_KWARGS: tuple[str, ...] = (
     ("robots", "env_configuration", "gripper_types", "controller_configs", "initialization_noise", "model_xml")
     + _DIRECT_KWARGS
     + tuple(_FIXED_KWARGS)
+    + _CAMERA_KWARGS
     + _RENDER_ONLY_KWARGS
 )
+
+
+def _names(key: str, value: Any) -> list[str]:
+    """A str or a list of strs (robosuite's ``_input2list``)."""
+    items = [value] if isinstance(value, str) else value
+    if not isinstance(items, (list, tuple)) or not all(isinstance(v, str) for v in items):
+        raise ValueError(f"{key} must be a str or a list of str, got {value!r}")
+    if any("," in v or ";" in v for v in items):
+        raise ValueError(f"{key}: names must not contain ',' or ';', got {value!r}")
+    return list(items)
+
+
+def _ints(key: str, value: Any) -> str:
+    """An int or a list of ints, as the comma-separated text the Rust core parses."""
+    items = value.tolist() if isinstance(value, np.ndarray) else value
+    items = items if isinstance(items, (list, tuple)) else [items]
+    out = []
+    for v in items:
+        if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)):
+            raise ValueError(f"{key} must be an int or a list of ints (pixels), got {value!r}")
+        out.append(str(int(v)))
+    return ",".join(out)
+
+
+def _bools(key: str, value: Any) -> str:
+    items = value if isinstance(value, (list, tuple)) else [value]
+    if not all(isinstance(v, (bool, np.bool_)) for v in items):
+        raise ValueError(f"{key} must be a bool or a list of bools, got {value!r}")
+    return ",".join("True" if v else "False" for v in items)
+
+
+def _segmentations(value: Any) -> str:
+    """robosuite's ``camera_segmentations`` (``None``, a level, a list of levels for every
+    camera, or a nested list: one list (or ``None``) per camera) as the Rust core's text:
+    ``,`` separates levels, ``;`` cameras."""
+    if value is None:
+        return "None"
+    if isinstance(value, str):
+        return ",".join(_names("camera_segmentations", value))
+    if not isinstance(value, (list, tuple)):
+        raise ValueError(f"camera_segmentations must be None, a str or a list, got {value!r}")
+    if any(isinstance(v, (list, tuple)) for v in value):
+        return ";".join("" if v is None else ",".join(_names("camera_segmentations", v)) for v in value)
+    levels = [v for v in value if v is not None]
+    return ",".join(_names("camera_segmentations", levels)) if levels else "None"
+
+
+def _camera_kwarg(key: str, value: Any) -> Any:
+    """One camera argument as the Rust configuration's value (``None``: leave the default)."""
+    if key in ("use_camera_obs", "has_offscreen_renderer"):
+        if not isinstance(value, (bool, np.bool_)):
+            raise ValueError(f"{key} must be a bool, got {value!r}")
+        return bool(value)
+    if key == "camera_names":
+        return ",".join(_names(key, value))
+    if key in ("camera_heights", "camera_widths"):
+        return _ints(key, value)
+    if key == "camera_depths":
+        return _bools(key, value)
+    if key == "camera_segmentations":
+        return _segmentations(value)
+    if key in ("render_height", "render_width"):
+        if isinstance(value, (list, tuple, np.ndarray)):
+            raise ValueError(f"{key} must be an int (pixels), got {value!r}")
+        return int(_ints(key, value))
+    # render_camera, render_mode: a str, or None (robosuite's free camera: our default
+    # `frontview`; no render mode).
+    if value is None:
+        return "None" if key == "render_mode" else None
+    if not isinstance(value, str):
+        raise ValueError(f"{key} must be a str or None, got {value!r}")
+    return value
+
 
 def _same(a: Any, b: Any) -> bool:
     try:
@@ -158,7 +239,9 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
         robots_list = [robots]
     else:
         robots_list = list(robots)
-    config: dict[str, Any] = {"robots": robots_list}
+    # robosuite's default: an offscreen renderer (used only by camera observations and
+    # render modes), so `use_camera_obs=True` alone works as in robosuite.
+    config: dict[str, Any] = {"robots": robots_list, "has_offscreen_renderer": True}
     for key, value in kwargs.items():
         if key in _DIRECT_KWARGS:
             if value is None and key not in ("reward_scale", "seed"):
@@ -168,11 +251,14 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
         elif key in _FIXED_KWARGS:
             if not any(_same(value, allowed) for allowed in _FIXED_KWARGS[key]):
                 hint = {
-                    "has_renderer": "rendering is not implemented yet",
-                    "has_offscreen_renderer": "rendering is not implemented yet",
-                    "use_camera_obs": "camera observations need rendering, which is not implemented yet",
+                    "has_renderer": "no on-screen viewer; use has_offscreen_renderer=True, "
+                    "use_camera_obs=True or render_mode='rgb_array'",
                 }.get(key, f"only {_FIXED_KWARGS[key][0]!r} is supported")
                 raise ValueError(f"{env_name}: {key}={value!r} is not supported by robosuite_rs ({hint})")
+        elif key in _CAMERA_KWARGS:
+            mapped = _camera_kwarg(key, value)
+            if mapped is not None:
+                config[key] = mapped
         elif key in _RENDER_ONLY_KWARGS:
             continue
         elif key == "env_configuration":
@@ -298,8 +384,18 @@ class RobosuiteEnv:
 
     @property
     def use_camera_obs(self) -> bool:
-        """Always ``False`` (no rendering yet)."""
-        return False
+        """Whether camera observations (``{camera}_image``, ...) are included."""
+        return self._native.use_camera_obs
+
+    @property
+    def has_offscreen_renderer(self) -> bool:
+        """Whether the env has an offscreen renderer (camera observations or a render mode)."""
+        return self._native.has_offscreen_renderer
+
+    @property
+    def camera_names(self) -> list[str]:
+        """The observed cameras (empty without camera observations)."""
+        return list(self._native.camera_names)
 
     @property
     def timestep(self) -> int:
@@ -362,13 +458,19 @@ def make(
     any of :data:`ALL_PART_CONTROLLERS`, exactly as robosuite's
     :func:`load_composite_controller_config` / :func:`load_part_controller_config` return
     them, or a list of one per robot),
-    ``has_renderer`` / ``has_offscreen_renderer`` / ``use_camera_obs`` (``False`` only;
-    ``True`` raises because rendering does not exist yet), the camera and render settings
-    (no effect while rendering is off), ``model_xml`` (a robosuite-style scene file to run
+    ``has_renderer`` (``False`` only: there is no on-screen viewer), robosuite's camera
+    arguments ``use_camera_obs``, ``has_offscreen_renderer``, ``camera_names``,
+    ``camera_heights``, ``camera_widths``, ``camera_depths``, ``camera_segmentations``
+    (``"element"``, ``"instance"``, ``"class"``) — camera observations are off by default
+    here (robosuite turns them on); ``has_offscreen_renderer`` defaults to ``True`` as in
+    robosuite — and Gymnasium's ``render_mode`` (``"rgb_array"``, ``"depth_array"`` or
+    ``None``) drawn from ``render_camera`` (default ``"frontview"``) at ``render_width`` ×
+    ``render_height`` (default 256), ``model_xml`` (a robosuite-style scene file to run
     the task on, e.g. one saved from robosuite with ``env.sim.model.get_xml()``).
 
     Raises:
-        ValueError: for an unknown task, an unsupported value, or an invalid argument.
+        ValueError: for an unknown task, an unsupported value, or an invalid argument
+            (an unknown camera's message lists the model's cameras).
         TypeError: for an unknown keyword argument.
     """
     config = _config_kwargs(env_name, robots, kwargs)

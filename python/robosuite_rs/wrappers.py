@@ -41,7 +41,8 @@ class RustEnv(gym.Env):  # type: ignore[type-arg]
         if metadata.get("render_fps") is None:
             metadata.pop("render_fps", None)
         self.metadata = metadata
-        self.render_mode = None
+        render_mode = getattr(native, "render_mode", None)
+        self.render_mode = render_mode() if callable(render_mode) else None
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -63,9 +64,16 @@ class RustEnv(gym.Env):  # type: ignore[type-arg]
         """
         return self._native.step(action)
 
-    def render(self) -> None:
-        """No render modes are supported yet; returns ``None``."""
-        return None
+    def render(self) -> Any:
+        """The frame of :attr:`render_mode`: an ``H×W×3`` uint8 array for ``"rgb_array"``,
+        an ``H×W`` float32 array (raw depth in ``[0, 1]``) for ``"depth_array"``, ``None``
+        without a render mode. Drawn in Rust with the GIL released.
+
+        Raises:
+            RuntimeError: when the offscreen renderer fails (the message names the cause).
+        """
+        render = getattr(self._native, "render", None)
+        return render() if callable(render) else None
 
     def close(self) -> None:
         """Closes the Rust env; calling it again does nothing."""
@@ -81,10 +89,13 @@ class GymWrapper(RustEnv):
     ``env`` is a :class:`robosuite_rs.RobosuiteEnv` (from :func:`robosuite_rs.make`); the
     wrapper and ``env`` share the same simulation, as in robosuite.
 
-    * ``keys``: observation keys to use; default ``object-state`` then
-      ``robot{i}_proprio-state`` for each robot (robosuite's default order).
+    * ``keys``: observation keys to use; default ``object-state``, each camera's
+      ``{camera}_image`` (with ``use_camera_obs=True``), then ``robot{i}_proprio-state``
+      (robosuite's default order, computed by the Rust core).
     * ``flatten_obs=True``: observations are one ``float32`` vector and
-      ``observation_space`` is a ``float32`` Box; otherwise a Dict of the chosen keys.
+      ``observation_space`` is a ``float32`` Box; otherwise a Dict of the chosen keys
+      (camera images as ``uint8`` Boxes ``(H, W, 3)``).
+    * ``render()`` draws the env's ``render_mode`` (``make(..., render_mode="rgb_array")``).
     * ``action_space`` is a ``float32`` Box (robosuite's ``action_spec`` bounds).
     * Unlike robosuite's wrapper, ``reset(seed=...)`` really seeds the episode, the
       horizon is reported as ``truncated`` and ``info["success"]`` is set on every step.
@@ -104,25 +115,14 @@ class GymWrapper(RustEnv):
             raise TypeError(f"GymWrapper needs an env made by robosuite_rs.make, got {type(env).__name__}")
         super().__init__(native_env.gym_env(None if keys is None else list(keys), bool(flatten_obs)))
         self.env = env
-        self.keys = list(keys) if keys is not None else self._default_keys(env)
+        self.keys = list(keys) if keys is not None else list(native_env.default_gym_keys())
         self.flatten_obs = bool(flatten_obs)
-        self.metadata = {"render_modes": [], "render_fps": env.control_freq}
         self.name = env.name
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickling and ``copy.deepcopy``: a GymWrapper over a copy of the wrapped env (see
         :meth:`robosuite_rs.RobosuiteEnv.__reduce__`)."""
         return (type(self), (self.env, self.keys, self.flatten_obs))
-
-    @staticmethod
-    def _default_keys(env: RobosuiteEnv) -> list[str]:
-        keys = env.observation_keys()
-        out = ["object-state"] if "object-state" in keys else []
-        i = 0
-        while f"robot{i}_proprio-state" in keys:
-            out.append(f"robot{i}_proprio-state")
-            i += 1
-        return out
 
     def get_state(self) -> np.ndarray:
         """The flat simulator state ``[time, qpos, qvel]``."""

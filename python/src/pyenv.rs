@@ -8,8 +8,8 @@ use crate::convert::{
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
 use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
-use gym_core::{AnySpace, BoxedEnv, Info, Metadata};
-use numpy::PyArray1;
+use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata};
+use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -138,6 +138,20 @@ impl PyEnv {
         metadata_into_py(py, &self.metadata)
     }
 
+    /// The render mode chosen when the env was made (`"rgb_array"`, `"depth_array"`) or
+    /// `None`.
+    fn render_mode(&self) -> Option<&'static str> {
+        self.lock().render_mode().map(|m| m.as_str())
+    }
+
+    /// `render()`: the frame of the render mode (an `H×W×3` uint8 array for `rgb_array`,
+    /// `H×W` float32 for `depth_array`, a str for `ansi`) or `None` without a render mode.
+    /// The GIL is released while drawing; the frame is moved into NumPy without a copy.
+    fn render<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let frame = py.detach(|| self.lock().render()).map_err(to_pyerr)?;
+        Ok(frame.map(|f| frame_into_py(py, f)))
+    }
+
     /// Closes the environment; calling it again does nothing.
     fn close(&self, py: Python<'_>) {
         py.detach(|| self.lock().close());
@@ -148,6 +162,15 @@ impl PyEnv {
             "NativeEnv(observation_space={}, action_space={})",
             self.observation_space, self.action_space
         )
+    }
+}
+
+/// A rendered frame as a NumPy array (moved, not copied) or a Python str.
+pub(crate) fn frame_into_py(py: Python<'_>, frame: Frame) -> Bound<'_, PyAny> {
+    match frame {
+        Frame::Rgb(a) => PyArray3::from_owned_array(py, a).into_any(),
+        Frame::Depth(a) => PyArray2::from_owned_array(py, a).into_any(),
+        Frame::Ansi(s) => pyo3::types::PyString::new(py, &s).into_any(),
     }
 }
 

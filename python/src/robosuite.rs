@@ -158,6 +158,38 @@ impl PyRobosuiteEnv {
         self.lock().config().ignore_done
     }
 
+    /// Whether camera observations are included.
+    #[getter]
+    fn use_camera_obs(&self) -> bool {
+        self.lock().config().cameras.use_camera_obs
+    }
+
+    /// Whether an offscreen renderer was created.
+    #[getter]
+    fn has_offscreen_renderer(&self) -> bool {
+        let env = self.lock();
+        env.config().cameras.has_offscreen_renderer || env.cameras().is_some()
+    }
+
+    /// The observed cameras' names (robosuite's `camera_names`; empty without camera
+    /// observations).
+    #[getter]
+    fn camera_names(&self) -> Vec<String> {
+        let env = self.lock();
+        let c = &env.config().cameras;
+        if c.use_camera_obs {
+            c.camera_names.clone()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// The keys robosuite's `GymWrapper` selects by default (`object-state`, the camera
+    /// images, each robot's `proprio-state`), as `adapters::gym_wrapper::default_keys`.
+    fn default_gym_keys(&self) -> Vec<String> {
+        adapters::gym_wrapper::default_keys(&self.observation_space)
+    }
+
     /// Whether object observations are included.
     #[getter]
     fn use_object_obs(&self) -> bool {
@@ -212,12 +244,9 @@ impl PyRobosuiteEnv {
         saved.apply(&mut self.lock()).map_err(to_pyerr)
     }
 
-    /// `{"render_modes": [], "render_fps": control_freq}`.
+    /// `{"render_modes": ["rgb_array", "depth_array"], "render_fps": control_freq}`.
     fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        d.set_item("render_modes", Vec::<String>::new())?;
-        d.set_item("render_fps", self.lock().config().control_freq)?;
-        Ok(d)
+        crate::pyenv::metadata_into_py(py, self.lock().metadata())
     }
 
     /// Closes the environment; calling it again does nothing.

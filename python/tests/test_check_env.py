@@ -85,7 +85,8 @@ def test_check_env_on_wrapper_built_directly(gym_env: GymWrapper) -> None:
     assert unexpected(caught) == []
     assert isinstance(gym_env, gym.Env)
     assert gym_env.unwrapped is gym_env
-    assert gym_env.metadata == {"render_modes": [], "render_fps": 20}
+    assert gym_env.metadata == {"render_modes": ["rgb_array", "depth_array"], "render_fps": 20}
+    assert gym_env.render_mode is None and gym_env.render() is None
 
 
 def test_check_env_dict_observations(env) -> None:  # type: ignore[no-untyped-def]

@@ -93,8 +93,7 @@ def test_controller_configs() -> None:
     "kwargs",
     [
         {"has_renderer": True},
-        {"has_offscreen_renderer": True},
-        {"use_camera_obs": True},
+        {"render_collision_mesh": True},
         {"lite_physics": False},
     ],
 )

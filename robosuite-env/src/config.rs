@@ -1,6 +1,7 @@
 //! Environment configuration (robosuite's constructor arguments) with validation.
 
 use crate::assets::Assets;
+pub use crate::cameras::{CameraConfig, ImageConvention, Segmentation};
 use crate::controllers::ControllerConfig;
 use crate::controllers::config::load_part_controller_config;
 use crate::models::grippers::gripper_info;
@@ -45,6 +46,9 @@ pub struct EnvConfig {
     pub use_object_obs: bool,
     /// Seed of the environment RNG; `None` seeds from entropy at the first reset.
     pub seed: Option<u64>,
+    /// robosuite's camera arguments (`use_camera_obs`, `has_offscreen_renderer`,
+    /// `camera_names`, ...) and the render mode's camera; see [`CameraConfig`].
+    pub cameras: CameraConfig,
     /// How the robots are set up (robosuite's `env_configuration`; default `Default`).
     pub env_configuration: EnvConfiguration,
 }
@@ -122,6 +126,7 @@ impl Default for EnvConfig {
             use_object_obs: true,
             seed: None,
             env_configuration: EnvConfiguration::Default,
+            cameras: CameraConfig::default(),
         }
     }
 }
@@ -142,6 +147,18 @@ pub const CONFIG_KEYS: &[&str] = &[
     "controller_configs",
     "controller",
     "env_configuration",
+    "use_camera_obs",
+    "has_offscreen_renderer",
+    "camera_names",
+    "camera_heights",
+    "camera_widths",
+    "camera_depths",
+    "camera_segmentations",
+    "render_camera",
+    "render_height",
+    "render_width",
+    "render_mode",
+    "image_convention",
 ];
 
 /// The most physics substeps one env step may run: 5 s of simulated time per env step at
@@ -298,6 +315,13 @@ impl EnvConfig {
         self
     }
 
+    /// Sets the camera arguments.
+    #[must_use]
+    pub fn with_cameras(mut self, cameras: CameraConfig) -> Self {
+        self.cameras = cameras;
+        self
+    }
+
     /// The number of physics substeps per env step: `int((1 / control_freq) / timestep)`, as
     /// robosuite truncates (at most [`MAX_SUBSTEPS`] in a valid configuration).
     pub fn substeps(&self, timestep: f64) -> usize {
@@ -352,7 +376,8 @@ impl EnvConfig {
                 ),
             ));
         }
-        self.initialization_noise.validate()
+        self.initialization_noise.validate()?;
+        self.cameras.validate()
     }
 
     /// A configuration from keyword arguments (the registry's `make(id, kwargs)`), starting
@@ -481,6 +506,7 @@ impl EnvConfig {
                         return Err(kind(key, "a configuration name such as \"opposed\"", other));
                     }
                 },
+                k if crate::cameras::CAMERA_KEYS.contains(&k) => c.cameras.set_kwarg(k, v)?,
                 other => {
                     return Err(Error::UnknownKey {
                         key: other.to_owned(),

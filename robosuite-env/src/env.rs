@@ -2,6 +2,7 @@
 //! `ManipulationEnv`) around any task, implementing [`gym_core::Env`].
 
 use crate::assets::Assets;
+use crate::camera_rig::CameraRig;
 use crate::config::EnvConfig;
 use crate::controllers::config::robot_default;
 use crate::controllers::{CompositeControllerConfig, Timing};
@@ -12,8 +13,8 @@ use crate::robots::{Robot, RobotState};
 use crate::sim::Sim;
 use crate::tasks::{RewardConfig, Task, TaskScene, TaskSpec};
 use gym_core::{
-    BoxSpace, DictSpace, DictValue, EnvRng, Error, Info, Metadata, ResetOptions, Result, Step,
-    Transition, entropy_seed, rng_from_seed,
+    BoxSpace, DictSpace, DictValue, EnvRng, Error, Frame, Info, Metadata, RenderMode, ResetOptions,
+    Result, Step, Transition, entropy_seed, rng_from_seed,
 };
 use mujoco_rs::wrappers::mj_model::MjModel;
 use ndarray::ArrayD;
@@ -98,6 +99,7 @@ pub struct RobosuiteEnv {
     substeps: usize,
     timestep: u64,
     phase: Phase,
+    cameras: Option<CameraRig>,
 }
 
 /// The robots and task scene composed for a configuration, before compiling.
@@ -107,6 +109,56 @@ struct Composed {
     controllers: Vec<(CompositeControllerConfig, String)>,
     task_scene: TaskScene,
     scene: Scene,
+}
+
+/// robosuite's `Task.generate_id_mappings` order: the objects, then each robot, its mount
+/// and its grippers, then the arena's top-level bodies (but the table and the mocap
+/// targets).
+fn segment_groups(composed: &Composed) -> Vec<crate::camera_rig::SegmentGroup> {
+    use crate::camera_rig::{GroupGeoms, SegmentGroup};
+    use crate::models::objects::Shape;
+    let prefixed = |instance: String, class: &str, prefix: &str| SegmentGroup {
+        instance,
+        class: class.to_owned(),
+        geoms: GroupGeoms::Prefix(prefix.to_owned()),
+    };
+    let mut groups = Vec::new();
+    for o in &composed.task_scene.objects {
+        // Generated boxes and cylinders share robosuite's classes; other objects each
+        // have their own.
+        let class = match o.shape {
+            Some(Shape::Box(_)) => "BoxObject".to_owned(),
+            Some(Shape::Cylinder(_)) => "CylinderObject".to_owned(),
+            None => format!("object:{}", o.name),
+        };
+        groups.push(prefixed(o.name.clone(), &class, &format!("{}_", o.name)));
+    }
+    for r in &composed.robots {
+        let name = r.info.name;
+        groups.push(prefixed(format!("{name}{}", r.idn), name, &r.xml.prefix));
+        if let Some(m) = &r.mount {
+            let class = m.info.name;
+            groups.push(prefixed(format!("{class}{}", r.idn), class, &m.xml.prefix));
+        }
+        for arm in &r.arms {
+            let class = arm.gripper.info.name;
+            let instance = format!("{class}{}_{}", r.idn, arm.side);
+            groups.push(prefixed(instance, class, &arm.gripper.xml.prefix));
+        }
+    }
+    let arena = composed.task_scene.arena.doc.worldbody();
+    for body in crate::mjcf::tree::children(arena).filter(|e| e.name == "body") {
+        if let Some(name) = crate::mjcf::tree::attr(body, "name")
+            && !["table", "left_eef_target", "right_eef_target"].contains(&name)
+        {
+            groups.push(SegmentGroup {
+                instance: name.to_owned(),
+                class: name.to_owned(),
+                geoms: GroupGeoms::Body(name.to_owned()),
+            });
+        }
+    }
+    groups
 }
 
 /// The scene `spec` composes for `config` (robots, arena, objects), before compiling.
@@ -257,6 +309,14 @@ impl RobosuiteEnv {
             obs_specs.extend(specs);
         }
         let task_start = total_len(&obs_specs);
+        // robosuite's `RobotEnv` adds the camera observables after the robots' and before
+        // the task's; frames live outside the buffer.
+        let mut model = model;
+        crate::camera_rig::prepare_model(&config.cameras, &mut model);
+        let cameras = CameraRig::new(&config.cameras, &model, &segment_groups(&composed))?;
+        if let Some(rig) = &cameras {
+            obs_specs.extend(rig.specs().iter().cloned());
+        }
         let task_specs = task.observation_specs();
         let task_range = task_start..task_start + total_len(&task_specs);
         obs_specs.extend(task_specs);
@@ -279,7 +339,11 @@ impl RobosuiteEnv {
             ndarray::Array1::from(high).into_dyn(),
         )?;
         let metadata = Metadata {
-            render_modes: Vec::new(),
+            render_modes: if cfg!(feature = "render") {
+                vec![RenderMode::RgbArray, RenderMode::DepthArray]
+            } else {
+                Vec::new()
+            },
             render_fps: Some(config.control_freq),
         };
         let (rng, rng_seeded) = match config.seed {
@@ -307,6 +371,7 @@ impl RobosuiteEnv {
             substeps,
             timestep: 0,
             phase: Phase::NeedsReset,
+            cameras,
         })
     }
 }
@@ -407,8 +472,7 @@ impl RobosuiteEnv {
             }
             return Err(e);
         }
-        self.observe();
-        Ok(())
+        self.observe()
     }
 
     /// Starts an episode at a given state instead of a sampled one (robosuite's
@@ -497,6 +561,7 @@ impl RobosuiteEnv {
         self.sim.set_integration_state(&snapshot.physics)?;
         self.robots = robots;
         self.buf.copy_from_slice(&snapshot.observation);
+        self.observe_cameras()?;
         self.timestep = snapshot.timestep;
         self.phase = if snapshot.phase == Phase::Closed {
             Phase::NeedsReset
@@ -509,7 +574,18 @@ impl RobosuiteEnv {
     /// The observation of the last observation pass (after the last step, reset or
     /// [`RobosuiteEnv::set_state`]), as robosuite's `observation_spec()` returns it.
     pub fn observation(&self) -> DictValue {
-        self.layout.to_dict(&self.buf)
+        self.layout.to_dict_with(&self.buf, self.frames())
+    }
+
+    /// The camera frames of the last observation pass (empty without camera observations).
+    fn frames(&self) -> &[gym_core::ArrayValue] {
+        self.cameras.as_ref().map_or(&[], CameraRig::frames)
+    }
+
+    /// The cameras: observed cameras, their frames and the renderer (`None` when neither
+    /// camera observations nor a render mode were asked for).
+    pub fn cameras(&self) -> Option<&CameraRig> {
+        self.cameras.as_ref()
     }
 
     /// The reward of the current simulator state.
@@ -531,19 +607,29 @@ impl RobosuiteEnv {
         }
     }
 
-    /// One observation pass: every robot's observables, then the task's, into the buffer.
-    fn observe(&mut self) {
+    /// One observation pass: every robot's observables, then the task's, into the buffer;
+    /// then the camera frames.
+    fn observe(&mut self) -> Result<()> {
         for (robot, range) in self.robots.iter().zip(&self.robot_ranges) {
             robot.observe(&self.sim, &mut self.buf[range.clone()]);
         }
         self.task
             .observe(&self.sim, &mut self.buf[self.task_range.clone()]);
+        self.observe_cameras()
+    }
+
+    /// Draws the observed cameras' frames (nothing without camera observations).
+    fn observe_cameras(&mut self) -> Result<()> {
+        match &mut self.cameras {
+            Some(rig) => rig.observe(self.sim.data_mut()),
+            None => Ok(()),
+        }
     }
 
     /// The end of every reset: episode counter 0, running, a first observation.
     fn begin_episode(&mut self) -> Result<(DictValue, Info)> {
         self.timestep = 0;
-        self.observe();
+        self.observe()?;
         self.phase = Phase::Running;
         let info = Info::new().with("success", self.check_success());
         Ok((self.observation(), info))
@@ -589,7 +675,7 @@ impl RobosuiteEnv {
         }
         // robosuite samples its observables on the last substep, before `_post_action`
         // computes the reward (which updates Wipe's wiped markers).
-        self.observe();
+        self.observe()?;
         let reward = self.reward();
         let reward_config = self.reward_config();
         self.task
@@ -714,7 +800,8 @@ impl gym_core::Env for RobosuiteEnv {
         info: &mut Info,
     ) -> Result<Transition> {
         let (transition, success) = self.advance(action)?;
-        self.layout.write_dict(&self.buf, observation);
+        let frames = self.cameras.as_ref().map_or(&[][..], CameraRig::frames);
+        self.layout.write_dict_with(&self.buf, frames, observation);
         if info.len() != 1 || info.get("success").is_none() {
             info.clear();
         }
@@ -724,6 +811,23 @@ impl gym_core::Env for RobosuiteEnv {
 
     fn metadata(&self) -> &Metadata {
         &self.metadata
+    }
+
+    fn render_mode(&self) -> Option<RenderMode> {
+        self.cameras.as_ref().and_then(CameraRig::render_mode)
+    }
+
+    /// A frame of `render_camera` at `render_width × render_height`, top row first: RGB
+    /// for `rgb_array`, raw depth in `[0, 1]` for `depth_array`; `None` without a render
+    /// mode.
+    fn render(&mut self) -> Result<Option<Frame>> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        match &mut self.cameras {
+            Some(rig) => rig.render(self.sim.data_mut()),
+            None => Ok(None),
+        }
     }
 
     fn close(&mut self) {

@@ -30,6 +30,8 @@
 //!   [`register_envs`]).
 
 pub mod assets;
+pub mod camera_rig;
+pub mod cameras;
 pub mod config;
 pub mod controllers;
 pub mod env;
@@ -38,6 +40,8 @@ pub mod mjcf;
 pub mod models;
 pub mod observables;
 pub mod registry;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod robots;
 pub mod saved;
 pub mod sim;

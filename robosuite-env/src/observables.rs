@@ -141,6 +141,8 @@ struct Group {
 
 /// The layout of robosuite's observation dict over one flat `f64` buffer: each observable's
 /// values at its offset, in order; then the `{modality}-state` concatenations (float64).
+/// Observables of modality `image` (camera frames) take no buffer space: their values come
+/// from a list of frames (`images`), the `n`-th image observable from the `n`-th frame.
 /// Inactive observables (robosuite's `active=False`, such as object observables with
 /// `use_object_obs=False`) keep their place in the buffer but are not in the dict.
 #[derive(Debug, Clone, PartialEq)]
@@ -158,25 +160,31 @@ impl ObsLayout {
         let mut keys = Vec::with_capacity(specs.len());
         let mut groups: Vec<Group> = Vec::new();
         let mut at = 0;
+        let mut image = 0;
         for spec in specs {
+            if spec.modality == "image" {
+                if active(&spec) {
+                    keys.push((spec, image));
+                }
+                image += 1;
+                continue;
+            }
             let n = spec.len();
             if !active(&spec) {
                 at += n;
                 continue;
             }
             let i = keys.len();
-            if spec.modality != "image" {
-                match groups.iter_mut().find(|g| g.key == spec.modality) {
-                    Some(g) => {
-                        g.members.push(i);
-                        g.len += spec.len();
-                    }
-                    None => groups.push(Group {
-                        key: spec.modality.clone(),
-                        members: vec![i],
-                        len: spec.len(),
-                    }),
+            match groups.iter_mut().find(|g| g.key == spec.modality) {
+                Some(g) => {
+                    g.members.push(i);
+                    g.len += spec.len();
                 }
+                None => groups.push(Group {
+                    key: spec.modality.clone(),
+                    members: vec![i],
+                    len: spec.len(),
+                }),
             }
             keys.push((spec, at));
             at += n;
@@ -210,11 +218,11 @@ impl ObsLayout {
             .collect()
     }
 
-    /// The offset and length of an observable's values in the buffer.
+    /// The offset and length of an observable's values in the buffer (`None` for images).
     pub fn range_of(&self, key: &str) -> Option<std::ops::Range<usize>> {
         self.keys
             .iter()
-            .find(|(k, _)| k.key == key)
+            .find(|(k, _)| k.key == key && k.modality != "image")
             .map(|(k, at)| *at..*at + k.len())
     }
 
@@ -242,10 +250,24 @@ impl ObsLayout {
         })
     }
 
-    /// The observation dict for a filled buffer.
+    /// The observation dict for a filled buffer (and no camera frames).
     pub fn to_dict(&self, buf: &[f64]) -> DictValue {
+        self.to_dict_with(buf, &[])
+    }
+
+    /// The observation dict for a filled buffer and the camera frames (a missing frame
+    /// reads as zeros).
+    pub fn to_dict_with(&self, buf: &[f64], images: &[ArrayValue]) -> DictValue {
         let mut out = DictValue::with_capacity(self.keys.len() + self.groups.len());
         for (k, at) in &self.keys {
+            if k.modality == "image" {
+                let frame = images
+                    .get(*at)
+                    .cloned()
+                    .unwrap_or_else(|| array(&k.shape, k.dtype, vec![0.0; k.len()]));
+                out.insert(k.key.clone(), Value::Array(frame));
+                continue;
+            }
             let values = buf[*at..*at + k.len()].to_vec();
             out.insert(
                 k.key.clone(),
@@ -266,12 +288,23 @@ impl ObsLayout {
     /// order), shapes and dtypes, as the previous observation does; otherwise replaces it
     /// with [`ObsLayout::to_dict`]. In place, nothing is allocated.
     pub fn write_dict(&self, buf: &[f64], out: &mut DictValue) {
+        self.write_dict_with(buf, &[], out);
+    }
+
+    /// [`ObsLayout::write_dict`] with the camera frames (copied into `out`'s arrays).
+    pub fn write_dict_with(&self, buf: &[f64], images: &[ArrayValue], out: &mut DictValue) {
         if !self.matches(out) {
-            *out = self.to_dict(buf);
+            *out = self.to_dict_with(buf, images);
             return;
         }
         let mut values = out.values_mut();
         for (k, at) in &self.keys {
+            if k.modality == "image" {
+                if let (Some(Value::Array(a)), Some(frame)) = (values.next(), images.get(*at)) {
+                    copy_frame(frame, a);
+                }
+                continue;
+            }
             if let Some(Value::Array(a)) = values.next() {
                 let src = &buf[*at..*at + k.len()];
                 gym_core::for_each_array!(a, arr => arr
@@ -306,6 +339,16 @@ impl ObsLayout {
                 matches!(entries.next(), Some((name, Value::Array(a)))
                     if *name == g.key && a.dtype() == DType::F64 && a.shape() == [g.len])
             })
+    }
+}
+
+/// Copies a frame into an array of the same dtype and shape, allocating nothing.
+fn copy_frame(src: &ArrayValue, dst: &mut ArrayValue) {
+    match (src, dst) {
+        (ArrayValue::U8(s), ArrayValue::U8(d)) => d.assign(s),
+        (ArrayValue::F32(s), ArrayValue::F32(d)) => d.assign(s),
+        (ArrayValue::I32(s), ArrayValue::I32(d)) => d.assign(s),
+        (s, d) => *d = s.clone(),
     }
 }
 

@@ -243,3 +243,32 @@ fn wipe_steps_that_wipe_markers_do_not_allocate() {
     }
     assert!(wiping_steps >= 3, "only {wiping_steps} steps wiped markers");
 }
+
+/// With camera observations (two cameras, depth, element and instance segmentations), `step_into`
+/// draws every frame into the env's own buffers and copies them into the caller's: no
+/// allocation on the Rust side (the OpenGL driver's own memory is not counted), and the same
+/// observations as `step`.
+#[cfg(feature = "render")]
+#[test]
+fn step_into_with_cameras_does_not_allocate() {
+    use robosuite_env::config::{CameraConfig, Segmentation};
+    let config = EnvConfig::default().with_cameras(CameraConfig {
+        camera_depths: vec![true],
+        camera_segmentations: vec![vec![Segmentation::Element, Segmentation::Instance]],
+        ..CameraConfig::observe(["agentview", "robot0_eye_in_hand"], 32, 24)
+    });
+    let mut a = make_with("Lift", config.clone()).unwrap();
+    let mut b = make_with("Lift", config).unwrap();
+    let (mut obs, mut info) = a.reset(Some(3), None).unwrap();
+    b.reset(Some(3), None).unwrap();
+    assert!(obs.contains_key("robot0_eye_in_hand_segmentation_instance"));
+    let mut rng = rng_from_seed(6);
+    let actions: Vec<ArrayD<f64>> = (0..5).map(|_| a.action_space().sample(&mut rng)).collect();
+    for (i, action) in actions.iter().enumerate() {
+        let n = allocations(|| {
+            let _ = a.step_into(action, &mut obs, &mut info).unwrap();
+        });
+        assert_eq!(obs, b.step(action).unwrap().observation, "step {i}");
+        assert_eq!(n, 0, "step_into {i} with cameras allocated {n} times");
+    }
+}

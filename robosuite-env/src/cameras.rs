@@ -1,0 +1,452 @@
+//! robosuite's camera observations (`RobotEnv._create_camera_sensors`): the camera
+//! arguments with their validation, the observables they add (`{camera}_image`,
+//! `{camera}_depth`, `{camera}_segmentation_{level}`), and the frames behind them, drawn by
+//! MuJoCo's renderer ([`crate::render`], feature `render`).
+//!
+//! Shapes and dtypes are robosuite's: images `(H, W, 3)` uint8, depth `(H, W, 1)` float32
+//! (raw z-buffer in `[0, 1]`; metres through [`crate::render::real_depth`], robosuite's
+//! `get_real_depth_map`), segmentation `(H, W, 1)` int32. Rows run bottom first under
+//! robosuite's default `IMAGE_CONVENTION = "opengl"`, top first under `"opencv"`.
+
+use crate::observables::ObsSpec;
+use gym_core::{ArrayValue, DType, Error, InfoValue, RenderMode, Result};
+use ndarray::{ArrayD, IxDyn};
+
+/// The keyword arguments of [`CameraConfig`] (see [`crate::config::CONFIG_KEYS`]).
+pub const CAMERA_KEYS: &[&str] = &[
+    "use_camera_obs",
+    "has_offscreen_renderer",
+    "camera_names",
+    "camera_heights",
+    "camera_widths",
+    "camera_depths",
+    "camera_segmentations",
+    "render_camera",
+    "render_height",
+    "render_width",
+    "render_mode",
+    "image_convention",
+];
+
+/// The largest camera width or height accepted (robosuite sets no limit; MuJoCo's
+/// offscreen buffer must fit one OpenGL renderbuffer).
+pub const MAX_CAMERA_SIZE: usize = 4096;
+
+/// robosuite's segmentation levels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Segmentation {
+    /// Per object instance (robot, gripper, each object), ids from 1, 0 for the rest.
+    Instance,
+    /// Per object class, ids from 1, 0 for the rest.
+    Class,
+    /// Per geom: the geom id, -1 for the background.
+    Element,
+}
+
+impl Segmentation {
+    /// robosuite's name (`"instance"`, `"class"`, `"element"`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Instance => "instance",
+            Self::Class => "class",
+            Self::Element => "element",
+        }
+    }
+
+    fn parse(s: &str) -> Result<Self> {
+        match s {
+            "instance" => Ok(Self::Instance),
+            "class" => Ok(Self::Class),
+            "element" => Ok(Self::Element),
+            other => Err(Error::invalid_argument(
+                "camera_segmentations",
+                format!("unknown segmentation `{other}`; valid: instance, class, element, None"),
+            )),
+        }
+    }
+}
+
+/// robosuite's `macros.IMAGE_CONVENTION`: the row order of camera observations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ImageConvention {
+    /// Bottom row first, as OpenGL reads pixels (robosuite's default).
+    #[default]
+    OpenGl,
+    /// Top row first.
+    OpenCv,
+}
+
+/// robosuite's camera arguments, and the camera and size of Gymnasium's render modes.
+///
+/// Each per-camera list holds one value for every camera, or one per camera (as robosuite's
+/// `_input2list` broadcasts a single value).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CameraConfig {
+    /// Add camera observations (default false: this crate is headless by default).
+    pub use_camera_obs: bool,
+    /// Create the offscreen renderer (needed by camera observations and render modes).
+    pub has_offscreen_renderer: bool,
+    /// Cameras to observe (default `["agentview"]`).
+    pub camera_names: Vec<String>,
+    /// Heights in pixels (default `[256]`).
+    pub camera_heights: Vec<usize>,
+    /// Widths in pixels (default `[256]`).
+    pub camera_widths: Vec<usize>,
+    /// Whether each camera also gives `{camera}_depth` (default `[false]`).
+    pub camera_depths: Vec<bool>,
+    /// Segmentations per camera: empty for none, one list for every camera, or one per camera.
+    pub camera_segmentations: Vec<Vec<Segmentation>>,
+    /// Gymnasium's render mode (`rgb_array` or `depth_array`; `None`: no rendering).
+    pub render_mode: Option<RenderMode>,
+    /// The camera `render()` draws (robosuite's `render_camera`, default `"frontview"`).
+    pub render_camera: String,
+    /// Height of rendered frames (default 256).
+    pub render_height: usize,
+    /// Width of rendered frames (default 256).
+    pub render_width: usize,
+    /// Row order of camera observations.
+    pub image_convention: ImageConvention,
+}
+
+impl Default for CameraConfig {
+    fn default() -> Self {
+        Self {
+            use_camera_obs: false,
+            has_offscreen_renderer: false,
+            camera_names: vec!["agentview".to_owned()],
+            camera_heights: vec![256],
+            camera_widths: vec![256],
+            camera_depths: vec![false],
+            camera_segmentations: Vec::new(),
+            render_mode: None,
+            render_camera: "frontview".to_owned(),
+            render_height: 256,
+            render_width: 256,
+            image_convention: ImageConvention::OpenGl,
+        }
+    }
+}
+
+/// One observed camera, resolved: its name, size and outputs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CameraObs {
+    /// The camera's name in the model.
+    pub name: String,
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Whether `{name}_depth` is observed.
+    pub depth: bool,
+    /// The segmentation observables, in order.
+    pub segmentations: Vec<Segmentation>,
+}
+
+impl CameraConfig {
+    /// Camera observations of `width × height` from `names`, with an offscreen renderer.
+    pub fn observe<S: Into<String>>(
+        names: impl IntoIterator<Item = S>,
+        width: usize,
+        height: usize,
+    ) -> Self {
+        Self {
+            use_camera_obs: true,
+            has_offscreen_renderer: true,
+            camera_names: names.into_iter().map(Into::into).collect(),
+            camera_heights: vec![height],
+            camera_widths: vec![width],
+            ..Self::default()
+        }
+    }
+
+    /// Whether an offscreen renderer is needed (camera observations or a render mode).
+    pub fn needs_renderer(&self) -> bool {
+        self.use_camera_obs || self.render_mode.is_some()
+    }
+
+    /// The observed cameras, each list broadcast or matched to the camera names.
+    pub fn cameras(&self) -> Vec<CameraObs> {
+        if !self.use_camera_obs {
+            return Vec::new();
+        }
+        let pick = |i: usize, n: usize| if n == 1 { 0 } else { i };
+        self.camera_names
+            .iter()
+            .enumerate()
+            .map(|(i, name)| CameraObs {
+                name: name.clone(),
+                width: self.camera_widths[pick(i, self.camera_widths.len())],
+                height: self.camera_heights[pick(i, self.camera_heights.len())],
+                depth: self.camera_depths[pick(i, self.camera_depths.len())],
+                segmentations: match self.camera_segmentations.len() {
+                    0 => Vec::new(),
+                    n => self.camera_segmentations[pick(i, n)].clone(),
+                },
+            })
+            .collect()
+    }
+
+    /// Checks the arguments (camera names are checked against the model when the
+    /// environment is made).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for camera options without the offscreen renderer, an
+    /// empty camera list, a list whose length is neither 1 nor the number of cameras, a
+    /// size of 0 or above [`MAX_CAMERA_SIZE`], or an unsupported render mode.
+    pub fn validate(&self) -> Result<()> {
+        if self.use_camera_obs && !self.has_offscreen_renderer {
+            return Err(Error::invalid_argument(
+                "use_camera_obs",
+                "camera observations require an offscreen renderer (has_offscreen_renderer=True)",
+            ));
+        }
+        if let Some(mode) = self.render_mode {
+            match mode {
+                RenderMode::RgbArray | RenderMode::DepthArray => {}
+                RenderMode::Human => {
+                    return Err(Error::Unsupported(
+                        "render_mode=\"human\" needs a display and a viewer window; this build \
+                         renders offscreen only: use \"rgb_array\" or \"depth_array\""
+                            .into(),
+                    ));
+                }
+                other => {
+                    return Err(Error::invalid_argument(
+                        "render_mode",
+                        format!(
+                            "`{}` is not supported; valid: rgb_array, depth_array, None",
+                            other.as_str()
+                        ),
+                    ));
+                }
+            }
+            check_size("render_width", self.render_width)?;
+            check_size("render_height", self.render_height)?;
+        }
+        if !self.use_camera_obs {
+            return Ok(());
+        }
+        let n = self.camera_names.len();
+        if n == 0 {
+            return Err(Error::invalid_argument(
+                "camera_names",
+                "give at least one camera name when using camera observations",
+            ));
+        }
+        let lens = [
+            ("camera_heights", self.camera_heights.len()),
+            ("camera_widths", self.camera_widths.len()),
+            ("camera_depths", self.camera_depths.len()),
+        ];
+        for (name, len) in lens {
+            if len != 1 && len != n {
+                return Err(Error::invalid_argument(
+                    name,
+                    format!("give one value for every camera or one per camera ({n}), got {len}"),
+                ));
+            }
+        }
+        let segs = self.camera_segmentations.len();
+        if segs > 1 && segs != n {
+            return Err(Error::invalid_argument(
+                "camera_segmentations",
+                format!("give one list for every camera or one per camera ({n}), got {segs}"),
+            ));
+        }
+        for (name, sizes) in [
+            ("camera_heights", &self.camera_heights),
+            ("camera_widths", &self.camera_widths),
+        ] {
+            for &v in sizes {
+                check_size(name, v)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Sets one keyword argument (see [`CAMERA_KEYS`]): lists as comma-separated text or
+    /// arrays, single values broadcast.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a value of the wrong kind.
+    pub fn set_kwarg(&mut self, key: &str, v: &InfoValue) -> Result<()> {
+        let kind = |want: &str| {
+            Error::invalid_argument(key, format!("expected {want}, got a {}", v.kind()))
+        };
+        match key {
+            "use_camera_obs" | "has_offscreen_renderer" => {
+                let InfoValue::Bool(b) = v else {
+                    return Err(kind("a bool"));
+                };
+                if key == "use_camera_obs" {
+                    self.use_camera_obs = *b;
+                } else {
+                    self.has_offscreen_renderer = *b;
+                }
+            }
+            "camera_names" => match v {
+                InfoValue::Str(s) => self.camera_names = split(s).map(str::to_owned).collect(),
+                _ => return Err(kind("a camera name (or comma-separated names)")),
+            },
+            "camera_heights" => self.camera_heights = sizes(key, v)?,
+            "camera_widths" => self.camera_widths = sizes(key, v)?,
+            "camera_depths" => {
+                self.camera_depths = match v {
+                    InfoValue::Bool(b) => vec![*b],
+                    InfoValue::Str(s) => split(s)
+                        .map(|t| match t {
+                            "True" | "true" | "1" => Ok(true),
+                            "False" | "false" | "0" => Ok(false),
+                            other => Err(Error::invalid_argument(
+                                key,
+                                format!("`{other}` is not a bool"),
+                            )),
+                        })
+                        .collect::<Result<_>>()?,
+                    _ => return Err(kind("a bool (or comma-separated bools)")),
+                }
+            }
+            "camera_segmentations" => match v {
+                // "element" for every camera; "element;instance,class" per camera (`;`
+                // separates cameras, `,` levels); "None" for none.
+                InfoValue::Str(s) if s == "None" || s.is_empty() => {
+                    self.camera_segmentations = Vec::new()
+                }
+                InfoValue::Str(s) => {
+                    self.camera_segmentations = s
+                        .split(';')
+                        .map(|cam| split(cam).map(Segmentation::parse).collect())
+                        .collect::<Result<_>>()?
+                }
+                _ => return Err(kind("segmentation levels as text")),
+            },
+            "render_camera" => match v {
+                InfoValue::Str(s) => self.render_camera = s.clone(),
+                _ => return Err(kind("a camera name")),
+            },
+            "render_height" => self.render_height = single_size(key, v)?,
+            "render_width" => self.render_width = single_size(key, v)?,
+            "render_mode" => match v {
+                InfoValue::Str(s) => {
+                    self.render_mode = match s.as_str() {
+                        "None" | "" => None,
+                        "rgb_array" => Some(RenderMode::RgbArray),
+                        "depth_array" => Some(RenderMode::DepthArray),
+                        "human" => Some(RenderMode::Human),
+                        other => {
+                            return Err(Error::invalid_argument(
+                                key,
+                                format!(
+                                    "unknown render mode `{other}`; valid: rgb_array, depth_array, None"
+                                ),
+                            ));
+                        }
+                    }
+                }
+                _ => return Err(kind("a render mode name")),
+            },
+            "image_convention" => match v {
+                InfoValue::Str(s) if s == "opengl" => {
+                    self.image_convention = ImageConvention::OpenGl
+                }
+                InfoValue::Str(s) if s == "opencv" => {
+                    self.image_convention = ImageConvention::OpenCv
+                }
+                _ => return Err(kind("\"opengl\" or \"opencv\"")),
+            },
+            other => {
+                return Err(Error::UnknownKey {
+                    key: other.to_owned(),
+                    available: CAMERA_KEYS.iter().map(|s| (*s).to_owned()).collect(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+fn split(s: &str) -> impl Iterator<Item = &str> {
+    s.split(',').map(str::trim).filter(|t| !t.is_empty())
+}
+
+fn check_size(name: &str, v: usize) -> Result<()> {
+    if v == 0 || v > MAX_CAMERA_SIZE {
+        return Err(Error::invalid_argument(
+            name,
+            format!("must be in 1..={MAX_CAMERA_SIZE} pixels, got {v}"),
+        ));
+    }
+    Ok(())
+}
+
+fn single_size(key: &str, v: &InfoValue) -> Result<usize> {
+    match v {
+        InfoValue::Int(i) if *i >= 0 => Ok(*i as usize),
+        other => Err(Error::invalid_argument(
+            key,
+            format!("expected a size in pixels, got {other:?}"),
+        )),
+    }
+}
+
+fn sizes(key: &str, v: &InfoValue) -> Result<Vec<usize>> {
+    let bad = |t: &str| Error::invalid_argument(key, format!("`{t}` is not a size in pixels"));
+    match v {
+        InfoValue::Int(_) => Ok(vec![single_size(key, v)?]),
+        InfoValue::Str(s) => split(s).map(|t| t.parse().map_err(|_| bad(t))).collect(),
+        InfoValue::Array(a) => a
+            .to_f64_vec()
+            .into_iter()
+            .map(|f| {
+                if f >= 0.0 && f.fract() == 0.0 {
+                    Ok(f as usize)
+                } else {
+                    Err(bad(&f.to_string()))
+                }
+            })
+            .collect(),
+        other => Err(Error::invalid_argument(
+            key,
+            format!("expected sizes in pixels, got a {}", other.kind()),
+        )),
+    }
+}
+
+/// The observable specs of `cameras`, in robosuite's order (per camera: image, depth,
+/// segmentations), modality `image`.
+pub fn camera_specs(cameras: &[CameraObs]) -> Vec<ObsSpec> {
+    let mut out = Vec::new();
+    for c in cameras {
+        let spec = |key: String, channels: usize, dtype: DType| ObsSpec {
+            key,
+            shape: vec![c.height, c.width, channels],
+            dtype,
+            modality: "image".to_owned(),
+            needs_object_obs: false,
+        };
+        out.push(spec(format!("{}_image", c.name), 3, DType::U8));
+        if c.depth {
+            out.push(spec(format!("{}_depth", c.name), 1, DType::F32));
+        }
+        for s in &c.segmentations {
+            out.push(spec(
+                format!("{}_segmentation_{}", c.name, s.as_str()),
+                1,
+                DType::I32,
+            ));
+        }
+    }
+    out
+}
+
+/// Zeroed arrays for `specs` (the frames' storage).
+pub fn blank_frames(specs: &[ObsSpec]) -> Vec<ArrayValue> {
+    specs
+        .iter()
+        .map(|s| match s.dtype {
+            DType::U8 => ArrayValue::U8(ArrayD::zeros(IxDyn(&s.shape))),
+            DType::F32 => ArrayValue::F32(ArrayD::zeros(IxDyn(&s.shape))),
+            _ => ArrayValue::I32(ArrayD::zeros(IxDyn(&s.shape))),
+        })
+        .collect()
+}
