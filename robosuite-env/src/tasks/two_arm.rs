@@ -21,6 +21,16 @@ fn bimanual_robot_names() -> Vec<&'static str> {
         .collect()
 }
 
+/// The set-up a two-arm task takes when none is configured: one bimanual robot
+/// `single-robot`, two single-arm robots `opposed` (robosuite's `default`).
+pub(crate) fn default_configuration(robots: &[RobotModel]) -> EnvConfiguration {
+    if robots.len() == 1 {
+        EnvConfiguration::SingleRobot
+    } else {
+        EnvConfiguration::Opposed
+    }
+}
+
 /// robosuite's `TwoArmEnv._check_robot_configuration`: one bimanual robot (configuration
 /// `single-robot`, whatever was asked), or two single-arm robots `opposed` (also for
 /// `default`) or `parallel`.

@@ -74,11 +74,7 @@ impl TaskSpec for TwoArmHandoverSpec {
     }
 
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let configuration = if robots.len() == 1 {
-            EnvConfiguration::SingleRobot
-        } else {
-            EnvConfiguration::Opposed
-        };
+        let configuration = super::two_arm::default_configuration(robots);
         self.build_configured(assets, robots, configuration)
     }
 
