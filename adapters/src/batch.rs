@@ -133,6 +133,7 @@ fn write_array_value(batch: &mut ArrayValue, i: usize, x: &ArrayValue) -> Result
         ArrayValue::U8(b) => go(b, i, x),
         ArrayValue::F32(b) => go(b, i, x),
         ArrayValue::F64(b) => go(b, i, x),
+        ArrayValue::Bool(b) => go(b, i, x),
     }
 }
 
@@ -150,6 +151,7 @@ fn zeros_value(dtype: DType, shape: &[usize]) -> ArrayValue {
         DType::U8 => ArrayValue::U8(ArrayD::zeros(s)),
         DType::F32 => ArrayValue::F32(ArrayD::zeros(s)),
         DType::F64 => ArrayValue::F64(ArrayD::zeros(s)),
+        DType::Bool => ArrayValue::Bool(ArrayD::from_elem(s, false)),
     }
 }
 
@@ -316,6 +318,7 @@ impl BatchSpace for AnyBox {
             AnyBox::U8(b) => ArrayValue::U8(box_zero(b)),
             AnyBox::F32(b) => ArrayValue::F32(box_zero(b)),
             AnyBox::F64(b) => ArrayValue::F64(box_zero(b)),
+            AnyBox::Bool(b) => ArrayValue::Bool(box_zero(b)),
         }
     }
 }

@@ -72,7 +72,7 @@ where
             .env
             .action_space()
             .clip_element(action)
-            .map_err(|e| Error::InvalidAction(e.to_string()))?;
+            .map_err(Error::into_invalid_action)?;
         self.env.step(&clipped)
     }
 

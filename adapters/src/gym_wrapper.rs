@@ -257,7 +257,8 @@ impl KeyPlan {
                     message: format!(
                         "observation `{}` has {n} elements, its space {}",
                         self.keys[j], self.sizes[j]
-                    ),
+                    )
+                    .into(),
                 });
             }
             at += n;
@@ -316,7 +317,7 @@ fn f32_action_space<S: NumericSpace>(inner: &S) -> Result<BoxSpace<f32>> {
 fn convert_action<S: NumericSpace>(inner: &S, action: &ArrayD<f32>) -> Result<S::Element> {
     inner
         .element_from_array(action)
-        .map_err(|e| Error::InvalidAction(e.to_string()))
+        .map_err(Error::into_invalid_action)
 }
 
 /// robosuite's `GymWrapper(env, keys=None, flatten_obs=True)`, corrected (see the
@@ -538,7 +539,7 @@ where
                 .element_from_array(action)
                 .map(|a| self.inner_action = Some(a)),
         }
-        .map_err(|e| Error::InvalidAction(e.to_string()))?;
+        .map_err(Error::into_invalid_action)?;
         let inner_action = self.inner_action.as_ref().expect("set above");
         let transition = match &mut self.inner_obs {
             Some(obs) => self.env.step_into(inner_action, obs, info)?,

@@ -93,7 +93,7 @@ pub(crate) fn array_value_to<U: ArrayElement>(x: &ArrayValue) -> ArrayD<U> {
 }
 
 fn not_a_box(kind: &str) -> Error {
-    Error::Unsupported(format!("this operation needs a Box space, got {kind}"))
+    Error::unsupported(format!("this operation needs a Box space, got {kind}"))
 }
 
 fn check_shape(expected: &[usize], got: &[usize]) -> Result<()> {
@@ -290,6 +290,7 @@ impl NumericSpace for AnyBox {
             DType::U8 => ArrayValue::U8(cast_array_ref(x)),
             DType::F32 => ArrayValue::F32(cast_array_ref(x)),
             DType::F64 => ArrayValue::F64(cast_array_ref(x)),
+            DType::Bool => ArrayValue::Bool(cast_array_ref(x)),
         })
     }
 

@@ -13,7 +13,7 @@ use gym_core::{Env, Error, Frame, Info, RenderMode, ResetOptions, Result, Space,
 fn contract(check: &str, failure: Failure) -> Error {
     Error::Contract {
         check: check.to_owned(),
-        message: failure.message,
+        message: failure.message.into(),
     }
 }
 
@@ -110,7 +110,7 @@ impl<E: Env> PassiveEnvChecker<E> {
                 // Strict where Gymnasium warns: a frame of the wrong kind is an error.
                 Some(w) if frame.is_some() && m != RenderMode::Human => Err(Error::Contract {
                     check: "render".to_owned(),
-                    message: w.message,
+                    message: w.message.into(),
                 }),
                 Some(w) => {
                     self.warnings.push(w.message);

@@ -120,7 +120,8 @@ impl<E: Env> Env for RecordEpisodeStatistics<E> {
                     message: format!(
                         "the inner info already contains the key `{}`",
                         self.stats_key
-                    ),
+                    )
+                    .into(),
                 });
             }
             let t = (self.episode_start.elapsed().as_secs_f64() * 1e6).round() / 1e6;

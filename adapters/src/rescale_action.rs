@@ -162,7 +162,7 @@ where
         let r = move |v: f64| if single { f64::from(v as f32) } else { v };
         let a = self.space.element_to_array::<f64>(action)?;
         if a.shape() != self.gradient.shape() {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "expected an action of shape {:?}, got {:?}",
                 self.gradient.shape(),
                 a.shape()
@@ -202,10 +202,7 @@ where
     }
 
     fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mapped = self.backward(action).map_err(|e| match e {
-            Error::InvalidAction(m) => Error::InvalidAction(m),
-            other => Error::InvalidAction(other.to_string()),
-        })?;
+        let mapped = self.backward(action).map_err(Error::into_invalid_action)?;
         self.env.step(&mapped)
     }
 

@@ -174,7 +174,7 @@ fn an_invalid_action_is_that_environments_error_and_it_stays_usable() {
     let bad = ArrayD::from_elem(IxDyn(&[1, 2]), 5.0f32);
     pool.send(&bad, &[0]).unwrap();
     match pool.recv() {
-        Err(Error::InvalidAction(m)) => assert!(m.contains("sub-environment 0"), "{m}"),
+        Err(Error::InvalidAction(m)) => assert!(m.to_string().contains("sub-environment 0"), "{m}"),
         other => panic!("{other:?}"),
     }
     pool.send(&ArrayD::zeros(IxDyn(&[1, 2])), &[0]).unwrap();
@@ -191,13 +191,13 @@ fn a_panicking_environment_is_an_error_not_a_hang() {
     let a = ArrayD::zeros(IxDyn(&[2, 2]));
     match pool.step(&a, &[0, 1]) {
         Err(Error::Simulation(m)) => assert!(
-            m.contains("sub-environment 0") && m.contains("panicked"),
+            m.to_string().contains("sub-environment 0") && m.to_string().contains("panicked"),
             "{m}"
         ),
         other => panic!("{other:?}"),
     }
     match pool.step(&a, &[0, 1]) {
-        Err(Error::Simulation(m)) => assert!(m.contains("earlier"), "{m}"),
+        Err(Error::Simulation(m)) => assert!(m.to_string().contains("earlier"), "{m}"),
         other => panic!("{other:?}"),
     }
     drop(pool);

@@ -184,38 +184,53 @@ struct BoolSpace;
 
 impl Space for BoolSpace {
     type Element = bool;
+
     fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> bool {
         rng.next_u32() & 1 == 1
     }
+
     fn contains(&self, _x: &bool) -> bool {
         true
     }
+
     fn shape(&self) -> Option<&[usize]> {
         Some(&[])
     }
+}
+
+impl Flatten for BoolSpace {
     fn flatdim(&self) -> usize {
         1
     }
+
     fn flat_dtype(&self) -> DType {
         DType::I8
     }
+
     fn flatten(&self, x: &bool) -> Result<gym_core::ArrayValue, gym_core::SpaceError> {
         Ok(gym_core::ArrayValue::from(
             ndarray::arr1(&[i8::from(*x)]).into_dyn(),
         ))
     }
+
     fn unflatten(&self, flat: &gym_core::ArrayValue) -> Result<bool, gym_core::SpaceError> {
         Ok(flat.to_f64_vec().first().is_some_and(|v| *v != 0.0))
     }
+
     fn flatten_space(&self) -> gym_core::AnyBox {
         BoxSpace::<i8>::uniform(0.0, 1.0, &[1]).unwrap().into()
     }
+}
+
+impl DynSpace for BoolSpace {
     fn to_any(&self) -> AnySpace {
         gym_core::spaces::MultiBinary::new(&[1]).unwrap().into()
     }
+
     fn to_value(&self, x: &bool) -> Value {
         self.flatten(x).unwrap().into()
     }
+
     fn from_value(&self, v: &Value) -> Result<bool, gym_core::SpaceError> {
         self.unflatten(v.as_array().ok_or(gym_core::SpaceError::WrongKind {
             expected: "array",

@@ -415,7 +415,7 @@ fn sub_environment_errors_are_typed_and_recoverable() {
         };
         let bad = arr2(&[[0.0f32, 0.0], [5.0, 0.0]]).into_dyn();
         match v(&bad) {
-            Err(Error::InvalidAction(m)) => assert!(m.contains("sub-environment 1"), "{m}"),
+            Err(Error::InvalidAction(m)) => assert!(m.to_string().contains("sub-environment 1"), "{m}"),
             other => panic!("{other:?}"),
         }
         assert!(matches!(v(&a32(&[0.0, 0.0])), Err(Error::InvalidAction(_))));
@@ -433,12 +433,12 @@ fn a_panicking_worker_env_is_an_error_not_a_hang() {
     assert!(v.step(&a).is_ok());
     match v.step(&a) {
         Err(Error::Simulation(m)) => assert!(
-            m.contains("sub-environment 1") && m.contains("panicked"),
+            m.to_string().contains("sub-environment 1") && m.to_string().contains("panicked"),
             "{m}"
         ),
         other => panic!("{other:?}"),
     }
-    assert!(matches!(v.step(&a), Err(Error::Simulation(m)) if m.contains("earlier")));
+    assert!(matches!(v.step(&a), Err(Error::Simulation(m)) if m.to_string().contains("earlier")));
     v.close();
     v.close();
     assert!(v.is_closed());
@@ -457,12 +457,12 @@ fn a_panicking_env_on_the_calling_thread_is_an_error() {
     let a = ArrayD::zeros(IxDyn(&[2, 2]));
     match v.step(&a) {
         Err(Error::Simulation(m)) => assert!(
-            m.contains("sub-environment 0") && m.contains("panicked"),
+            m.to_string().contains("sub-environment 0") && m.to_string().contains("panicked"),
             "{m}"
         ),
         other => panic!("{other:?}"),
     }
-    assert!(matches!(v.step(&a), Err(Error::Simulation(m)) if m.contains("earlier")));
+    assert!(matches!(v.step(&a), Err(Error::Simulation(m)) if m.to_string().contains("earlier")));
     v.close();
     assert!(v.is_closed());
 }

@@ -107,7 +107,7 @@ impl Env for Thermostat {
         }
         // Actions outside the space are a typed error, and change nothing.
         if !self.action_space.contains(action) {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "{action} is not in Discrete(3)"
             )));
         }
@@ -132,8 +132,6 @@ impl Env for Thermostat {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-
-    gym_core::base_env!();
 }
 
 fn main() {

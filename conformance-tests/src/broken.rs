@@ -267,7 +267,7 @@ impl BrokenEnv {
         if self.defect == Defect::EmptyTupleActionSpace {
             return match action {
                 Value::Tuple(items) if items.is_empty() => Ok(0.0),
-                other => Err(Error::InvalidAction(format!(
+                other => Err(Error::invalid_action(format!(
                     "expected an empty tuple, got {}",
                     other.kind()
                 ))),
@@ -277,7 +277,7 @@ impl BrokenEnv {
             .inner
             .action_space
             .from_value(action)
-            .map_err(|e| Error::InvalidAction(e.to_string()))?;
+            .map_err(|e| Error::invalid_action(e.to_string()))?;
         let finite = typed.iter().all(|x| x.is_finite());
         match self.defect {
             Defect::InvalidActionPanics if !finite => panic!("non-finite action {typed:?}"),
@@ -390,8 +390,6 @@ impl Env for BrokenEnv {
             self.inner.rng.as_ref()
         }
     }
-
-    gym_core::base_env!();
 }
 
 /// [`StateHook`] for [`BrokenEnv`] (and a `BoxedEnv` over one). With
@@ -406,7 +404,7 @@ impl<E: Env> StateHook<E> for BrokenStateHook {
         env.unwrapped_any()
             .downcast_ref::<BrokenEnv>()
             .ok_or_else(|| {
-                Error::Unsupported("the unwrapped environment is not a BrokenEnv".into())
+                Error::unsupported("the unwrapped environment is not a BrokenEnv".into())
             })?
             .inner
             .get_state()
@@ -417,7 +415,7 @@ impl<E: Env> StateHook<E> for BrokenStateHook {
             .unwrapped_any_mut()
             .downcast_mut::<BrokenEnv>()
             .ok_or_else(|| {
-                Error::Unsupported("the unwrapped environment is not a BrokenEnv".into())
+                Error::unsupported("the unwrapped environment is not a BrokenEnv".into())
             })?;
         let mut state = state.clone();
         if env.defect == Defect::StateRoundTripLosesVelocity {
@@ -461,33 +459,47 @@ impl Space for SharedBoxSpace {
     fn sample<R: rand::Rng + ?Sized>(&self, rng: &mut R) -> SharedObs {
         SharedObs::new(self.0.sample(rng))
     }
+
     fn contains(&self, x: &SharedObs) -> bool {
         self.0.contains(&x.get())
     }
+
     fn shape(&self) -> Option<&[usize]> {
         self.0.shape()
     }
+}
+
+impl Flatten for SharedBoxSpace {
     fn flatdim(&self) -> usize {
         self.0.flatdim()
     }
+
     fn flat_dtype(&self) -> DType {
         DType::F32
     }
+
     fn flatten(&self, x: &SharedObs) -> std::result::Result<ArrayValue, SpaceError> {
         self.0.flatten(&x.get())
     }
+
     fn unflatten(&self, flat: &ArrayValue) -> std::result::Result<SharedObs, SpaceError> {
         self.0.unflatten(flat).map(SharedObs::new)
     }
+
     fn flatten_space(&self) -> AnyBox {
         self.0.flatten_space()
     }
+}
+
+impl DynSpace for SharedBoxSpace {
     fn to_any(&self) -> AnySpace {
         self.0.to_any()
     }
+
     fn to_value(&self, x: &SharedObs) -> Value {
         Value::from(x.get())
     }
+
     fn from_value(&self, v: &Value) -> std::result::Result<SharedObs, SpaceError> {
         self.0.from_value(v).map(SharedObs::new)
     }
@@ -568,6 +580,4 @@ impl Env for SharedBufferEnv {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-
-    gym_core::base_env!();
 }

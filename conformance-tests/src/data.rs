@@ -186,6 +186,7 @@ macro_rules! same_variant {
             (ArrayValue::U8($x), ArrayValue::U8($y)) => $body,
             (ArrayValue::F32($x), ArrayValue::F32($y)) => $body,
             (ArrayValue::F64($x), ArrayValue::F64($y)) => $body,
+            (ArrayValue::Bool($x), ArrayValue::Bool($y)) => $body,
             _ => $otherwise,
         }
     };

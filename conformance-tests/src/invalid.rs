@@ -62,7 +62,7 @@ fn downcast<T: 'static, U: 'static>(x: T) -> Option<U> {
 }
 
 /// Converts a dynamic value to the space's element type *without* the structure checks of
-/// [`Space::from_value`] when the element type is one of gym-core's own (`Value`,
+/// [`DynSpace::from_value`] when the element type is one of gym-core's own (`Value`,
 /// `ArrayValue`, `ArrayD<T>`, `i64`, `Vec<Value>`, `DictValue`), so a wrong length or a
 /// missing key survives; otherwise falls back to `from_value`.
 pub fn element_from_value<S: Space>(space: &S, v: &Value) -> Option<S::Element> {
@@ -256,6 +256,7 @@ fn dtype_max(d: gym_core::DType) -> f64 {
         U8 => <u8 as Scalar>::MAX,
         F32 => <f32 as Scalar>::MAX,
         F64 => <f64 as Scalar>::MAX,
+        Bool => <bool as Scalar>::MAX,
     }
 }
 

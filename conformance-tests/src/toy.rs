@@ -199,14 +199,14 @@ impl PointMass {
     /// Validates a force: shape `[1]` and finite; clipped into `[-1, 1]`.
     pub(crate) fn force(action: &ArrayD<f32>) -> Result<f32> {
         if action.shape() != [1] {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "expected an action of shape [1], got shape {:?}",
                 action.shape()
             )));
         }
         let f = action.iter().next().copied().unwrap_or(f32::NAN);
         if !f.is_finite() {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "the force is {f}; actions must be finite"
             )));
         }
@@ -292,7 +292,7 @@ impl Env for PointMass {
                 "t={} position={:.3} velocity={:.3}",
                 self.t, self.position, self.velocity
             )))),
-            Some(m) => Err(Error::Unsupported(format!("render mode {}", m.as_str()))),
+            Some(m) => Err(Error::unsupported(format!("render mode {}", m.as_str()))),
         }
     }
 
@@ -303,8 +303,6 @@ impl Env for PointMass {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-
-    gym_core::base_env!();
 }
 
 /// [`StateHook`] for [`PointMass`] (and a [`gym_core::BoxedEnv`] or wrapper stack over one,
@@ -319,7 +317,7 @@ impl<E: Env> StateHook<E> for PointMassStateHook {
         env.unwrapped_any()
             .downcast_ref::<PointMass>()
             .ok_or_else(|| {
-                Error::Unsupported("the unwrapped environment is not a PointMass".into())
+                Error::unsupported("the unwrapped environment is not a PointMass".into())
             })?
             .get_state()
     }
@@ -328,7 +326,7 @@ impl<E: Env> StateHook<E> for PointMassStateHook {
         env.unwrapped_any_mut()
             .downcast_mut::<PointMass>()
             .ok_or_else(|| {
-                Error::Unsupported("the unwrapped environment is not a PointMass".into())
+                Error::unsupported("the unwrapped environment is not a PointMass".into())
             })?
             .set_state(state)
     }
@@ -477,7 +475,7 @@ impl Env for GridWorld {
             return Err(Error::EpisodeEnded);
         }
         if !self.action_space.contains(action) {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "{action} is not in Discrete(4)"
             )));
         }
@@ -507,6 +505,4 @@ impl Env for GridWorld {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-
-    gym_core::base_env!();
 }

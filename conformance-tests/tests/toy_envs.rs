@@ -151,7 +151,7 @@ impl Env for Loose {
             return Err(gym_core::Error::EpisodeEnded);
         }
         if a.shape() != [2] || a.iter().any(|x| !x.is_finite()) {
-            return Err(gym_core::Error::InvalidAction(format!("{a:?}")));
+            return Err(gym_core::Error::invalid_action(format!("{a:?}")));
         }
         self.done = true;
         let obs = ArrayD::from_elem(ndarray::IxDyn(&[3]), f64::from(a[[0]]));
@@ -166,7 +166,6 @@ impl Env for Loose {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-    gym_core::base_env!();
 }
 
 #[test]

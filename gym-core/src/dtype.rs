@@ -19,11 +19,13 @@ pub enum DType {
     F32,
     /// `float64`.
     F64,
+    /// `bool` (NumPy's `bool_`: flags such as robosuite's contact observations).
+    Bool,
 }
 
 impl DType {
     /// Every dtype, in declaration order.
-    pub const ALL: [DType; 7] = [
+    pub const ALL: [DType; 8] = [
         DType::I8,
         DType::I16,
         DType::I32,
@@ -31,6 +33,7 @@ impl DType {
         DType::U8,
         DType::F32,
         DType::F64,
+        DType::Bool,
     ];
 
     /// NumPy's name for the dtype (`"float32"`, ...).
@@ -43,12 +46,19 @@ impl DType {
             DType::U8 => "uint8",
             DType::F32 => "float32",
             DType::F64 => "float64",
+            DType::Bool => "bool",
         }
     }
 
     /// Parses NumPy's name of a dtype.
     pub fn from_name(name: &str) -> Option<DType> {
         DType::ALL.into_iter().find(|d| d.name() == name)
+    }
+
+    /// Whether the dtype cannot hold negative values (`uint8`, `bool`), so a Box of it
+    /// cannot be unbounded.
+    pub fn is_unsigned(self) -> bool {
+        matches!(self, DType::U8 | DType::Bool)
     }
 
     /// Whether this is a floating-point dtype.
@@ -71,6 +81,7 @@ impl DType {
             U8 => matches!(to, I16 | I32 | I64 | F32 | F64),
             F32 => matches!(to, F64),
             F64 => false,
+            Bool => true,
         }
     }
 
@@ -101,7 +112,8 @@ mod sealed {
     pub trait Sealed {}
 }
 
-/// A Rust element type that array spaces hold: `i8`, `i16`, `i32`, `i64`, `u8`, `f32`, `f64`.
+/// A Rust element type that array spaces hold: `i8`, `i16`, `i32`, `i64`, `u8`, `f32`, `f64`,
+/// `bool`.
 pub trait Scalar:
     Copy
     + fmt::Debug
@@ -191,6 +203,35 @@ scalar!(u8, U8, false);
 scalar!(f32, F32, true);
 scalar!(f64, F64, true);
 
+/// NumPy's `bool_`: `False < True`, numerically 0 and 1; casting a number to it tests for
+/// non-zero (NaN is `True`, as in NumPy).
+impl sealed::Sealed for bool {}
+impl Scalar for bool {
+    const DTYPE: DType = DType::Bool;
+    const MIN: f64 = 0.0;
+    const MAX: f64 = 1.0;
+    #[inline]
+    fn to_f64(self) -> f64 {
+        f64::from(u8::from(self))
+    }
+    #[inline]
+    fn from_f64(v: f64) -> Self {
+        v != 0.0
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        true
+    }
+    #[inline]
+    fn to_i64(self) -> i64 {
+        i64::from(self)
+    }
+    #[inline]
+    fn from_i64(v: i64) -> Self {
+        v != 0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::DType::*;
@@ -203,6 +244,19 @@ mod tests {
         assert!(I64.can_cast_to(F64));
         assert!(I32.can_cast_to(I64));
         assert!(!U8.can_cast_to(I8));
+        assert!(Bool.can_cast_to(I8) && Bool.can_cast_to(F32));
+        assert!(!I8.can_cast_to(Bool) && !F64.can_cast_to(Bool));
+    }
+
+    #[test]
+    fn bool_scalars_follow_numpy() {
+        use super::Scalar;
+        assert_eq!(true.cast_to::<f32>(), 1.0);
+        assert_eq!(false.cast_to::<i64>(), 0);
+        assert!(f64::NAN.cast_to::<bool>() && (-2i8).cast_to::<bool>());
+        assert!(!0.0f32.cast_to::<bool>());
+        assert_eq!(Bool.promote(F32), F32);
+        assert_eq!(Bool.promote(Bool), Bool);
     }
 
     #[test]

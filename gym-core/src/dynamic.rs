@@ -6,7 +6,7 @@ use crate::env::{Env, Frame, Metadata, RenderMode, Step};
 use crate::error::{Error, Result};
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
-use crate::space::Space;
+use crate::space::DynSpace;
 use crate::spaces::AnySpace;
 use crate::value::Value;
 use std::any::Any;
@@ -101,7 +101,7 @@ impl<E: Env> DynEnv for DynAdapter<E> {
             .env
             .action_space()
             .from_value(action)
-            .map_err(|e| Error::InvalidAction(e.to_string()))?;
+            .map_err(|e| Error::InvalidAction(e.into()))?;
         let step = self.env.step(&action)?;
         let space = self.env.observation_space();
         Ok(step.map_observation(|o| space.to_value(&o)))

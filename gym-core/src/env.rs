@@ -3,7 +3,7 @@
 use crate::error::Result;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten};
 use ndarray::{Array2, Array3};
 use std::any::Any;
 
@@ -150,15 +150,19 @@ static NO_METADATA: Metadata = Metadata::empty();
 /// * `close` is idempotent.
 ///
 /// An environment is `Send + 'static`, so a whole wrapper stack can move to another thread.
-pub trait Env: Send + 'static {
+///
+/// Only the spaces, `reset` and `step` are required; everything else has a default (a plain
+/// environment is its own [`Env::unwrapped_any`]).
+pub trait Env: AsAny + Send + 'static {
     /// The observation type.
     type Obs: Clone + std::fmt::Debug + Send + 'static;
     /// The action type.
     type Act: Clone + std::fmt::Debug + Send + 'static;
-    /// The observation space.
-    type ObsSpace: Space<Element = Self::Obs>;
+    /// The observation space (flattenable and convertible to the dynamic layer, as every
+    /// Gymnasium space is).
+    type ObsSpace: Flatten<Element = Self::Obs> + DynSpace;
     /// The action space.
-    type ActSpace: Space<Element = Self::Act>;
+    type ActSpace: Flatten<Element = Self::Act> + DynSpace;
 
     /// The space observations lie in.
     fn observation_space(&self) -> &Self::ObsSpace;
@@ -237,12 +241,35 @@ pub trait Env: Send + 'static {
         None
     }
 
-    /// The innermost environment as `Any` (Gymnasium's `env.unwrapped`); wrappers forward
-    /// this to their inner environment. See [`EnvExt::unwrapped_as`].
-    fn unwrapped_any(&self) -> &dyn Any;
+    /// The innermost environment as `Any` (Gymnasium's `env.unwrapped`): the environment
+    /// itself by default; wrappers forward it to their inner environment. See
+    /// [`EnvExt::unwrapped_as`].
+    fn unwrapped_any(&self) -> &dyn Any {
+        self.as_any()
+    }
 
     /// Mutable form of [`Env::unwrapped_any`].
-    fn unwrapped_any_mut(&mut self) -> &mut dyn Any;
+    fn unwrapped_any_mut(&mut self) -> &mut dyn Any {
+        self.as_any_mut()
+    }
+}
+
+/// A value as `Any`, for every sized `'static` type: what [`Env::unwrapped_any`] returns by
+/// default (a provided method cannot turn `self` into a trait object by itself).
+pub trait AsAny: Any {
+    /// `self` as `&dyn Any`.
+    fn as_any(&self) -> &dyn Any;
+    /// `self` as `&mut dyn Any`.
+    fn as_any_mut(&mut self) -> &mut dyn Any;
+}
+
+impl<T: Any> AsAny for T {
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
 }
 
 /// Conveniences on every [`Env`].
@@ -259,17 +286,3 @@ pub trait EnvExt: Env {
 }
 
 impl<E: Env + ?Sized> EnvExt for E {}
-
-/// Implements [`Env::unwrapped_any`] and [`Env::unwrapped_any_mut`] for a base (unwrapped)
-/// environment: use it inside `impl Env for MyEnv { ... }`.
-#[macro_export]
-macro_rules! base_env {
-    () => {
-        fn unwrapped_any(&self) -> &dyn ::std::any::Any {
-            self
-        }
-        fn unwrapped_any_mut(&mut self) -> &mut dyn ::std::any::Any {
-            self
-        }
-    };
-}

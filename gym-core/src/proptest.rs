@@ -9,7 +9,7 @@
 
 use crate::dtype::DType;
 use crate::rng::rng_from_seed;
-use crate::space::Space;
+use crate::space::{DynSpace, Space};
 use crate::spaces::{
     AnyBox, AnySpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
@@ -39,17 +39,18 @@ fn bound_pair(allow_inf: bool) -> impl Strategy<Value = (f64, f64)> {
 }
 
 /// A Box of `dtype` with a random shape and per-element bounds (infinite bounds for
-/// floating dtypes; integer bounds within `-100..150`, `0..200` for `uint8`).
+/// floating dtypes; integer bounds within `-100..150`, `0..200` for `uint8`, `0..=1` for
+/// `bool`).
 pub fn box_space(dtype: DType) -> impl Strategy<Value = AnyBox> {
     shape(3, 4).prop_flat_map(move |shape| {
         let n: usize = shape.iter().product();
         proptest::collection::vec(bound_pair(dtype.is_float()), n).prop_map(move |pairs| {
             let (mut low, mut high): (Vec<f64>, Vec<f64>) = pairs.into_iter().unzip();
             if !dtype.is_float() {
-                let (lo, hi) = if dtype == DType::U8 {
-                    (0.0, 200.0)
-                } else {
-                    (-100.0, 150.0)
+                let (lo, hi) = match dtype {
+                    DType::U8 => (0.0, 200.0),
+                    DType::Bool => (0.0, 1.0),
+                    _ => (-100.0, 150.0),
                 };
                 for (l, h) in low.iter_mut().zip(high.iter_mut()) {
                     *l = l.clamp(lo, hi).floor();
@@ -148,6 +149,7 @@ fn int_array(dtype: DType, shape: &[usize], entries: Vec<i64>) -> ArrayValue {
         DType::I16 => typed::<i16>(shape, entries),
         DType::I32 => typed::<i32>(shape, entries),
         DType::U8 => typed::<u8>(shape, entries),
+        DType::Bool => typed::<bool>(shape, entries),
         _ => typed::<i64>(shape, entries),
     }
 }
@@ -180,6 +182,7 @@ fn box_value(b: &AnyBox) -> BoxedStrategy<ArrayValue> {
             DType::I16 => (i16::MIN.into(), i16::MAX.into()),
             DType::I32 => (i32::MIN.into(), i32::MAX.into()),
             DType::U8 => (0, u8::MAX.into()),
+            DType::Bool => (0, 1),
             _ => (i64::MIN, i64::MAX),
         };
         let entries: Vec<_> = low
@@ -237,7 +240,7 @@ pub fn value_of(space: &AnySpace) -> BoxedStrategy<Value> {
 
 /// Elements of `space`, drawn value by value (see [`value_of`]), so that shrinking shrinks
 /// the values themselves.
-pub fn element_of<S: Space>(space: S) -> impl Strategy<Value = S::Element> {
+pub fn element_of<S: DynSpace>(space: S) -> impl Strategy<Value = S::Element> {
     value_of(&space.to_any()).prop_filter_map(
         "the space's from_value refuses a value of its own to_any structure",
         move |v| space.from_value(&v).ok(),
@@ -260,7 +263,7 @@ pub fn space_and_element(depth: u32) -> impl Strategy<Value = (AnySpace, Value)>
 }
 
 /// Sequences of `len` actions from `space`, each drawn value by value.
-pub fn action_sequence<S: Space>(
+pub fn action_sequence<S: DynSpace>(
     space: S,
     len: std::ops::RangeInclusive<usize>,
 ) -> impl Strategy<Value = Vec<S::Element>> {

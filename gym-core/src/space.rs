@@ -1,4 +1,7 @@
-//! The [`Space`] trait: what every space can do.
+//! What spaces are, in three parts as Gymnasium has them: the [`Space`] trait (sampling,
+//! membership, shape), flattening ([`Flatten`] and the free functions [`flatten`],
+//! [`unflatten`], [`flatdim`], [`flatten_space`], as `gymnasium.spaces.flatten` and friends)
+//! and the conversion to the dynamic layer ([`DynSpace`]).
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
@@ -23,7 +26,12 @@ pub trait Space: Clone + Debug + PartialEq + Send + Sync + 'static {
 
     /// The shape of an element, for spaces whose elements are arrays or scalars.
     fn shape(&self) -> Option<&[usize]>;
+}
 
+/// Flattening a space's elements to one-dimensional arrays, as Gymnasium's
+/// `gymnasium.spaces.utils` functions (which [`flatten`], [`unflatten`], [`flatdim`] and
+/// [`flatten_space`] name).
+pub trait Flatten: Space {
     /// The length of the flattened element (`gymnasium.spaces.flatdim`).
     fn flatdim(&self) -> usize;
 
@@ -37,7 +45,7 @@ pub trait Space: Clone + Debug + PartialEq + Send + Sync + 'static {
     /// When `x` does not have the structure of the space.
     fn flatten(&self, x: &Self::Element) -> Result<ArrayValue, SpaceError>;
 
-    /// Inverts [`Space::flatten`] (`gymnasium.spaces.unflatten`).
+    /// Inverts [`Flatten::flatten`] (`gymnasium.spaces.unflatten`).
     ///
     /// # Errors
     /// When `flat` has the wrong length, or a one-hot part has no set entry.
@@ -45,7 +53,11 @@ pub trait Space: Clone + Debug + PartialEq + Send + Sync + 'static {
 
     /// The Box that flattened elements lie in (`gymnasium.spaces.flatten_space`).
     fn flatten_space(&self) -> AnyBox;
+}
 
+/// A space seen through the dynamic layer: itself as an [`AnySpace`], its elements as
+/// [`Value`]s (what registries, boxed environments and the Python export use).
+pub trait DynSpace: Space {
     /// This space as the dynamic [`AnySpace`].
     fn to_any(&self) -> AnySpace;
 
@@ -59,4 +71,30 @@ pub trait Space: Clone + Debug + PartialEq + Send + Sync + 'static {
     /// When the value has another kind, shape or an unsafe dtype.
     #[allow(clippy::wrong_self_convention)]
     fn from_value(&self, v: &Value) -> Result<Self::Element, SpaceError>;
+}
+
+/// `gymnasium.spaces.flatten(space, x)`: see [`Flatten::flatten`].
+///
+/// # Errors
+/// When `x` does not have the structure of the space.
+pub fn flatten<S: Flatten>(space: &S, x: &S::Element) -> Result<ArrayValue, SpaceError> {
+    space.flatten(x)
+}
+
+/// `gymnasium.spaces.unflatten(space, flat)`: see [`Flatten::unflatten`].
+///
+/// # Errors
+/// When `flat` has the wrong length, or a one-hot part has no set entry.
+pub fn unflatten<S: Flatten>(space: &S, flat: &ArrayValue) -> Result<S::Element, SpaceError> {
+    space.unflatten(flat)
+}
+
+/// `gymnasium.spaces.flatdim(space)`: see [`Flatten::flatdim`].
+pub fn flatdim<S: Flatten>(space: &S) -> usize {
+    space.flatdim()
+}
+
+/// `gymnasium.spaces.flatten_space(space)`: see [`Flatten::flatten_space`].
+pub fn flatten_space<S: Flatten>(space: &S) -> AnyBox {
+    space.flatten_space()
 }

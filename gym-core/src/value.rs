@@ -17,6 +17,7 @@ pub enum ArrayValue {
     U8(ArrayD<u8>),
     F32(ArrayD<f32>),
     F64(ArrayD<f64>),
+    Bool(ArrayD<bool>),
 }
 
 /// Applies `$body` to the array inside any variant, bound as `$a`.
@@ -32,6 +33,7 @@ macro_rules! for_each_array {
             $crate::ArrayValue::U8($a) => $body,
             $crate::ArrayValue::F32($a) => $body,
             $crate::ArrayValue::F64($a) => $body,
+            $crate::ArrayValue::Bool($a) => $body,
         }
     };
 }
@@ -76,6 +78,7 @@ array_element!(i64, I64);
 array_element!(u8, U8);
 array_element!(f32, F32);
 array_element!(f64, F64);
+array_element!(bool, Bool);
 
 impl ArrayValue {
     /// The dtype of the elements.
@@ -88,6 +91,7 @@ impl ArrayValue {
             ArrayValue::U8(_) => DType::U8,
             ArrayValue::F32(_) => DType::F32,
             ArrayValue::F64(_) => DType::F64,
+            ArrayValue::Bool(_) => DType::Bool,
         }
     }
 
@@ -132,6 +136,7 @@ impl ArrayValue {
             DType::U8 => conv::<u8>(self),
             DType::F32 => conv::<f32>(self),
             DType::F64 => conv::<f64>(self),
+            DType::Bool => conv::<bool>(self),
         }
     }
 
@@ -184,6 +189,7 @@ impl ArrayValue {
             DType::U8 => join::<u8>(parts),
             DType::F32 => join::<f32>(parts),
             DType::F64 => join::<f64>(parts),
+            DType::Bool => join::<bool>(parts),
         }
     }
 
@@ -302,6 +308,20 @@ mod tests {
                 .unwrap()[[0]],
             big as i32
         );
+    }
+
+    #[test]
+    fn bools_concatenate_as_numpy() {
+        let flags = ArrayValue::from(arr1(&[true, false]).into_dyn());
+        let both = ArrayValue::concatenate(&[flags.clone(), flags.clone()]);
+        assert_eq!(both.dtype(), DType::Bool);
+        let mixed = ArrayValue::concatenate(&[ArrayValue::from(arr1(&[0.5f64]).into_dyn()), flags]);
+        assert_eq!(mixed.dtype(), DType::F64);
+        assert_eq!(mixed.to_f64_vec(), vec![0.5, 1.0, 0.0]);
+        let back = ArrayValue::from(arr1(&[2i64, 0]).into_dyn()).cast(DType::Bool);
+        assert_eq!(back, ArrayValue::from(arr1(&[true, false]).into_dyn()));
+        assert!(back.to_typed::<f32>().is_ok());
+        assert!(mixed.to_typed::<bool>().is_err());
     }
 
     #[test]

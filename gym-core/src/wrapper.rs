@@ -1,13 +1,63 @@
-//! The [`Wrapper`] trait: an environment that owns another and changes part of its
-//! behaviour, as Gymnasium's `gymnasium.Wrapper`.
+//! Wrappers: environments that own another and change part of its behaviour, in the shape
+//! of Gymnasium's `Wrapper`, `ObservationWrapper`, `ActionWrapper` and `RewardWrapper`.
+//!
+//! A wrapper implements [`Wrapper`] (where its inner environment is, and which kind of
+//! wrapper it is) and the trait of its kind:
+//!
+//! | [`Wrapper::Kind`] | trait to implement | what it writes |
+//! |---|---|---|
+//! | [`Observations`] | [`ObservationWrapper`] | the new observation space and `observation(obs)` |
+//! | [`Actions`] | [`ActionWrapper`] | the new action space and `action(act)` |
+//! | [`Rewards`] | [`RewardWrapper`] | `reward(r)` |
+//! | [`Steps`] | [`StepWrapper`] | any of `reset`, `step`, `step_into`, `render` (the rest forwards) |
+//! | [`Custom`] | [`CustomWrapper`] | new spaces, `reset` and `step` |
+//!
+//! [`Env`] then comes from one generic implementation, which also forwards what wrappers
+//! leave alone (metadata, render mode, `close`, the RNG, `unwrapped`) to the inner
+//! environment. No wrapper writes an `Env` implementation of its own.
+//!
+//! ```
+//! use gym_core::{Env, Rewards, RewardWrapper, Wrapper};
+//!
+//! /// Doubles every reward.
+//! struct Double<E>(E);
+//!
+//! impl<E: Env> Wrapper for Double<E> {
+//!     type Inner = E;
+//!     type Kind = Rewards;
+//!     fn inner(&self) -> &E { &self.0 }
+//!     fn inner_mut(&mut self) -> &mut E { &mut self.0 }
+//!     fn into_inner(self) -> E { self.0 }
+//! }
+//!
+//! impl<E: Env> RewardWrapper for Double<E> {
+//!     fn reward(&mut self, reward: f64) -> f64 { 2.0 * reward }
+//! }
+//! ```
+//!
+//! The hooks of [`StepWrapper`] and [`CustomWrapper`] take `this` rather than `self` (as
+//! `Rc::get_mut` does), so that `wrapper.step(..)` always means [`Env::step`].
 
-use crate::env::Env;
+use crate::env::{Env, Frame, Metadata, RenderMode, Step, Transition};
+use crate::error::Result;
+use crate::info::{Info, ResetOptions};
+use crate::rng::EnvRng;
+use crate::space::{DynSpace, Flatten, Space};
+use std::any::Any;
 
-/// An environment layered over an inner one it owns. A stack of wrappers is a plain owned
-/// value (`TimeLimit<FlattenObservation<Lift>>`), `Send` when the innermost env is.
-pub trait Wrapper: Env {
+/// An environment layered over an inner one it owns (Gymnasium's `gymnasium.Wrapper`). A
+/// stack of wrappers is a plain owned value (`TimeLimit<FlattenObservation<Lift>>`), `Send`
+/// when the innermost env is.
+///
+/// Implement it together with the trait of [`Wrapper::Kind`] (see the [module
+/// documentation](self)); the wrapper is then an [`Env`].
+pub trait Wrapper: Send + 'static {
     /// The wrapped environment's type.
     type Inner: Env;
+
+    /// What the wrapper changes: [`Observations`], [`Actions`], [`Rewards`], [`Steps`] or
+    /// [`Custom`].
+    type Kind;
 
     /// The wrapped environment.
     fn inner(&self) -> &Self::Inner;
@@ -25,37 +75,476 @@ pub trait Wrapper: Env {
     where
         Self: Sized,
     {
-        self.unwrapped_any().downcast_ref()
+        self.inner().unwrapped_any().downcast_ref()
     }
 }
 
-/// Forwards the parts of [`Env`] a wrapper usually leaves alone (metadata, rendering,
-/// close, RNG, `unwrapped`) to `self.inner()`. Use it inside `impl Env for MyWrapper`.
-///
-/// The wrapper must implement [`Wrapper`].
-#[macro_export]
-macro_rules! forward_env {
-    () => {
-        fn metadata(&self) -> &$crate::Metadata {
-            $crate::Wrapper::inner(self).metadata()
-        }
-        fn render_mode(&self) -> Option<$crate::RenderMode> {
-            $crate::Wrapper::inner(self).render_mode()
-        }
-        fn render(&mut self) -> $crate::Result<Option<$crate::Frame>> {
-            $crate::Wrapper::inner_mut(self).render()
-        }
-        fn close(&mut self) {
-            $crate::Wrapper::inner_mut(self).close()
-        }
-        fn rng(&self) -> Option<&$crate::EnvRng> {
-            $crate::Wrapper::inner(self).rng()
-        }
-        fn unwrapped_any(&self) -> &dyn ::std::any::Any {
-            $crate::Wrapper::inner(self).unwrapped_any()
-        }
-        fn unwrapped_any_mut(&mut self) -> &mut dyn ::std::any::Any {
-            $crate::Wrapper::inner_mut(self).unwrapped_any_mut()
-        }
-    };
+/// [`Wrapper::Kind`] of an [`ObservationWrapper`].
+#[derive(Debug)]
+pub enum Observations {}
+/// [`Wrapper::Kind`] of an [`ActionWrapper`].
+#[derive(Debug)]
+pub enum Actions {}
+/// [`Wrapper::Kind`] of a [`RewardWrapper`].
+#[derive(Debug)]
+pub enum Rewards {}
+/// [`Wrapper::Kind`] of a [`StepWrapper`].
+#[derive(Debug)]
+pub enum Steps {}
+/// [`Wrapper::Kind`] of a [`CustomWrapper`].
+#[derive(Debug)]
+pub enum Custom {}
+
+/// Gymnasium's `ObservationWrapper`: every observation, from `reset` and `step`, is mapped
+/// by [`ObservationWrapper::observation`] into [`ObservationWrapper::space`].
+pub trait ObservationWrapper: Wrapper<Kind = Observations> {
+    /// The new observation space.
+    type Space: Flatten + DynSpace;
+
+    /// The new observation space.
+    fn space(&self) -> &Self::Space;
+
+    /// Maps an observation of the inner environment.
+    ///
+    /// # Errors
+    /// When the observation cannot be mapped (the step or reset then fails with it).
+    fn observation(
+        &mut self,
+        observation: <Self::Inner as Env>::Obs,
+    ) -> Result<<Self::Space as Space>::Element>;
+}
+
+/// Gymnasium's `ActionWrapper`: the wrapper accepts actions of [`ActionWrapper::space`] and
+/// steps the inner environment with [`ActionWrapper::action`] of them.
+pub trait ActionWrapper: Wrapper<Kind = Actions> {
+    /// The new action space.
+    type Space: Flatten + DynSpace;
+
+    /// The new action space.
+    fn space(&self) -> &Self::Space;
+
+    /// Maps an action to one of the inner environment.
+    ///
+    /// # Errors
+    /// [`Error::InvalidAction`](crate::Error::InvalidAction) when the action cannot be
+    /// mapped; the inner environment is not stepped.
+    fn action(
+        &mut self,
+        action: &<Self::Space as Space>::Element,
+    ) -> Result<<Self::Inner as Env>::Act>;
+}
+
+/// Gymnasium's `RewardWrapper`: every reward is mapped by [`RewardWrapper::reward`].
+pub trait RewardWrapper: Wrapper<Kind = Rewards> {
+    /// Maps the reward of one step.
+    fn reward(&mut self, reward: f64) -> f64;
+}
+
+/// Gymnasium's plain `Wrapper` subclass: the spaces are the inner environment's, and each
+/// hook forwards to the inner environment unless the wrapper overrides it (a wrapper that
+/// overrides [`StepWrapper::step`] but not [`StepWrapper::step_into`] gets `step_into`
+/// through its `step`).
+pub trait StepWrapper: Wrapper<Kind = Steps> {
+    /// [`Env::reset`] of the wrapper.
+    ///
+    /// # Errors
+    /// As [`Env::reset`].
+    fn reset(
+        this: &mut Self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(<Self::Inner as Env>::Obs, Info)> {
+        this.inner_mut().reset(seed, options)
+    }
+
+    /// [`Env::step`] of the wrapper.
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step(
+        this: &mut Self,
+        action: &<Self::Inner as Env>::Act,
+    ) -> Result<Step<<Self::Inner as Env>::Obs>> {
+        this.inner_mut().step(action)
+    }
+
+    /// [`Env::step_into`] of the wrapper: through [`StepWrapper::step`] unless overridden.
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step_into(
+        this: &mut Self,
+        action: &<Self::Inner as Env>::Act,
+        observation: &mut <Self::Inner as Env>::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        Ok(move_step(Self::step(this, action)?, observation, info))
+    }
+
+    /// [`Env::render`] of the wrapper.
+    ///
+    /// # Errors
+    /// As [`Env::render`].
+    fn render(this: &mut Self) -> Result<Option<Frame>> {
+        this.inner_mut().render()
+    }
+}
+
+/// A wrapper with spaces of its own and its own `reset` and `step` (Gymnasium's `Wrapper`
+/// subclass that sets both spaces), for what is not a plain observation or action map.
+pub trait CustomWrapper: Wrapper<Kind = Custom> {
+    /// The wrapper's observation type.
+    type Observation: Clone + std::fmt::Debug + Send + 'static;
+    /// The wrapper's action type.
+    type Action: Clone + std::fmt::Debug + Send + 'static;
+    /// The wrapper's observation space.
+    type ObservationSpace: Flatten<Element = Self::Observation> + DynSpace;
+    /// The wrapper's action space.
+    type ActionSpace: Flatten<Element = Self::Action> + DynSpace;
+
+    /// [`Env::observation_space`] of the wrapper.
+    fn observation_space(this: &Self) -> &Self::ObservationSpace;
+
+    /// [`Env::action_space`] of the wrapper.
+    fn action_space(this: &Self) -> &Self::ActionSpace;
+
+    /// [`Env::reset`] of the wrapper.
+    ///
+    /// # Errors
+    /// As [`Env::reset`].
+    fn reset(
+        this: &mut Self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Observation, Info)>;
+
+    /// [`Env::step`] of the wrapper.
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step(this: &mut Self, action: &Self::Action) -> Result<Step<Self::Observation>>;
+
+    /// [`Env::step_into`] of the wrapper: through [`CustomWrapper::step`] unless overridden.
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step_into(
+        this: &mut Self,
+        action: &Self::Action,
+        observation: &mut Self::Observation,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        Ok(move_step(Self::step(this, action)?, observation, info))
+    }
+
+    /// [`Env::render`] of the wrapper.
+    ///
+    /// # Errors
+    /// As [`Env::render`].
+    fn render(this: &mut Self) -> Result<Option<Frame>> {
+        this.inner_mut().render()
+    }
+}
+
+/// Moves a step's observation and info into the caller's buffers.
+fn move_step<O>(step: Step<O>, observation: &mut O, info: &mut Info) -> Transition {
+    *observation = step.observation;
+    *info = step.info;
+    Transition {
+        reward: step.reward,
+        terminated: step.terminated,
+        truncated: step.truncated,
+    }
+}
+
+/// How a kind of wrapper makes its wrapper `W` an [`Env`]: implemented by the kind markers
+/// ([`Observations`], ...) for the wrappers of their trait. Not implemented outside gym-core.
+pub trait WrapperKind<W>: 'static {
+    /// [`Env::Obs`] of the wrapper.
+    type Obs: Clone + std::fmt::Debug + Send + 'static;
+    /// [`Env::Act`] of the wrapper.
+    type Act: Clone + std::fmt::Debug + Send + 'static;
+    /// [`Env::ObsSpace`] of the wrapper.
+    type ObsSpace: Flatten<Element = Self::Obs> + DynSpace;
+    /// [`Env::ActSpace`] of the wrapper.
+    type ActSpace: Flatten<Element = Self::Act> + DynSpace;
+
+    /// [`Env::observation_space`].
+    fn observation_space(w: &W) -> &Self::ObsSpace;
+    /// [`Env::action_space`].
+    fn action_space(w: &W) -> &Self::ActSpace;
+    /// [`Env::reset`].
+    ///
+    /// # Errors
+    /// As [`Env::reset`].
+    fn reset(
+        w: &mut W,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)>;
+    /// [`Env::step`].
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>>;
+    /// [`Env::step_into`].
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step_into(
+        w: &mut W,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition>;
+    /// [`Env::render`].
+    ///
+    /// # Errors
+    /// As [`Env::render`].
+    fn render(w: &mut W) -> Result<Option<Frame>>;
+}
+
+type InnerObs<W> = <<W as Wrapper>::Inner as Env>::Obs;
+type InnerAct<W> = <<W as Wrapper>::Inner as Env>::Act;
+
+impl<W: ObservationWrapper> WrapperKind<W> for Observations {
+    type Obs = <W::Space as Space>::Element;
+    type Act = InnerAct<W>;
+    type ObsSpace = W::Space;
+    type ActSpace = <W::Inner as Env>::ActSpace;
+
+    fn observation_space(w: &W) -> &W::Space {
+        w.space()
+    }
+    fn action_space(w: &W) -> &Self::ActSpace {
+        w.inner().action_space()
+    }
+    fn reset(
+        w: &mut W,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)> {
+        let (observation, info) = w.inner_mut().reset(seed, options)?;
+        Ok((w.observation(observation)?, info))
+    }
+    fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
+        let step = w.inner_mut().step(action)?;
+        step.try_map_observation(|o| w.observation(o))
+    }
+    fn step_into(
+        w: &mut W,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        Ok(move_step(Self::step(w, action)?, observation, info))
+    }
+    fn render(w: &mut W) -> Result<Option<Frame>> {
+        w.inner_mut().render()
+    }
+}
+
+impl<W: ActionWrapper> WrapperKind<W> for Actions {
+    type Obs = InnerObs<W>;
+    type Act = <W::Space as Space>::Element;
+    type ObsSpace = <W::Inner as Env>::ObsSpace;
+    type ActSpace = W::Space;
+
+    fn observation_space(w: &W) -> &Self::ObsSpace {
+        w.inner().observation_space()
+    }
+    fn action_space(w: &W) -> &W::Space {
+        w.space()
+    }
+    fn reset(
+        w: &mut W,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)> {
+        w.inner_mut().reset(seed, options)
+    }
+    fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
+        let action = w.action(action)?;
+        w.inner_mut().step(&action)
+    }
+    fn step_into(
+        w: &mut W,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let action = w.action(action)?;
+        w.inner_mut().step_into(&action, observation, info)
+    }
+    fn render(w: &mut W) -> Result<Option<Frame>> {
+        w.inner_mut().render()
+    }
+}
+
+impl<W: RewardWrapper> WrapperKind<W> for Rewards {
+    type Obs = InnerObs<W>;
+    type Act = InnerAct<W>;
+    type ObsSpace = <W::Inner as Env>::ObsSpace;
+    type ActSpace = <W::Inner as Env>::ActSpace;
+
+    fn observation_space(w: &W) -> &Self::ObsSpace {
+        w.inner().observation_space()
+    }
+    fn action_space(w: &W) -> &Self::ActSpace {
+        w.inner().action_space()
+    }
+    fn reset(
+        w: &mut W,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)> {
+        w.inner_mut().reset(seed, options)
+    }
+    fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
+        let mut step = w.inner_mut().step(action)?;
+        step.reward = w.reward(step.reward);
+        Ok(step)
+    }
+    fn step_into(
+        w: &mut W,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let mut t = w.inner_mut().step_into(action, observation, info)?;
+        t.reward = w.reward(t.reward);
+        Ok(t)
+    }
+    fn render(w: &mut W) -> Result<Option<Frame>> {
+        w.inner_mut().render()
+    }
+}
+
+impl<W: StepWrapper> WrapperKind<W> for Steps {
+    type Obs = InnerObs<W>;
+    type Act = InnerAct<W>;
+    type ObsSpace = <W::Inner as Env>::ObsSpace;
+    type ActSpace = <W::Inner as Env>::ActSpace;
+
+    fn observation_space(w: &W) -> &Self::ObsSpace {
+        w.inner().observation_space()
+    }
+    fn action_space(w: &W) -> &Self::ActSpace {
+        w.inner().action_space()
+    }
+    fn reset(
+        w: &mut W,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)> {
+        <W as StepWrapper>::reset(w, seed, options)
+    }
+    fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
+        <W as StepWrapper>::step(w, action)
+    }
+    fn step_into(
+        w: &mut W,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        <W as StepWrapper>::step_into(w, action, observation, info)
+    }
+    fn render(w: &mut W) -> Result<Option<Frame>> {
+        <W as StepWrapper>::render(w)
+    }
+}
+
+impl<W: CustomWrapper> WrapperKind<W> for Custom {
+    type Obs = W::Observation;
+    type Act = W::Action;
+    type ObsSpace = W::ObservationSpace;
+    type ActSpace = W::ActionSpace;
+
+    fn observation_space(w: &W) -> &Self::ObsSpace {
+        <W as CustomWrapper>::observation_space(w)
+    }
+    fn action_space(w: &W) -> &Self::ActSpace {
+        <W as CustomWrapper>::action_space(w)
+    }
+    fn reset(
+        w: &mut W,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)> {
+        <W as CustomWrapper>::reset(w, seed, options)
+    }
+    fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
+        <W as CustomWrapper>::step(w, action)
+    }
+    fn step_into(
+        w: &mut W,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        <W as CustomWrapper>::step_into(w, action, observation, info)
+    }
+    fn render(w: &mut W) -> Result<Option<Frame>> {
+        <W as CustomWrapper>::render(w)
+    }
+}
+
+/// Every wrapper is an environment: its kind says how it observes, acts and rewards, and
+/// the rest (metadata, render mode, `close`, RNG, `unwrapped`) is the inner environment's.
+impl<W> Env for W
+where
+    W: Wrapper,
+    W::Kind: WrapperKind<W>,
+{
+    type Obs = <W::Kind as WrapperKind<W>>::Obs;
+    type Act = <W::Kind as WrapperKind<W>>::Act;
+    type ObsSpace = <W::Kind as WrapperKind<W>>::ObsSpace;
+    type ActSpace = <W::Kind as WrapperKind<W>>::ActSpace;
+
+    fn observation_space(&self) -> &Self::ObsSpace {
+        W::Kind::observation_space(self)
+    }
+    fn action_space(&self) -> &Self::ActSpace {
+        W::Kind::action_space(self)
+    }
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&ResetOptions>,
+    ) -> Result<(Self::Obs, Info)> {
+        W::Kind::reset(self, seed, options)
+    }
+    fn step(&mut self, action: &Self::Act) -> Result<Step<Self::Obs>> {
+        W::Kind::step(self, action)
+    }
+    fn step_into(
+        &mut self,
+        action: &Self::Act,
+        observation: &mut Self::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        W::Kind::step_into(self, action, observation, info)
+    }
+    fn metadata(&self) -> &Metadata {
+        self.inner().metadata()
+    }
+    fn render_mode(&self) -> Option<RenderMode> {
+        self.inner().render_mode()
+    }
+    fn render(&mut self) -> Result<Option<Frame>> {
+        W::Kind::render(self)
+    }
+    fn close(&mut self) {
+        self.inner_mut().close();
+    }
+    fn rng(&self) -> Option<&EnvRng> {
+        self.inner().rng()
+    }
+    fn unwrapped_any(&self) -> &dyn Any {
+        self.inner().unwrapped_any()
+    }
+    fn unwrapped_any_mut(&mut self) -> &mut dyn Any {
+        self.inner_mut().unwrapped_any_mut()
+    }
 }

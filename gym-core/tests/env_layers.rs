@@ -3,7 +3,7 @@
 use gym_core::registry::{self, EnvSpec};
 use gym_core::{
     BoxSpace, BoxedEnv, Discrete, Env, EnvExt, EnvRng, Error, Info, IntoBoxedEnv, ResetOptions,
-    Result, Space, Step, Value, Wrapper, rng_from_seed,
+    Result, RewardWrapper, Rewards, Space, Step, Value, Wrapper, rng_from_seed,
 };
 use ndarray::{ArrayD, IxDyn, arr1};
 use rand::RngExt;
@@ -60,7 +60,7 @@ impl Env for Walk {
     }
     fn step(&mut self, action: &i64) -> Result<Step<ArrayD<f32>>> {
         if !self.act_space.contains(action) {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "{action} is not in Discrete(2)"
             )));
         }
@@ -80,7 +80,6 @@ impl Env for Walk {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-    gym_core::base_env!();
 }
 
 /// Doubles rewards; forwards the rest.
@@ -88,6 +87,7 @@ struct Double<E>(E);
 
 impl<E: Env> Wrapper for Double<E> {
     type Inner = E;
+    type Kind = Rewards;
     fn inner(&self) -> &E {
         &self.0
     }
@@ -99,30 +99,10 @@ impl<E: Env> Wrapper for Double<E> {
     }
 }
 
-impl<E: Env> Env for Double<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.0.observation_space()
+impl<E: Env> RewardWrapper for Double<E> {
+    fn reward(&mut self, reward: f64) -> f64 {
+        reward * 2.0
     }
-    fn action_space(&self) -> &E::ActSpace {
-        self.0.action_space()
-    }
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.0.reset(seed, options)
-    }
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mut s = self.0.step(action)?;
-        s.reward *= 2.0;
-        Ok(s)
-    }
-    gym_core::forward_env!();
 }
 
 #[test]

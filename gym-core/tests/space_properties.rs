@@ -5,7 +5,7 @@ use gym_core::proptest::{
     any_space, box_space, discrete, element_of, multi_binary, multi_discrete, seed,
     space_and_element,
 };
-use gym_core::{AnyBox, AnySpace, ArrayValue, DType, Space, Value, rng_from_seed};
+use gym_core::{AnyBox, AnySpace, ArrayValue, DType, Flatten, Space, Value, rng_from_seed};
 use proptest::prelude::*;
 
 proptest! {

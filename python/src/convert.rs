@@ -186,7 +186,7 @@ fn typed_array(arr: &Bound<'_, PyAny>) -> Option<ArrayValue> {
             }
         )*};
     }
-    try_dtype!(f64, f32, i64, i32, i16, i8, u8);
+    try_dtype!(f64, f32, i64, i32, i16, i8, u8, bool);
     None
 }
 

@@ -39,7 +39,7 @@ impl<T> ForkAwareMutex<T> {
         match self.inner.try_lock() {
             Ok(guard) => Ok(guard),
             Err(TryLockError::Poisoned(p)) => Ok(p.into_inner()),
-            Err(TryLockError::WouldBlock) => Err(Error::Unsupported(format!(
+            Err(TryLockError::WouldBlock) => Err(Error::unsupported(format!(
                 "this object was in use by another thread when process {} forked; it cannot \
                  be used in this child (process {}): make a new one here",
                 self.owner,

@@ -164,7 +164,6 @@ mod tests {
         fn close(&mut self) {
             self.closed = true;
         }
-        gym_core::base_env!();
     }
 
     #[test]

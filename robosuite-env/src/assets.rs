@@ -42,7 +42,7 @@ impl Assets {
     pub fn locate() -> Result<Self> {
         if let Some(dir) = std::env::var_os(ASSETS_ENV) {
             return Self::at(PathBuf::from(dir))
-                .map_err(|e| Error::Model(format!("{ASSETS_ENV} is set, but {e}")));
+                .map_err(|e| Error::model(format!("{ASSETS_ENV} is set, but {e}")));
         }
         let mut tried = Vec::new();
         for cache in cache_candidates() {
@@ -51,7 +51,7 @@ impl Assets {
             }
             tried.push(cache.display().to_string());
         }
-        Err(Error::Model(format!(
+        Err(Error::model(format!(
             "robosuite {ROBOSUITE_VERSION}'s model files are not in {}; {HOW_TO_FIX}",
             tried.join(" or ")
         )))
@@ -77,7 +77,7 @@ impl Assets {
                 package: normalize(p),
             })
             .ok_or_else(|| {
-                Error::Model(format!(
+                Error::model(format!(
                     "{} holds no robosuite model files (no models/assets/base.xml in it, in \
                      robosuite/ or two folders up)",
                     dir.display()
@@ -132,13 +132,13 @@ pub fn read_file(path: &Path) -> Result<String> {
         if e.kind() == std::io::ErrorKind::NotFound {
             missing(path)
         } else {
-            Error::Model(format!("cannot read {}: {e}; {HOW_TO_FIX}", path.display()))
+            Error::model(format!("cannot read {}: {e}; {HOW_TO_FIX}", path.display()))
         }
     })
 }
 
 fn missing(path: &Path) -> Error {
-    Error::Model(format!(
+    Error::model(format!(
         "robosuite's model file {} is missing; {HOW_TO_FIX}",
         path.display()
     ))

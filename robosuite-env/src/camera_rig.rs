@@ -207,7 +207,7 @@ impl CameraRig {
                 instance_ids,
                 class_ids,
             );
-            Err(Error::Unsupported(
+            Err(Error::unsupported(
                 "camera observations and render modes need a build with the `render` feature \
                  (cargo feature robosuite-env/render)"
                     .into(),
@@ -284,7 +284,7 @@ impl CameraRig {
         #[cfg(not(feature = "render"))]
         {
             let _ = data;
-            Err(Error::Unsupported(
+            Err(Error::unsupported(
                 "built without the `render` feature".into(),
             ))
         }
@@ -386,7 +386,7 @@ impl CameraRig {
         #[cfg(not(feature = "render"))]
         {
             let _ = (data, mode);
-            Err(Error::Unsupported(
+            Err(Error::unsupported(
                 "built without the `render` feature".into(),
             ))
         }

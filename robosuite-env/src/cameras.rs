@@ -204,7 +204,7 @@ impl CameraConfig {
             match mode {
                 RenderMode::RgbArray | RenderMode::DepthArray => {}
                 RenderMode::Human => {
-                    return Err(Error::Unsupported(
+                    return Err(Error::unsupported(
                         "render_mode=\"human\" needs a display and a viewer window; this build \
                          renders offscreen only: use \"rgb_array\" or \"depth_array\""
                             .into(),

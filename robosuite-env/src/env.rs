@@ -234,7 +234,7 @@ impl RobosuiteEnv {
         let assets = Assets::locate()?;
         let composed = compose(spec, &config, &assets)?;
         if xml.contains('\0') {
-            return Err(Error::Model("the scene XML contains a NUL byte".into()));
+            return Err(Error::model("the scene XML contains a NUL byte".into()));
         }
         let xml = redirect_asset_paths(xml, &assets);
         let model = compile_cached(&xml)?;
@@ -252,7 +252,7 @@ impl RobosuiteEnv {
     ) -> Result<Self> {
         let path = path.as_ref();
         let xml = std::fs::read_to_string(path).map_err(|e| {
-            Error::Model(format!(
+            Error::model(format!(
                 "cannot read the scene file {}: {e}",
                 path.display()
             ))
@@ -277,7 +277,7 @@ impl RobosuiteEnv {
         );
         let timestep = model.opt().timestep;
         if !(timestep.is_finite() && timestep > 0.0) {
-            return Err(Error::Model(format!(
+            return Err(Error::model(format!(
                 "the model's timestep must be positive, got {timestep}"
             )));
         }
@@ -638,14 +638,14 @@ impl RobosuiteEnv {
     fn check_action(&self, action: &ArrayD<f64>) -> Result<()> {
         let dim = self.action_dim();
         if action.len() != dim || action.ndim() != 1 {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "expected an action of shape [{dim}] (per robot: each arm's controller input, \
                  then each arm's gripper input), got shape {:?}",
                 action.shape()
             )));
         }
         if let Some((i, v)) = action.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "action[{i}] is not finite ({v})"
             )));
         }
@@ -837,6 +837,4 @@ impl gym_core::Env for RobosuiteEnv {
     fn rng(&self) -> Option<&EnvRng> {
         Some(&self.rng)
     }
-
-    gym_core::base_env!();
 }

@@ -362,6 +362,7 @@ fn unbounded(shape: &[usize], dtype: DType) -> AnySpace {
             .map_or_else(|_| BoxSpace::<f64>::unbounded(shape).into(), Into::into),
         DType::F32 => BoxSpace::<f32>::unbounded(shape).into(),
         DType::F64 => BoxSpace::<f64>::unbounded(shape).into(),
+        DType::Bool => BoxSpace::<bool>::unbounded(shape).into(),
     }
 }
 
@@ -394,7 +395,7 @@ mod tests {
                 spec("robot0_a", 2, DType::F64, "robot0_proprio"),
                 spec("cube_pos", 3, DType::F64, "object"),
                 spec("hidden", 2, DType::F64, "object"),
-                spec("robot0_contact", 1, DType::I8, "robot0_proprio"),
+                spec("robot0_contact", 1, DType::Bool, "robot0_proprio"),
             ],
             |s| s.key != "hidden",
         );
@@ -419,7 +420,7 @@ mod tests {
         assert_eq!(proprio, [1.0, 2.0, 1.0]);
         assert_eq!(
             d.get("robot0_contact").unwrap().as_array().unwrap().dtype(),
-            DType::I8
+            DType::Bool
         );
         let mut out = d.clone();
         let buf2 = [9.0, 8.0, 7.0, 6.0, 5.0, -1.0, -1.0, 0.0];

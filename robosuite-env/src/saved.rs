@@ -45,7 +45,7 @@ impl SavedEnv {
     /// [`Error::Simulation`] for a state holding a NaN or ±inf, which JSON cannot hold.
     pub fn to_json(&self) -> Result<String> {
         serde_json::to_string(self)
-            .map_err(|e| Error::Simulation(format!("cannot serialise the env state: {e}")))
+            .map_err(|e| Error::simulation(format!("cannot serialise the env state: {e}")))
     }
 
     /// From [`SavedEnv::to_json`]'s text.

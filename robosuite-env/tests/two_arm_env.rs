@@ -110,8 +110,8 @@ const TWO_ARM_HANDOVER_OBS: &[(&str, &[usize], DType)] = &[
 ];
 
 /// robosuite 1.5.2's TwoArmTransport observation keys, shapes and dtypes (two Pandas,
-/// `opposed`), in order (transcribed from `robosuite-1.5.2-observations.json`; robosuite's
-/// bools are int8 here, as Wipe's `robot0_contact`).
+/// `opposed`), in order (transcribed from `robosuite-1.5.2-observations.json`, bools
+/// included).
 const TWO_ARM_TRANSPORT_OBS: &[(&str, &[usize], DType)] = &[
     ("robot0_joint_pos", &[7], DType::F64),
     ("robot0_joint_pos_cos", &[7], DType::F64),
@@ -141,8 +141,8 @@ const TWO_ARM_TRANSPORT_OBS: &[(&str, &[usize], DType)] = &[
     ("lid_handle_quat", &[4], DType::F32),
     ("target_bin_pos", &[3], DType::F64),
     ("trash_bin_pos", &[3], DType::F64),
-    ("payload_in_target_bin", &[], DType::I8),
-    ("trash_in_trash_bin", &[], DType::I8),
+    ("payload_in_target_bin", &[], DType::Bool),
+    ("trash_in_trash_bin", &[], DType::Bool),
     ("gripper0_to_payload", &[3], DType::F64),
     ("gripper0_to_lid_handle", &[3], DType::F64),
     ("gripper1_to_payload", &[3], DType::F64),

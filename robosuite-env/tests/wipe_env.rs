@@ -13,8 +13,8 @@ use robosuite_env::tasks::{WipeConfig, WipeSpec};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make, make_with};
 
 /// robosuite 1.5.2's Wipe observation keys, shapes and dtypes, in order
-/// (`robosuite-1.5.2-observations.json`, entry "Wipe"); `robot0_contact` is robosuite's
-/// bool, int8 here.
+/// (`robosuite-1.5.2-observations.json`, entry "Wipe"); `robot0_contact` is a bool, as
+/// robosuite's.
 const WIPE_OBS: &[(&str, &[usize], DType)] = &[
     ("robot0_joint_pos", &[7], DType::F64),
     ("robot0_joint_pos_cos", &[7], DType::F64),
@@ -26,7 +26,7 @@ const WIPE_OBS: &[(&str, &[usize], DType)] = &[
     ("robot0_eef_quat_site", &[4], DType::F32),
     ("robot0_gripper_qpos", &[0], DType::F64),
     ("robot0_gripper_qvel", &[0], DType::F64),
-    ("robot0_contact", &[], DType::I8),
+    ("robot0_contact", &[], DType::Bool),
     ("proportion_wiped", &[], DType::F64),
     ("wipe_radius", &[], DType::F64),
     ("wipe_centroid", &[3], DType::F64),

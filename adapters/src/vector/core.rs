@@ -79,13 +79,13 @@ pub(crate) fn run_op_guarded<E: Env>(
     poisoned: &mut bool,
 ) -> Result<Outcome<E::Obs>> {
     if *poisoned {
-        return Err(Error::Simulation(format!(
+        return Err(Error::simulation(format!(
             "sub-environment {id} panicked earlier and is unusable"
         )));
     }
     catch_unwind(AssertUnwindSafe(|| run_op(env, op))).unwrap_or_else(|payload| {
         *poisoned = true;
-        Err(Error::Simulation(format!(
+        Err(Error::simulation(format!(
             "panicked: {}",
             panic_message(payload.as_ref())
         )))
@@ -119,18 +119,18 @@ pub(crate) fn check_batch<S: BatchSpace>(
     for k in 0..rows {
         single
             .read_item(actions, k)
-            .map_err(|e| Error::InvalidAction(format!("actions[{k}]: {e}")))?;
+            .map_err(|e| Error::invalid_action(format!("actions[{k}]: {e}")))?;
     }
     // Every item exists and has the item's shape; the flat length then pins the number of
     // items to exactly `rows`.
     let flat = batched.flatten(actions).map_err(|e| {
-        Error::InvalidAction(format!("expected a batch of exactly {rows} actions: {e}"))
+        Error::invalid_action(format!("expected a batch of exactly {rows} actions: {e}"))
     })?;
     if !flat.all_finite() {
         let values = flat.to_f64_vec();
         let at = values.iter().position(|v| !v.is_finite()).unwrap_or(0);
         let per_row = (values.len() / rows.max(1)).max(1);
-        return Err(Error::InvalidAction(format!(
+        return Err(Error::invalid_action(format!(
             "actions[{}] holds a value that is not finite ({}); nothing was stepped",
             at / per_row,
             values[at]
@@ -162,7 +162,7 @@ impl OwnerProcess {
     /// [`Error::Unsupported`] in a forked child.
     pub(crate) fn check(self, what: &str) -> Result<()> {
         if self.forked() {
-            return Err(Error::Unsupported(format!(
+            return Err(Error::unsupported(format!(
                 "this {what} was made in process {} and its worker threads do not exist in \
                  this forked child (process {}); make a new one in the child",
                 self.0,
@@ -173,18 +173,10 @@ impl OwnerProcess {
     }
 }
 
+/// Sub-environment `i`'s error, wrapped (not rewritten) so that it names the
+/// sub-environment and keeps the original as its source (see [`Error::in_env`]).
 pub(crate) fn in_env(e: Error, i: usize) -> Error {
-    match e {
-        Error::InvalidAction(m) => Error::InvalidAction(format!("sub-environment {i}: {m}")),
-        Error::Simulation(m) => Error::Simulation(format!("sub-environment {i}: {m}")),
-        Error::Model(m) => Error::Model(format!("sub-environment {i}: {m}")),
-        Error::Unsupported(m) => Error::Unsupported(format!("sub-environment {i}: {m}")),
-        Error::Contract { check, message } => Error::Contract {
-            check,
-            message: format!("sub-environment {i}: {message}"),
-        },
-        other => other,
-    }
+    e.in_env(i)
 }
 
 /// Spaces, buffers and autoreset flags of a vector environment.
@@ -274,7 +266,7 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
                 let a = self
                     .single_act
                     .read_item(actions, i)
-                    .map_err(|e| Error::InvalidAction(format!("actions[{i}]: {e}")))?;
+                    .map_err(|e| Error::invalid_action(format!("actions[{i}]: {e}")))?;
                 Ok(match self.mode {
                     AutoresetMode::NextStep if self.autoreset[i] => Op::AutoReset,
                     AutoresetMode::NextStep | AutoresetMode::Disabled => Op::Step(a),

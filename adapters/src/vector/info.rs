@@ -94,6 +94,7 @@ fn stacked_zeros(like: &ArrayValue, n: usize) -> ArrayValue {
         U8 => z::<u8>(&shape),
         F32 => z::<f32>(&shape),
         F64 => z::<f64>(&shape),
+        Bool => z::<bool>(&shape),
     }
 }
 
@@ -115,6 +116,7 @@ fn write_row(batch: &mut ArrayValue, i: usize, x: &ArrayValue) -> bool {
         ArrayValue::U8(b) => go(b, i, x),
         ArrayValue::F32(b) => go(b, i, x),
         ArrayValue::F64(b) => go(b, i, x),
+        ArrayValue::Bool(b) => go(b, i, x),
     }
     true
 }

@@ -201,7 +201,7 @@ where
             let handle = std::thread::Builder::new()
                 .name(format!("env-pool-{w}"))
                 .spawn(move || worker_loop(slots, jobs, done))
-                .map_err(|e| Error::Unsupported(format!("cannot spawn a worker thread: {e}")))?;
+                .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;
             pool.workers.push(handle);
         }
         Ok(pool)
@@ -423,7 +423,7 @@ where
             .as_ref()
             .is_some_and(|tx| tx.send((id, op)).is_ok());
         if !sent {
-            return Err(Error::Simulation(
+            return Err(Error::simulation(
                 "the pool's worker threads have exited".into(),
             ));
         }
@@ -434,7 +434,7 @@ where
     fn next_done(&mut self) -> Result<Done<E::Obs>> {
         self.done
             .recv()
-            .map_err(|_| Error::Simulation("the pool's worker threads have exited".into()))
+            .map_err(|_| Error::simulation("the pool's worker threads have exited".into()))
     }
 }
 

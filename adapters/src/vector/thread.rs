@@ -145,7 +145,7 @@ where
             let handle = std::thread::Builder::new()
                 .name(format!("vector-env-{}", w + 1))
                 .spawn(move || worker_loop(block, cmd_rx, rep_tx))
-                .map_err(|e| Error::Unsupported(format!("cannot spawn a worker thread: {e}")))?;
+                .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;
             workers.push(Worker {
                 tx: Some(cmd_tx),
                 rx: rep_rx,
@@ -211,7 +211,7 @@ where
                 waiting.push((w, globals));
             } else {
                 for g in globals {
-                    results[g] = Some(Err(Error::Simulation(format!(
+                    results[g] = Some(Err(Error::simulation(format!(
                         "the worker thread of sub-environment {g} has exited"
                     ))));
                 }
@@ -231,7 +231,7 @@ where
                 }
                 Err(_) => {
                     for g in globals {
-                        results[g] = Some(Err(Error::Simulation(format!(
+                        results[g] = Some(Err(Error::simulation(format!(
                             "the worker thread of sub-environment {g} has exited"
                         ))));
                     }
@@ -293,7 +293,7 @@ where
         let outcomes = self.dispatch(ops.into_iter().map(Some).collect());
         let outcomes = outcomes
             .into_iter()
-            .map(|o| o.unwrap_or_else(|| Err(Error::Simulation("a worker did not answer".into()))))
+            .map(|o| o.unwrap_or_else(|| Err(Error::simulation("a worker did not answer".into()))))
             .collect();
         let infos = self.core.finish_step(outcomes)?;
         Ok(self.core.view(infos))

@@ -138,7 +138,6 @@ where
     fn close(&mut self) {
         self.closed += 1;
     }
-    gym_core::base_env!();
 }
 
 /// A Box `(2,)` f32 action space in `[-1, 1]`.
@@ -209,7 +208,7 @@ impl Env for CountEnv {
     }
     fn step(&mut self, action: &i64) -> Result<Step<ArrayD<f64>>> {
         if !self.action_space.contains(action) {
-            return Err(Error::InvalidAction(format!("{action} not in Discrete(2)")));
+            return Err(Error::invalid_action(format!("{action} not in Discrete(2)")));
         }
         self.t += 1;
         Ok(Step {
@@ -220,7 +219,6 @@ impl Env for CountEnv {
             info: Info::new().with("step", self.t),
         })
     }
-    gym_core::base_env!();
 }
 
 /// A seeded random walk: observation `pos` (f32, `(2,)`), action in `[-1, 1]^2`,
@@ -292,7 +290,7 @@ impl Env for WalkEnv {
     }
     fn step(&mut self, action: &ArrayD<f32>) -> Result<Step<ArrayD<f32>>> {
         if !self.action_space.contains(action) {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "{action} is outside [-1, 1]^2"
             )));
         }
@@ -321,7 +319,6 @@ impl Env for WalkEnv {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-    gym_core::base_env!();
 }
 
 /// A robosuite-like env. Observation keys, in order: `robot0_joint_pos` (f64, 2),
@@ -434,7 +431,7 @@ impl Env for DictEnv {
     }
     fn step(&mut self, action: &ArrayD<f64>) -> Result<Step<DictValue>> {
         if !self.action_space.contains(action) {
-            return Err(Error::InvalidAction(format!(
+            return Err(Error::invalid_action(format!(
                 "{action} is outside the action space"
             )));
         }
@@ -457,7 +454,6 @@ impl Env for DictEnv {
     fn rng(&self) -> Option<&EnvRng> {
         self.rng.as_ref()
     }
-    gym_core::base_env!();
 }
 
 /// Discrete(5) observation (a position starting at 2), Discrete(2) action (0 left, 1
@@ -507,7 +503,7 @@ impl Env for DiscreteEnv {
     }
     fn step(&mut self, action: &i64) -> Result<Step<i64>> {
         if !self.action_space.contains(action) {
-            return Err(Error::InvalidAction(format!("{action} not in Discrete(2)")));
+            return Err(Error::invalid_action(format!("{action} not in Discrete(2)")));
         }
         self.pos += if *action == 1 { 1 } else { -1 };
         let end = self.pos == 0 || self.pos == 4;
@@ -519,5 +515,4 @@ impl Env for DiscreteEnv {
             info: Info::new(),
         })
     }
-    gym_core::base_env!();
 }

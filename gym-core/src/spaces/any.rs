@@ -3,7 +3,7 @@
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace};
 use crate::value::{ArrayElement, ArrayValue, Value};
 use ndarray::{ArrayD, IxDyn};
@@ -19,6 +19,7 @@ pub enum AnyBox {
     U8(BoxSpace<u8>),
     F32(BoxSpace<f32>),
     F64(BoxSpace<f64>),
+    Bool(BoxSpace<bool>),
 }
 
 macro_rules! each_box {
@@ -31,6 +32,7 @@ macro_rules! each_box {
             AnyBox::U8($b) => $body,
             AnyBox::F32($b) => $body,
             AnyBox::F64($b) => $body,
+            AnyBox::Bool($b) => $body,
         }
     };
 }
@@ -45,7 +47,7 @@ macro_rules! any_box_from {
         }
     )*};
 }
-any_box_from!(i8 => I8, i16 => I16, i32 => I32, i64 => I64, u8 => U8, f32 => F32, f64 => F64);
+any_box_from!(i8 => I8, i16 => I16, i32 => I32, i64 => I64, u8 => U8, f32 => F32, f64 => F64, bool => Bool);
 
 impl AnyBox {
     /// A Box of `dtype` with `f64` bounds (±inf allowed).
@@ -61,6 +63,7 @@ impl AnyBox {
             DType::U8 => AnyBox::U8(BoxSpace::new(low, high)?),
             DType::F32 => AnyBox::F32(BoxSpace::new(low, high)?),
             DType::F64 => AnyBox::F64(BoxSpace::new(low, high)?),
+            DType::Bool => AnyBox::Bool(BoxSpace::new(low, high)?),
         })
     }
 
@@ -134,7 +137,9 @@ impl Space for AnyBox {
     fn shape(&self) -> Option<&[usize]> {
         each_box!(self, b => b.shape())
     }
+}
 
+impl Flatten for AnyBox {
     fn flatdim(&self) -> usize {
         each_box!(self, b => b.flatdim())
     }
@@ -154,7 +159,9 @@ impl Space for AnyBox {
     fn flatten_space(&self) -> AnyBox {
         each_box!(self, b => b.flatten_space())
     }
+}
 
+impl DynSpace for AnyBox {
     fn to_any(&self) -> AnySpace {
         AnySpace::Box(self.clone())
     }
@@ -289,7 +296,9 @@ impl Space for AnySpace {
     fn shape(&self) -> Option<&[usize]> {
         each_space!(self, s => s.shape())
     }
+}
 
+impl Flatten for AnySpace {
     fn flatdim(&self) -> usize {
         each_space!(self, s => s.flatdim())
     }
@@ -309,7 +318,9 @@ impl Space for AnySpace {
     fn flatten_space(&self) -> AnyBox {
         each_space!(self, s => s.flatten_space())
     }
+}
 
+impl DynSpace for AnySpace {
     fn to_any(&self) -> AnySpace {
         self.clone()
     }
@@ -380,7 +391,7 @@ pub(crate) fn split_flat<'a>(
     flat: &ArrayValue,
     spaces: impl Iterator<Item = &'a AnySpace> + Clone,
 ) -> Result<Vec<ArrayValue>, SpaceError> {
-    let total: usize = spaces.clone().map(Space::flatdim).sum();
+    let total: usize = spaces.clone().map(Flatten::flatdim).sum();
     if flat.len() != total || flat.shape().len() != 1 {
         return Err(SpaceError::Unflatten(format!(
             "expected a flat vector of {total} entries, got shape {:?}",

@@ -2,7 +2,7 @@
 
 use crate::dtype::{DType, Scalar};
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{AnyBox, AnySpace};
 use crate::value::{ArrayElement, ArrayValue, Value};
 use ndarray::{ArrayD, IxDyn, Zip};
@@ -43,7 +43,7 @@ impl<T: ArrayElement> BoxSpace<T> {
                 problems.push(format!("low {l} > high {h}"));
             } else if !T::DTYPE.is_float() {
                 for b in [l, h] {
-                    if b.is_infinite() && T::DTYPE == DType::U8 {
+                    if b.is_infinite() && T::DTYPE.is_unsigned() {
                         problems.push(format!("infinite bound for {}", T::DTYPE));
                     } else if b.is_finite() && (b < T::MIN || b > T::MAX) {
                         problems.push(format!("bound {b} outside the range of {}", T::DTYPE));
@@ -84,11 +84,12 @@ impl<T: ArrayElement> BoxSpace<T> {
 
     /// The unbounded box `(-inf, inf)` of this shape (floating dtypes; signed integer
     /// dtypes get their full range, marked unbounded). An unsigned dtype cannot be unbounded
-    /// (Gymnasium refuses infinite bounds for it): it gets its full range `[0, MAX]`.
+    /// (Gymnasium refuses infinite bounds for it): it gets its full range `[0, MAX]`
+    /// (`[false, true]` for `bool`).
     pub fn unbounded(shape: &[usize]) -> Self {
         let full = |v: T| ArrayD::from_elem(IxDyn(shape), v);
         let flag = |b: bool| ArrayD::from_elem(IxDyn(shape), b);
-        if T::DTYPE == DType::U8 {
+        if T::DTYPE.is_unsigned() {
             Self {
                 low: full(T::zero()),
                 high: full(T::from_f64(T::MAX)),
@@ -258,7 +259,9 @@ impl<T: ArrayElement> Space for BoxSpace<T> {
     fn shape(&self) -> Option<&[usize]> {
         Some(self.low.shape())
     }
+}
 
+impl<T: ArrayElement> Flatten for BoxSpace<T> {
     fn flatdim(&self) -> usize {
         self.low.len()
     }
@@ -309,7 +312,9 @@ impl<T: ArrayElement> Space for BoxSpace<T> {
             bounded_above: flat(&self.bounded_above),
         })
     }
+}
 
+impl<T: ArrayElement> DynSpace for BoxSpace<T> {
     fn to_any(&self) -> AnySpace {
         AnySpace::Box(T::any_box(self.clone()))
     }
@@ -423,6 +428,33 @@ mod tests {
             let s = b.sample(&mut rng);
             assert!(s[[0]] >= 0.0 && s[[1]] <= 5.0);
         }
+    }
+
+    #[test]
+    fn bool_boxes_sample_contain_and_flatten() {
+        assert!(BoxSpace::<bool>::uniform(0.0, f64::INFINITY, &[1]).is_err());
+        assert!(BoxSpace::<bool>::uniform(0.0, 2.0, &[1]).is_err());
+        let b = BoxSpace::<bool>::unbounded(&[64]);
+        assert!(b.is_bounded() && b.high().iter().all(|&h| h));
+        assert_eq!(b.to_string(), "Box(0, 1, [64], bool)");
+        let s = b.sample(&mut rng_from_seed(4));
+        assert!(b.contains(&s) && s.iter().any(|&v| v) && s.iter().any(|&v| !v));
+        let only_false = BoxSpace::<bool>::uniform(0.0, 0.0, &[2]).unwrap();
+        assert!(!only_false.contains(&arr1(&[false, true]).into_dyn()));
+        assert_eq!(
+            only_false.sample(&mut rng_from_seed(0)),
+            arr1(&[false, false]).into_dyn()
+        );
+        let flat = b.flatten(&s).unwrap();
+        assert_eq!(flat.dtype(), DType::Bool);
+        assert_eq!(b.unflatten(&flat).unwrap(), s);
+        assert_eq!(b.flatten_space().dtype(), DType::Bool);
+        let v = b.to_value(&s);
+        assert_eq!(b.from_value(&v).unwrap(), s);
+        assert_eq!(
+            v.as_array().unwrap().cast(DType::F32).to_f64_vec(),
+            flat.to_f64_vec()
+        );
     }
 
     #[test]

@@ -2,7 +2,7 @@
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{AnyBox, AnySpace, concat_flat_spaces, split_flat};
 use crate::value::{ArrayValue, DictValue, Value};
 use indexmap::IndexMap;
@@ -121,15 +121,17 @@ impl Space for DictSpace {
     fn shape(&self) -> Option<&[usize]> {
         None
     }
+}
 
+impl Flatten for DictSpace {
     fn flatdim(&self) -> usize {
-        self.spaces.values().map(Space::flatdim).sum()
+        self.spaces.values().map(Flatten::flatdim).sum()
     }
 
     fn flat_dtype(&self) -> DType {
         self.spaces
             .values()
-            .map(Space::flat_dtype)
+            .map(Flatten::flat_dtype)
             .reduce(DType::promote)
             .unwrap_or(DType::F64)
     }
@@ -155,7 +157,9 @@ impl Space for DictSpace {
     fn flatten_space(&self) -> AnyBox {
         concat_flat_spaces(self.spaces.values())
     }
+}
 
+impl DynSpace for DictSpace {
     fn to_any(&self) -> AnySpace {
         AnySpace::Dict(self.clone())
     }

@@ -2,7 +2,7 @@
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{AnyBox, AnySpace, BoxSpace};
 use crate::value::{ArrayValue, Value};
 use ndarray::{ArrayD, IxDyn};
@@ -68,7 +68,9 @@ impl Space for Discrete {
     fn shape(&self) -> Option<&[usize]> {
         Some(&[])
     }
+}
 
+impl Flatten for Discrete {
     fn flatdim(&self) -> usize {
         self.n as usize
     }
@@ -109,7 +111,9 @@ impl Space for Discrete {
     fn flatten_space(&self) -> AnyBox {
         AnyBox::from(BoxSpace::<i64>::uniform(0.0, 1.0, &[self.n as usize]).expect("0..1 is valid"))
     }
+}
 
+impl DynSpace for Discrete {
     fn to_any(&self) -> AnySpace {
         AnySpace::Discrete(*self)
     }

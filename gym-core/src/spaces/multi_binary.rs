@@ -2,7 +2,7 @@
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{AnyBox, AnySpace, BoxSpace};
 use crate::value::{ArrayElement, ArrayValue, Value};
 use ndarray::{ArrayD, IxDyn};
@@ -45,7 +45,9 @@ impl Space for MultiBinary {
     fn shape(&self) -> Option<&[usize]> {
         Some(&self.shape)
     }
+}
 
+impl Flatten for MultiBinary {
     fn flatdim(&self) -> usize {
         self.shape.iter().product()
     }
@@ -79,7 +81,9 @@ impl Space for MultiBinary {
     fn flatten_space(&self) -> AnyBox {
         AnyBox::from(BoxSpace::<i8>::uniform(0.0, 1.0, &[self.flatdim()]).expect("0..1 is valid"))
     }
+}
 
+impl DynSpace for MultiBinary {
     fn to_any(&self) -> AnySpace {
         AnySpace::MultiBinary(self.clone())
     }

@@ -2,7 +2,7 @@
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{AnyBox, AnySpace, BoxSpace};
 use crate::value::{ArrayValue, Value};
 use ndarray::{ArrayD, IxDyn, Zip};
@@ -76,7 +76,9 @@ impl Space for MultiDiscrete {
     fn shape(&self) -> Option<&[usize]> {
         Some(self.nvec.shape())
     }
+}
 
+impl Flatten for MultiDiscrete {
     fn flatdim(&self) -> usize {
         self.nvec.iter().map(|&n| n as usize).sum()
     }
@@ -128,7 +130,9 @@ impl Space for MultiDiscrete {
     fn flatten_space(&self) -> AnyBox {
         AnyBox::from(BoxSpace::<i64>::uniform(0.0, 1.0, &[self.flatdim()]).expect("0..1 is valid"))
     }
+}
 
+impl DynSpace for MultiDiscrete {
     fn to_any(&self) -> AnySpace {
         AnySpace::MultiDiscrete(self.clone())
     }

@@ -2,7 +2,7 @@
 
 use crate::dtype::DType;
 use crate::error::SpaceError;
-use crate::space::Space;
+use crate::space::{DynSpace, Flatten, Space};
 use crate::spaces::{AnyBox, AnySpace, concat_flat_spaces, split_flat};
 use crate::value::{ArrayValue, Value};
 
@@ -49,15 +49,17 @@ impl Space for TupleSpace {
     fn shape(&self) -> Option<&[usize]> {
         None
     }
+}
 
+impl Flatten for TupleSpace {
     fn flatdim(&self) -> usize {
-        self.spaces.iter().map(Space::flatdim).sum()
+        self.spaces.iter().map(Flatten::flatdim).sum()
     }
 
     fn flat_dtype(&self) -> DType {
         self.spaces
             .iter()
-            .map(Space::flat_dtype)
+            .map(Flatten::flat_dtype)
             .reduce(DType::promote)
             .unwrap_or(DType::F64)
     }
@@ -91,7 +93,9 @@ impl Space for TupleSpace {
     fn flatten_space(&self) -> AnyBox {
         concat_flat_spaces(self.spaces.iter())
     }
+}
 
+impl DynSpace for TupleSpace {
     fn to_any(&self) -> AnySpace {
         AnySpace::Tuple(self.clone())
     }

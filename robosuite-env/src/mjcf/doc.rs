@@ -64,9 +64,9 @@ impl MjcfDoc {
             .ignore_comments(true)
             .trim_whitespace(true);
         let mut root = Element::parse_with_config(text.as_bytes(), config)
-            .map_err(|e| Error::Model(format!("{} is not valid XML: {e}", path.display())))?;
+            .map_err(|e| Error::model(format!("{} is not valid XML: {e}", path.display())))?;
         if root.name != "mujoco" {
-            return Err(Error::Model(format!(
+            return Err(Error::model(format!(
                 "{} is not an MJCF file (its root element is <{}>, not <mujoco>)",
                 path.display(),
                 root.name
@@ -218,7 +218,7 @@ fn inline_defaults(root: &mut Element, path: &Path) -> Result<()> {
     ) -> Result<()> {
         if let Some(class) = tree::remove_attr(e, "class") {
             let tags = classes.get(&class).ok_or_else(|| {
-                Error::Model(format!(
+                Error::model(format!(
                     "{}: <{}> uses the default class `{class}`, which the file does not define",
                     path.display(),
                     e.name

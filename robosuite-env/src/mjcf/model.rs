@@ -52,7 +52,7 @@ impl ElementNames {
         match roots.as_slice() {
             [one] => names.root_body = one.clone(),
             other => {
-                return Err(Error::Model(format!(
+                return Err(Error::model(format!(
                     "{what}: expected one top-level body, found {}",
                     other.len()
                 )));
@@ -75,7 +75,7 @@ fn sort(
     let named = |e: &Element| {
         attr(e, "name")
             .map(str::to_owned)
-            .ok_or_else(|| Error::Model(format!("{what}: a <{}> has no name", e.name)))
+            .ok_or_else(|| Error::model(format!("{what}: a <{}> has no name", e.name)))
     };
     if parent == Some("actuator") {
         out.actuators.push(named(e)?);
@@ -103,7 +103,7 @@ fn sort(
         };
         if name_geoms && attr(e, "name").is_none() {
             let Some(visual) = visual else {
-                return Err(Error::Model(format!(
+                return Err(Error::model(format!(
                     "{what}: an unnamed geom of group {} (robosuite names only groups 0 and 1)",
                     group.unwrap_or_default()
                 )));

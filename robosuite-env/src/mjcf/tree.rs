@@ -205,7 +205,7 @@ pub fn find_mut<'a>(
 /// [`Error::Model`] when there is none.
 pub fn body_mut<'a>(root: &'a mut Element, name: &str) -> Result<&'a mut Element> {
     find_mut(root, "body", &[("name", Some(name))])
-        .ok_or_else(|| Error::Model(format!("the MJCF has no body named `{name}`")))
+        .ok_or_else(|| Error::model(format!("the MJCF has no body named `{name}`")))
 }
 
 /// Every element with this tag under `root` (pre-order, `root` included).
@@ -294,7 +294,7 @@ pub fn parse_array(text: &str) -> Result<Vec<f64>> {
     text.split_whitespace()
         .map(|s| {
             s.parse::<f64>()
-                .map_err(|_| Error::Model(format!("`{text}` is not a list of numbers")))
+                .map_err(|_| Error::model(format!("`{text}` is not a list of numbers")))
         })
         .collect()
 }
@@ -309,7 +309,7 @@ pub fn attr_array<const N: usize>(e: &Element, name: &str, default: [f64; N]) ->
         Some(text) => {
             let v = parse_array(text)?;
             v.try_into().map_err(|v: Vec<f64>| {
-                Error::Model(format!(
+                Error::model(format!(
                     "attribute {name}=\"{text}\" of <{}> has {} numbers, expected {N}",
                     e.name,
                     v.len()

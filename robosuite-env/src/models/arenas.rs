@@ -84,7 +84,7 @@ fn finish(doc: &mut MjcfDoc) {
 fn floor_at_origin(doc: &mut MjcfDoc) -> Result<()> {
     let floor = tree::children_mut(doc.worldbody_mut())
         .find(|e| e.name == "geom" && attr(e, "name") == Some("floor"))
-        .ok_or_else(|| Error::Model("the arena has no geom named `floor`".into()))?;
+        .ok_or_else(|| Error::model("the arena has no geom named `floor`".into()))?;
     set_attr(floor, "pos", array_to_string(&[0.0; 3]));
     Ok(())
 }
@@ -96,7 +96,7 @@ fn direct_child_mut<'a>(
 ) -> Result<&'a mut crate::mjcf::Element> {
     tree::children_mut(parent)
         .find(|e| e.name == tag && attr(e, "name") == Some(name))
-        .ok_or_else(|| Error::Model(format!("the arena has no <{tag} name=\"{name}\">")))
+        .ok_or_else(|| Error::model(format!("the arena has no <{tag} name=\"{name}\">")))
 }
 
 impl Arena {

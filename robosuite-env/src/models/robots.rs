@@ -307,7 +307,7 @@ impl RobotModel {
         )?;
         let dof = xml.names.joints.len();
         if dof != info.init_qpos.len() {
-            return Err(Error::Model(format!(
+            return Err(Error::model(format!(
                 "{} has {dof} joints in {}, but {} initial positions",
                 info.name,
                 info.file,
@@ -435,7 +435,7 @@ fn set_joint_attribute(
 ) -> Result<()> {
     let joints = xml.names_of(&xml.names.joints);
     if values.len() != joints.len() {
-        return Err(Error::Model(format!(
+        return Err(Error::model(format!(
             "{attrib}: {} values for {} joints",
             values.len(),
             joints.len()
@@ -443,7 +443,7 @@ fn set_joint_attribute(
     }
     for (name, v) in joints.iter().zip(values) {
         let joint = tree::find_mut(xml.doc.worldbody_mut(), "joint", &[("name", Some(name))])
-            .ok_or_else(|| Error::Model(format!("no joint `{name}`")))?;
+            .ok_or_else(|| Error::model(format!("no joint `{name}`")))?;
         if force || attr(joint, attrib).is_none() {
             set_attr(joint, attrib, array_to_string(&[*v]));
         }

@@ -48,7 +48,7 @@ impl Scene {
     ) -> Result<Self> {
         let mut doc = MjcfDoc::load(&assets.file("base.xml")?)?;
         let option = tree::find_mut(doc.root_mut(), "option", &[])
-            .ok_or_else(|| Error::Model("base.xml has no <option>".into()))?;
+            .ok_or_else(|| Error::model("base.xml has no <option>".into()))?;
         set_attr(option, "timestep", tree::format_number(SIMULATION_TIMESTEP));
         doc.merge(arena.doc.clone(), MergeBody::World)?;
         for robot in robots {
@@ -164,7 +164,7 @@ pub fn compile_cached(xml: &str) -> Result<MjModel> {
         return Ok(MjModel::clone(model));
     }
     let mut model = MjModel::from_xml_string(xml)
-        .map_err(|e| Error::Model(format!("MuJoCo cannot compile the scene: {e}")))?;
+        .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
     use_robosuites_collision_defaults(&mut model);
     if map.len() >= CACHE_CAPACITY {
         map.clear();

@@ -151,7 +151,7 @@ impl MarkerWalk {
         let mut redraws = 0;
         while new[0].abs() >= lx || new[1].abs() >= ly {
             if redraws == MAX_REDRAWS {
-                return Err(Error::Simulation(format!(
+                return Err(Error::simulation(format!(
                     "the Wipe marker walk is stuck at ({}, {}) after {MAX_REDRAWS} direction draws \
                      (path limits ±{lx} × ±{ly} m)",
                     pos[0], pos[1]

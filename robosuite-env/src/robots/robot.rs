@@ -219,7 +219,7 @@ impl Robot {
         let narms = robot.arms.len();
         let per_arm = joints.len() / narms;
         if per_arm * narms != joints.len() || actuators.len() != joints.len() {
-            return Err(Error::Model(format!(
+            return Err(Error::model(format!(
                 "{}: {} joints and {} motors do not split into {narms} arm(s)",
                 robot.info.name,
                 joints.len(),

@@ -60,13 +60,13 @@ impl Sim {
     pub fn new(model: MjModel) -> Result<Self> {
         // SAFETY: a compiled model; the shim allocates and frees one mjData.
         unsafe { guard::trial_make_data(model.ffi()) }
-            .map_err(|e| Error::Model(format!("MuJoCo cannot allocate mjData: {e}")))?;
+            .map_err(|e| Error::model(format!("MuJoCo cannot allocate mjData: {e}")))?;
         let data = MjData::try_new(Box::new(model))
-            .map_err(|e| Error::Model(format!("cannot allocate mjData: {e}")))?;
+            .map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
         let mut sim = Self { data, failed: None };
         sim.forward()
             .and_then(|()| sim.step())
-            .map_err(|e| Error::Model(format!("the trial step failed: {e}")))?;
+            .map_err(|e| Error::model(format!("the trial step failed: {e}")))?;
         sim.reset_data();
         Ok(sim)
     }
@@ -74,7 +74,7 @@ impl Sim {
     /// Runs a MuJoCo function through the guard; on a fatal error marks the simulator failed.
     fn guarded(&mut self, call: Call) -> Result<()> {
         if let Some(message) = &self.failed {
-            return Err(Error::Simulation(format!(
+            return Err(Error::simulation(format!(
                 "an earlier MuJoCo error ({message}) left the simulation unusable; reset first"
             )));
         }
@@ -86,7 +86,7 @@ impl Sim {
             guard::run(call, m, d)
         };
         result.map_err(|message| {
-            let error = Error::Simulation(format!(
+            let error = Error::simulation(format!(
                 "MuJoCo error: {message} (the simulation is unusable until reset)"
             ));
             self.failed = Some(message);
@@ -121,7 +121,7 @@ impl Sim {
         for (w, what) in DIVERGENCE_WARNINGS {
             let stat = &warnings[w as usize];
             if stat.number > 0 {
-                return Err(Error::Simulation(format!(
+                return Err(Error::simulation(format!(
                     "the simulation diverged: {what} became non-finite or larger than 1e10 \
                      (index {}, time {}); MuJoCo reset the physics, so reset the env",
                     stat.lastinfo,

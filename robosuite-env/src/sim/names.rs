@@ -6,12 +6,12 @@ use mujoco_rs::wrappers::mj_model::MjtObjBase as mjtObj;
 
 fn lookup(model: &MjModel, kind: mjtObj, what: &str, name: &str) -> Result<usize> {
     if name.contains('\0') {
-        return Err(Error::Model(format!(
+        return Err(Error::model(format!(
             "{what} name `{name:?}` contains a NUL byte"
         )));
     }
     model.name_to_id(kind, name).ok_or_else(|| {
-        Error::Model(format!(
+        Error::model(format!(
             "the model has no {what} named `{name}` (robosuite's naming is expected)"
         ))
     })
@@ -79,7 +79,7 @@ pub fn actuator_for_joint(model: &MjModel, joint: usize, joint_name: &str) -> Re
             trntype[a] == mujoco_rs::mujoco_c::mjtTrn::mjTRN_JOINT as i32
                 && trnid[2 * a] as usize == joint
         })
-        .ok_or_else(|| Error::Model(format!("no actuator drives the joint `{joint_name}`")))
+        .ok_or_else(|| Error::model(format!("no actuator drives the joint `{joint_name}`")))
 }
 
 /// The address in `sensordata` of the sensor `name`, which must have `dim` values (so that
@@ -91,7 +91,7 @@ pub fn sensor_adr(model: &MjModel, name: &str, dim: usize) -> Result<usize> {
     let id = lookup(model, mjtObj::mjOBJ_SENSOR, "sensor", name)?;
     let got = model.sensor_dim()[id];
     if usize::try_from(got).ok() != Some(dim) {
-        return Err(Error::Model(format!(
+        return Err(Error::model(format!(
             "the sensor `{name}` has {got} value(s); {dim} expected"
         )));
     }

@@ -198,7 +198,7 @@ pub fn reshape_body_from(
     let (ga, gn, ba, bn, da, dn) = count(sim.model(), body);
     let (dga, dgn, dba, dbn, dda, ddn) = count(donor, donor_body);
     if gn != dgn || bn != dbn || dn != ddn || ga < 0 || dga < 0 {
-        return Err(Error::Model(format!(
+        return Err(Error::model(format!(
             "the donor body has {dgn} geoms, {dbn} bounding volumes and {ddn} dofs; \
              the body {gn}, {bn} and {dn}"
         )));

@@ -35,10 +35,10 @@ impl FreeBody {
             .joints()
             .into_iter()
             .next()
-            .ok_or_else(|| Error::Model(format!("object `{}` has no joint", object.name)))?;
+            .ok_or_else(|| Error::model(format!("object `{}` has no joint", object.name)))?;
         let j = joint_id(model, &joint)?;
         if model.jnt_type()[j] != mujoco_rs::mujoco_c::mjtJoint::mjJNT_FREE {
-            return Err(Error::Model(format!("`{joint}` must be a free joint")));
+            return Err(Error::model(format!("`{joint}` must be a free joint")));
         }
         Ok(Self {
             body: body_id(model, &object.root_body())?,

@@ -63,7 +63,7 @@ fn door_object(assets: &Assets, use_latch: bool) -> Result<ObjectModel> {
     let mut door = xml_object(assets, file, "Door", &Joints::None, ObjType::All, true)?;
     let hinge = door.name_of("hinge");
     let joint = tree::find_mut(&mut door.body, "joint", &[("name", Some(hinge.as_str()))])
-        .ok_or_else(|| Error::Model(format!("{file} has no joint `hinge`")))?;
+        .ok_or_else(|| Error::model(format!("{file} has no joint `hinge`")))?;
     set_attr(joint, "frictionloss", format_number(0.0));
     set_attr(joint, "damping", format_number(0.1));
     Ok(door)

@@ -121,7 +121,7 @@ impl UniformRandomSampler {
                 }
             }
             let Some(pose) = found else {
-                return Err(Error::Simulation(format!(
+                return Err(Error::simulation(format!(
                     "cannot place object {n} without overlap in {} tries",
                     Self::MAX_TRIES
                 )));

@@ -148,7 +148,7 @@ impl TaskSpec for ToolHangSpec {
 
     fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>> {
         let [stand, frame, tool] = &scene.objects[..] else {
-            return Err(gym_core::Error::Model(format!(
+            return Err(gym_core::Error::model(format!(
                 "ToolHang's scene holds 3 objects, got {}",
                 scene.objects.len()
             )));

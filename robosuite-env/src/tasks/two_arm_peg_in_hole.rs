@@ -172,7 +172,7 @@ impl TaskSpec for TwoArmPegInHoleSpec {
                 "body",
                 &[("name", Some(&eef))],
             )
-            .ok_or_else(|| Error::Model(format!("no body `{eef}` to attach to")))?;
+            .ok_or_else(|| Error::model(format!("no body `{eef}` to attach to")))?;
             append(body, object.body.clone());
         }
         Ok(TaskScene {

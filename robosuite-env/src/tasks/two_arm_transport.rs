@@ -269,7 +269,7 @@ impl TaskSpec for TwoArmTransportSpec {
             Observable::new(
                 name,
                 &[],
-                DType::I8,
+                DType::Bool,
                 "object",
                 move |t: &TwoArmTransport, sim: &Sim, out: &mut [f64]| {
                     out[0] = f64::from(u8::from(f(t, sim)));

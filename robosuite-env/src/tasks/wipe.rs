@@ -258,10 +258,10 @@ impl TaskSpec for WipeSpec {
         let config = self.task_config.clone();
         let robot = robots
             .first()
-            .ok_or_else(|| Error::Model("Wipe needs a robot".into()))?;
+            .ok_or_else(|| Error::model("Wipe needs a robot".into()))?;
         let arm = robot.arm();
         let corners: [usize; 4] = arm.gripper().corners().try_into().map_err(|_| {
-            Error::Model(format!(
+            Error::model(format!(
                 "Wipe needs the wiping tool's four corner geoms, the gripper has {}",
                 arm.gripper().corners().len()
             ))
@@ -284,7 +284,7 @@ impl TaskSpec for WipeSpec {
                 (0..ranges.len())
                     .find(|&j| model.jnt_qposadr()[j] as usize == adr)
                     .map(|j| (adr, ranges[j]))
-                    .ok_or_else(|| Error::Model(format!("no joint has qpos address {adr}")))
+                    .ok_or_else(|| Error::model(format!("no joint has qpos address {adr}")))
             })
             .collect::<Result<Vec<_>>>()?;
         let pf = format!("robot{}_", robot.index());
@@ -361,7 +361,7 @@ struct WipeInfo {
 ///   the current force beyond the bias, which is the force after the first step.
 /// * Observations are sampled before the step's reward wipes markers, so
 ///   `proportion_wiped`, `wipe_radius` and `wipe_centroid` lag the wiping by one step, as in
-///   robosuite. `robot0_contact` (robosuite's bool) is int8 here.
+///   robosuite. `robot0_contact` is a bool, as robosuite's.
 /// * Success: every marker wiped. Early termination (`terminated`): an arm link touching
 ///   anything, a joint near its limit, or success.
 #[derive(Debug, Clone)]
@@ -410,7 +410,7 @@ impl Wipe {
                 Observable::new(
                     format!("{pf}contact"),
                     &[],
-                    DType::I8,
+                    DType::Bool,
                     &format!("{pf}proprio"),
                     |t: &Wipe, sim, out| out[0] = f64::from(u8::from(t.has_gripper_contact(sim))),
                 )

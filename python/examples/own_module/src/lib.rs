@@ -99,7 +99,7 @@ impl Env for Corridor {
             0 => -1,
             1 => 1,
             other => {
-                return Err(Error::InvalidAction(format!(
+                return Err(Error::invalid_action(format!(
                     "expected 0 (left) or 1 (right), got {other}"
                 )));
             }
@@ -120,7 +120,6 @@ impl Env for Corridor {
     fn rng(&self) -> Option<&EnvRng> {
         Some(&self.rng)
     }
-    gym_core::base_env!();
 }
 
 /// A user-written wrapper: repeats each action `repeat` times and sums the rewards.

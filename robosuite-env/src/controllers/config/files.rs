@@ -62,9 +62,9 @@ pub fn load_composite_controller_config(
     let mut value = read_json(&path)?;
     let obj = value
         .as_object_mut()
-        .ok_or_else(|| Error::Model(format!("{}: not a JSON object", path.display())))?;
+        .ok_or_else(|| Error::model(format!("{}: not a JSON object", path.display())))?;
     if !obj.contains_key("type") || !obj.contains_key("body_parts") {
-        return Err(Error::Model(format!(
+        return Err(Error::model(format!(
             "{}: a composite controller config needs `type` and `body_parts`",
             path.display()
         )));
@@ -114,5 +114,5 @@ pub fn load_part_controller_config(assets: &Assets, default_controller: &str) ->
 pub fn read_json(path: &std::path::Path) -> Result<Value> {
     let text = read_file(path)?;
     serde_json::from_str(&text)
-        .map_err(|e| Error::Model(format!("{}: not valid JSON: {e}", path.display())))
+        .map_err(|e| Error::model(format!("{}: not valid JSON: {e}", path.display())))
 }

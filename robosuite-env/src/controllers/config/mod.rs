@@ -306,7 +306,7 @@ impl ControllerConfig {
 pub fn robot_default(assets: &Assets, robot: &str) -> Result<CompositeControllerConfig> {
     let value = load_composite_controller_config(assets, None, Some(robot))?;
     CompositeControllerConfig::from_value(&value, "controller_configs").map_err(|e| {
-        Error::Model(format!(
+        Error::model(format!(
             "robosuite's default controller config for {robot}: {e}"
         ))
     })
@@ -408,7 +408,7 @@ fn typed<T: DeserializeOwned>(value: Value, path: &str) -> Result<T> {
 fn check_composite_type(kind: &str, path: &str) -> Result<()> {
     match kind {
         "BASIC" => Ok(()),
-        k if COMPOSITE_CONTROLLER_TYPES.contains(&k) => Err(Error::Unsupported(format!(
+        k if COMPOSITE_CONTROLLER_TYPES.contains(&k) => Err(Error::unsupported(format!(
             "{path}: the composite controller `{k}` drives mobile or whole-body robots; \
              robosuite-rs's robots are fixed-base arms, whose composite controller is BASIC"
         ))),

@@ -321,7 +321,7 @@ impl Hammer {
         let mut doc = crate::mjcf::MjcfDoc::parse(DONOR_XML, std::path::Path::new("donor.xml"))?;
         crate::mjcf::tree::append(doc.worldbody_mut(), body);
         mujoco_rs::wrappers::mj_model::MjModel::from_xml_string(&doc.to_xml())
-            .map_err(|e| Error::Model(format!("MuJoCo cannot compile the hammer: {e}")))
+            .map_err(|e| Error::model(format!("MuJoCo cannot compile the hammer: {e}")))
     }
 }
 

@@ -48,7 +48,7 @@ pub fn xml_object(
 ) -> Result<ObjectModel> {
     let path = assets.file(file)?;
     let mut doc = MjcfDoc::load(&path)?;
-    let layout_error = |what: &str| Error::Model(format!("{}: {what}", path.display()));
+    let layout_error = |what: &str| Error::model(format!("{}: {what}", path.display()));
     let outer_idx = doc
         .worldbody()
         .children
@@ -156,7 +156,7 @@ fn filter_geoms(
         let group: u32 = attr(&c, "group")
             .and_then(|g| g.parse().ok())
             .ok_or_else(|| {
-                Error::Model(format!(
+                Error::model(format!(
                     "{}: object geom {i} has no numeric group (robosuite reads it as an integer)",
                     path.display()
                 ))
