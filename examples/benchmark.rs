@@ -211,7 +211,7 @@ fn parallel_ceiling(task: &Case, n: usize, budget: Duration) -> Result<f64> {
         handles.into_iter().try_fold(0.0, |sum, h| {
             let r = h
                 .join()
-                .map_err(|_| gym_core::Error::simulation("a benchmark thread panicked".into()))??;
+                .map_err(|_| gym_core::Error::simulation("a benchmark thread panicked"))??;
             Ok(sum + r)
         })
     })

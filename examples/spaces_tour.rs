@@ -2,7 +2,10 @@
 //!
 //! Run with `cargo run -p examples --example spaces_tour`.
 
-use gym_core::{AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, Space, rng_from_seed};
+use gym_core::{
+    AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, Space, flatdim, flatten, flatten_space,
+    rng_from_seed, unflatten,
+};
 
 fn main() -> Result<(), gym_core::SpaceError> {
     let space = DictSpace::new([
@@ -18,10 +21,10 @@ fn main() -> Result<(), gym_core::SpaceError> {
     let x = space.sample(&mut rng);
     println!("sample:       {x:?}");
     println!("contains:     {}", space.contains(&x));
-    let flat = space.flatten(&x)?;
-    println!("flatdim:      {} ({})", space.flatdim(), flat.dtype());
+    let flat = flatten(&space, &x)?;
+    println!("flatdim:      {} ({})", flatdim(&space), flat.dtype());
     println!("flattened:    {:?}", flat.to_f64_vec());
-    println!("flat space:   {}", space.flatten_space());
-    println!("round trip:   {}", space.unflatten(&flat)? == x);
+    println!("flat space:   {}", flatten_space(&space));
+    println!("round trip:   {}", unflatten(&space, &flat)? == x);
     Ok(())
 }

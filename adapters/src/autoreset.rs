@@ -28,32 +28,19 @@ impl<E: Env> Autoreset<E> {
     }
 }
 
-impl<E: Env> Env for Autoreset<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
+impl<E: Env> gym_core::StepWrapper for Autoreset<E> {
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        self.autoreset = false;
-        self.env.reset(seed, options)
+        this.autoreset = false;
+        this.env.reset(seed, options)
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let step = if self.autoreset {
-            let (observation, info) = self.env.reset(None, None)?;
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let step = if this.autoreset {
+            let (observation, info) = this.env.reset(None, None)?;
             Step {
                 observation,
                 reward: 0.0,
@@ -62,16 +49,26 @@ impl<E: Env> Env for Autoreset<E> {
                 info,
             }
         } else {
-            self.env.step(action)?
+            this.env.step(action)?
         };
-        self.autoreset = step.terminated || step.truncated;
+        this.autoreset = step.terminated || step.truncated;
         Ok(step)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(Autoreset);
+impl<E: Env> gym_core::Wrapper for Autoreset<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -14,7 +14,8 @@ use gym_core::spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
 use gym_core::{
-    ArrayElement, ArrayValue, DType, DictValue, Error, Result, Space, SpaceError, Value,
+    ArrayElement, ArrayValue, DType, DictValue, DynSpace, Error, Flatten, Result, Space,
+    SpaceError, Value,
 };
 use ndarray::{ArrayD, Axis, IxDyn, Zip};
 
@@ -22,9 +23,9 @@ use ndarray::{ArrayD, Axis, IxDyn, Zip};
 pub type BatchOf<S> = <<S as BatchSpace>::Batched as Space>::Element;
 
 /// A space that can be batched, with in-place access to one item of a batch.
-pub trait BatchSpace: Space {
+pub trait BatchSpace: Flatten + DynSpace {
     /// The space of `n` stacked elements.
-    type Batched: Space;
+    type Batched: Flatten + DynSpace;
 
     /// Gymnasium's `batch_space(space, n)`.
     ///

@@ -1,7 +1,7 @@
 //! [`ClipAction`]: actions clipped into the environment's Box before stepping.
 
 use crate::numeric::NumericSpace;
-use gym_core::{Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{ActionWrapper, Actions, Env, Error, Result, Wrapper};
 use ndarray::{ArrayD, IxDyn};
 
 /// Gymnasium's `ClipAction`: the action space becomes `Box(-inf, inf, shape, dtype)` and
@@ -42,44 +42,40 @@ where
     }
 }
 
-impl<E: Env> Env for ClipAction<E>
+impl<E: Env> Wrapper for ClipAction<E>
 where
     E::ActSpace: NumericSpace,
 {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
+    type Inner = E;
+    type Kind = Actions;
+    fn inner(&self) -> &E {
+        &self.env
     }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn action_space(&self) -> &E::ActSpace {
+impl<E: Env> ActionWrapper for ClipAction<E>
+where
+    E::ActSpace: NumericSpace,
+{
+    type Space = E::ActSpace;
+
+    fn space(&self) -> &E::ActSpace {
         &self.space
     }
 
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let clipped = self
-            .env
+    fn action(&mut self, action: &E::Act) -> Result<E::Act> {
+        self.env
             .action_space()
             .clip_element(action)
-            .map_err(Error::into_invalid_action)?;
-        self.env.step(&clipped)
+            .map_err(Error::into_invalid_action)
     }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(ClipAction);
 
 #[cfg(test)]
 mod tests {

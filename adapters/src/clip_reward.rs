@@ -1,6 +1,6 @@
 //! [`ClipReward`]: rewards clipped into `[min_reward, max_reward]`.
 
-use gym_core::{Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{Env, Error, Result, RewardWrapper, Rewards, Wrapper};
 
 /// Gymnasium's `ClipReward(env, min_reward=None, max_reward=None)`: `np.clip(reward, min,
 /// max)` with an open side where a bound is `None`.
@@ -46,47 +46,29 @@ impl<E: Env> ClipReward<E> {
     }
 }
 
-impl<E: Env> Env for ClipReward<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
+impl<E: Env> Wrapper for ClipReward<E> {
+    type Inner = E;
+    type Kind = Rewards;
+    fn inner(&self) -> &E {
+        &self.env
     }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
+    fn into_inner(self) -> E {
+        self.env
     }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mut step = self.env.step(action)?;
-        if let Some(lo) = self.min_reward
-            && step.reward < lo
-        {
-            step.reward = lo;
-        }
-        if let Some(hi) = self.max_reward
-            && step.reward > hi
-        {
-            step.reward = hi;
-        }
-        Ok(step)
-    }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(ClipReward);
+impl<E: Env> RewardWrapper for ClipReward<E> {
+    fn reward(&mut self, reward: f64) -> f64 {
+        match (self.min_reward, self.max_reward) {
+            (Some(lo), _) if reward < lo => lo,
+            (_, Some(hi)) if reward > hi => hi,
+            _ => reward,
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -2,7 +2,7 @@
 
 use crate::numeric::NumericSpace;
 use gym_core::spaces::BoxSpace;
-use gym_core::{ArrayElement, Env, Info, ResetOptions, Result, Step};
+use gym_core::{ArrayElement, Env, ObservationWrapper, Observations, Result, Wrapper};
 use ndarray::ArrayD;
 use std::marker::PhantomData;
 
@@ -45,42 +45,37 @@ where
     }
 }
 
-impl<E: Env, U: ArrayElement> Env for DtypeObservation<E, U>
+impl<E: Env, U: ArrayElement> Wrapper for DtypeObservation<E, U>
 where
     E::ObsSpace: NumericSpace,
 {
-    type Obs = ArrayD<U>;
-    type Act = E::Act;
-    type ObsSpace = BoxSpace<U>;
-    type ActSpace = E::ActSpace;
+    type Inner = E;
+    type Kind = Observations;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn observation_space(&self) -> &BoxSpace<U> {
+impl<E: Env, U: ArrayElement> ObservationWrapper for DtypeObservation<E, U>
+where
+    E::ObsSpace: NumericSpace,
+{
+    type Space = BoxSpace<U>;
+
+    fn space(&self) -> &BoxSpace<U> {
         &self.space
     }
 
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn observation(&mut self, observation: E::Obs) -> Result<ArrayD<U>> {
+        self.env.observation_space().element_to_array(&observation)
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(ArrayD<U>, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok((self.env.observation_space().element_to_array(&obs)?, info))
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<ArrayD<U>>> {
-        let step = self.env.step(action)?;
-        let space = self.env.observation_space();
-        step.try_map_observation(|o| space.element_to_array(&o))
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(DtypeObservation, U; where U: ArrayElement);
 
 #[cfg(test)]
 mod tests {

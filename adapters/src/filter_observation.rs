@@ -1,7 +1,10 @@
 //! [`FilterObservation`]: keeps some keys of a Dict observation or some items of a Tuple.
 
 use gym_core::spaces::{AnySpace, DictSpace, TupleSpace};
-use gym_core::{DictValue, Env, Error, Info, ResetOptions, Result, Space, SpaceError, Step, Value};
+use gym_core::{
+    DictValue, Env, Error, ObservationWrapper, Observations, Result, Space, SpaceError, Value,
+    Wrapper,
+};
 
 /// The keys to keep: names for a Dict space, indices for a Tuple space.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -243,47 +246,39 @@ where
     }
 }
 
-impl<E: Env> Env for FilterObservation<E>
+impl<E: Env> Wrapper for FilterObservation<E>
 where
     E::ObsSpace: FilterableSpace,
 {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
+    type Inner = E;
+    type Kind = Observations;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn observation_space(&self) -> &E::ObsSpace {
+impl<E: Env> ObservationWrapper for FilterObservation<E>
+where
+    E::ObsSpace: FilterableSpace,
+{
+    type Space = E::ObsSpace;
+
+    fn space(&self) -> &E::ObsSpace {
         &self.space
     }
 
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn observation(&mut self, observation: E::Obs) -> Result<E::Obs> {
+        self.env
+            .observation_space()
+            .filter_element(&self.keys, observation)
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok((
-            self.env
-                .observation_space()
-                .filter_element(&self.keys, obs)?,
-            info,
-        ))
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let step = self.env.step(action)?;
-        let (space, keys) = (self.env.observation_space(), &self.keys);
-        step.try_map_observation(|o| space.filter_element(keys, o))
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(FilterObservation);
 
 #[cfg(test)]
 mod tests {

@@ -2,7 +2,7 @@
 //! `flatten` / `flatten_space`).
 
 use gym_core::spaces::AnyBox;
-use gym_core::{ArrayValue, Env, Info, ResetOptions, Result, Space, Step};
+use gym_core::{ArrayValue, Env, ObservationWrapper, Observations, Result, Wrapper};
 
 /// Gymnasium's `FlattenObservation`: the observation space becomes
 /// `flatten_space(env.observation_space)` and each observation `flatten(space, obs)`.
@@ -20,50 +20,45 @@ pub struct FlattenObservation<E> {
 impl<E: Env> FlattenObservation<E> {
     /// Wraps `env`.
     pub fn new(env: E) -> Self {
-        let space = env.observation_space().flatten_space();
+        let space = gym_core::flatten_space(env.observation_space());
         Self { env, space }
     }
 }
 
-impl<E: Env> Env for FlattenObservation<E> {
-    type Obs = ArrayValue;
-    type Act = E::Act;
-    type ObsSpace = AnyBox;
-    type ActSpace = E::ActSpace;
+impl<E: Env> Wrapper for FlattenObservation<E> {
+    type Inner = E;
+    type Kind = Observations;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn observation_space(&self) -> &AnyBox {
+impl<E: Env> ObservationWrapper for FlattenObservation<E> {
+    type Space = AnyBox;
+
+    fn space(&self) -> &AnyBox {
         &self.space
     }
 
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn observation(&mut self, observation: E::Obs) -> Result<ArrayValue> {
+        Ok(gym_core::flatten(
+            self.env.observation_space(),
+            &observation,
+        )?)
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(ArrayValue, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok((self.env.observation_space().flatten(&obs)?, info))
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<ArrayValue>> {
-        let step = self.env.step(action)?;
-        let space = self.env.observation_space();
-        Ok(step.try_map_observation(|o| space.flatten(&o))?)
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(FlattenObservation);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::toy::{DictEnv, DiscreteEnv, a64};
-    use gym_core::DType;
+    use gym_core::{DType, Space};
 
     #[test]
     fn discrete_becomes_int64_one_hot() {

@@ -88,56 +88,70 @@ where
     }
 }
 
-impl<E: Env> Env for FrameStackObservation<E>
+impl<E: Env> gym_core::CustomWrapper for FrameStackObservation<E>
 where
     E::ObsSpace: BatchSpace,
     BatchOf<E::ObsSpace>: Send,
 {
-    type Obs = BatchOf<E::ObsSpace>;
-    type Act = E::Act;
-    type ObsSpace = <E::ObsSpace as BatchSpace>::Batched;
-    type ActSpace = E::ActSpace;
+    type Observation = BatchOf<E::ObsSpace>;
+    type Action = E::Act;
+    type ObservationSpace = <E::ObsSpace as BatchSpace>::Batched;
+    type ActionSpace = E::ActSpace;
 
-    fn observation_space(&self) -> &Self::ObsSpace {
-        &self.space
+    fn observation_space(this: &Self) -> &Self::ObservationSpace {
+        &this.space
     }
 
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn action_space(this: &Self) -> &E::ActSpace {
+        this.env.action_space()
     }
 
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
-    ) -> Result<(Self::Obs, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        if matches!(self.padding, Padding::Reset) {
-            self.padding_value = obs.clone();
+    ) -> Result<(Self::Observation, Info)> {
+        let (obs, info) = this.env.reset(seed, options)?;
+        if matches!(this.padding, Padding::Reset) {
+            this.padding_value = obs.clone();
         }
-        self.queue.clear();
-        self.queue.extend(std::iter::repeat_n(
-            self.padding_value.clone(),
-            self.stack_size - 1,
+        this.queue.clear();
+        this.queue.extend(std::iter::repeat_n(
+            this.padding_value.clone(),
+            this.stack_size - 1,
         ));
-        self.queue.push_back(obs);
-        Ok((self.stacked()?, info))
+        this.queue.push_back(obs);
+        Ok((this.stacked()?, info))
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<Self::Obs>> {
-        let step = self.env.step(action)?;
-        if self.queue.len() == self.stack_size {
-            self.queue.pop_front();
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<Self::Observation>> {
+        let step = this.env.step(action)?;
+        if this.queue.len() == this.stack_size {
+            this.queue.pop_front();
         }
-        self.queue.push_back(step.observation.clone());
-        let stacked = self.stacked()?;
+        this.queue.push_back(step.observation.clone());
+        let stacked = this.stacked()?;
         Ok(step.map_observation(|_| stacked))
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(FrameStackObservation; where E::ObsSpace: BatchSpace);
+impl<E: Env> gym_core::Wrapper for FrameStackObservation<E>
+where
+    E::ObsSpace: BatchSpace,
+    BatchOf<E::ObsSpace>: Send,
+{
+    type Inner = E;
+    type Kind = gym_core::Custom;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

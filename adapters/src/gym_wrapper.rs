@@ -29,14 +29,14 @@
 use crate::numeric::NumericSpace;
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace};
 use gym_core::{
-    DictValue, Env, Error, Info, ResetOptions, Result, Scalar, Space, SpaceError, Step, Transition,
-    Value,
+    DictValue, DynSpace, Env, Error, Info, ResetOptions, Result, Scalar, Space, SpaceError, Step,
+    Transition, Value,
 };
 use ndarray::{ArrayD, IxDyn};
 
 /// An observation space whose elements are ordered dicts: [`DictSpace`], or an
 /// [`AnySpace`] holding one (the observation space of a boxed, registry-made env).
-pub trait DictObservationSpace: Space {
+pub trait DictObservationSpace: DynSpace {
     /// The Dict space, if this is one.
     fn dict_space(&self) -> Option<&DictSpace>;
 
@@ -384,44 +384,59 @@ where
     }
 }
 
-impl<E> Env for GymWrapper<E>
+impl<E> gym_core::CustomWrapper for GymWrapper<E>
 where
     E: Env,
     E::ObsSpace: DictObservationSpace,
     E::ActSpace: NumericSpace,
 {
-    type Obs = Value;
-    type Act = ArrayD<f32>;
-    type ObsSpace = AnySpace;
-    type ActSpace = BoxSpace<f32>;
+    type Observation = Value;
+    type Action = ArrayD<f32>;
+    type ObservationSpace = AnySpace;
+    type ActionSpace = BoxSpace<f32>;
 
-    fn observation_space(&self) -> &AnySpace {
-        &self.observation_space
+    fn observation_space(this: &Self) -> &AnySpace {
+        &this.observation_space
     }
 
-    fn action_space(&self) -> &BoxSpace<f32> {
-        &self.action_space
+    fn action_space(this: &Self) -> &BoxSpace<f32> {
+        &this.action_space
     }
 
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(Value, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok((self.observation(obs)?, info))
+        let (obs, info) = this.env.reset(seed, options)?;
+        Ok((this.observation(obs)?, info))
     }
 
-    fn step(&mut self, action: &ArrayD<f32>) -> Result<Step<Value>> {
-        let action = convert_action(self.env.action_space(), action)?;
-        let step = self.env.step(&action)?;
-        step.try_map_observation(|o| self.observation(o))
+    fn step(this: &mut Self, action: &ArrayD<f32>) -> Result<Step<Value>> {
+        let action = convert_action(this.env.action_space(), action)?;
+        let step = this.env.step(&action)?;
+        step.try_map_observation(|o| this.observation(o))
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(GymWrapper);
+impl<E> gym_core::Wrapper for GymWrapper<E>
+where
+    E: Env,
+    E::ObsSpace: DictObservationSpace,
+    E::ActSpace: NumericSpace,
+{
+    type Inner = E;
+    type Kind = gym_core::Custom;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 /// [`GymWrapper`] with `flatten_obs = true` and typed observations: `ArrayD<f32>` in
 /// `Box(-inf, inf, (n,), float32)`.
@@ -485,38 +500,38 @@ where
     }
 }
 
-impl<E> Env for FlatGymWrapper<E>
+impl<E> gym_core::CustomWrapper for FlatGymWrapper<E>
 where
     E: Env,
     E::ObsSpace: DictObservationSpace,
     E::ActSpace: NumericSpace,
 {
-    type Obs = ArrayD<f32>;
-    type Act = ArrayD<f32>;
-    type ObsSpace = BoxSpace<f32>;
-    type ActSpace = BoxSpace<f32>;
+    type Observation = ArrayD<f32>;
+    type Action = ArrayD<f32>;
+    type ObservationSpace = BoxSpace<f32>;
+    type ActionSpace = BoxSpace<f32>;
 
-    fn observation_space(&self) -> &BoxSpace<f32> {
-        &self.observation_space
+    fn observation_space(this: &Self) -> &BoxSpace<f32> {
+        &this.observation_space
     }
 
-    fn action_space(&self) -> &BoxSpace<f32> {
-        &self.action_space
+    fn action_space(this: &Self) -> &BoxSpace<f32> {
+        &this.action_space
     }
 
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(ArrayD<f32>, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok((self.plan.flatten(&E::ObsSpace::into_dict(obs)?)?, info))
+        let (obs, info) = this.env.reset(seed, options)?;
+        Ok((this.plan.flatten(&E::ObsSpace::into_dict(obs)?)?, info))
     }
 
-    fn step(&mut self, action: &ArrayD<f32>) -> Result<Step<ArrayD<f32>>> {
-        let mut observation = ArrayD::zeros(IxDyn(&[self.plan.total]));
+    fn step(this: &mut Self, action: &ArrayD<f32>) -> Result<Step<ArrayD<f32>>> {
+        let mut observation = ArrayD::zeros(IxDyn(&[this.plan.total]));
         let mut info = Info::new();
-        let t = self.step_into(action, &mut observation, &mut info)?;
+        let t = this.step_into(action, &mut observation, &mut info)?;
         Ok(Step {
             observation,
             reward: t.reward,
@@ -527,26 +542,26 @@ where
     }
 
     fn step_into(
-        &mut self,
+        this: &mut Self,
         action: &ArrayD<f32>,
         observation: &mut ArrayD<f32>,
         info: &mut Info,
     ) -> Result<Transition> {
-        let space = self.env.action_space();
-        match &mut self.inner_action {
+        let space = this.env.action_space();
+        match &mut this.inner_action {
             Some(a) => space.element_from_array_into(action, a),
             None => space
                 .element_from_array(action)
-                .map(|a| self.inner_action = Some(a)),
+                .map(|a| this.inner_action = Some(a)),
         }
         .map_err(Error::into_invalid_action)?;
-        let inner_action = self.inner_action.as_ref().expect("set above");
-        let transition = match &mut self.inner_obs {
-            Some(obs) => self.env.step_into(inner_action, obs, info)?,
+        let inner_action = this.inner_action.as_ref().expect("set above");
+        let transition = match &mut this.inner_obs {
+            Some(obs) => this.env.step_into(inner_action, obs, info)?,
             None => {
-                let step = self.env.step(inner_action)?;
+                let step = this.env.step(inner_action)?;
                 *info = step.info;
-                self.inner_obs = Some(step.observation);
+                this.inner_obs = Some(step.observation);
                 Transition {
                     reward: step.reward,
                     terminated: step.terminated,
@@ -554,16 +569,31 @@ where
                 }
             }
         };
-        let inner_obs = self.inner_obs.as_ref().expect("set above");
-        self.plan
+        let inner_obs = this.inner_obs.as_ref().expect("set above");
+        this.plan
             .flatten_into(E::ObsSpace::as_dict(inner_obs)?, observation)?;
         Ok(transition)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(FlatGymWrapper);
+impl<E> gym_core::Wrapper for FlatGymWrapper<E>
+where
+    E: Env,
+    E::ObsSpace: DictObservationSpace,
+    E::ActSpace: NumericSpace,
+{
+    type Inner = E;
+    type Kind = gym_core::Custom;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

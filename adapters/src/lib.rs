@@ -37,53 +37,6 @@
 //! * Space helpers the wrappers are generic over: [`NumericSpace`], [`BatchSpace`],
 //!   [`FilterableSpace`], [`DictObservationSpace`].
 
-/// Implements [`gym_core::Wrapper`] for a wrapper struct whose inner environment is the
-/// field `env` and whose first type parameter is the inner environment `E`.
-macro_rules! impl_wrapper {
-    ($ty:ident $(, $g:ident)* $(; where $($bound:tt)+)?) => {
-        impl<E: gym_core::Env $(, $g)*> gym_core::Wrapper for $ty<E $(, $g)*>
-        where
-            $ty<E $(, $g)*>: gym_core::Env,
-            $($($bound)+)?
-        {
-            type Inner = E;
-            fn inner(&self) -> &E {
-                &self.env
-            }
-            fn inner_mut(&mut self) -> &mut E {
-                &mut self.env
-            }
-            fn into_inner(self) -> E {
-                self.env
-            }
-        }
-    };
-}
-
-/// Like [`gym_core::forward_env!`] but without `render`, for wrappers that override it.
-macro_rules! forward_env_except_render {
-    () => {
-        fn metadata(&self) -> &gym_core::Metadata {
-            gym_core::Wrapper::inner(self).metadata()
-        }
-        fn render_mode(&self) -> Option<gym_core::RenderMode> {
-            gym_core::Wrapper::inner(self).render_mode()
-        }
-        fn close(&mut self) {
-            gym_core::Wrapper::inner_mut(self).close()
-        }
-        fn rng(&self) -> Option<&gym_core::EnvRng> {
-            gym_core::Wrapper::inner(self).rng()
-        }
-        fn unwrapped_any(&self) -> &dyn ::std::any::Any {
-            gym_core::Wrapper::inner(self).unwrapped_any()
-        }
-        fn unwrapped_any_mut(&mut self) -> &mut dyn ::std::any::Any {
-            gym_core::Wrapper::inner_mut(self).unwrapped_any_mut()
-        }
-    };
-}
-
 pub mod autoreset;
 pub mod batch;
 pub mod clip_action;

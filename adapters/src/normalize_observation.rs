@@ -3,7 +3,7 @@
 use crate::numeric::NumericSpace;
 use crate::running_mean_std::RunningMeanStd;
 use gym_core::spaces::BoxSpace;
-use gym_core::{DType, Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{DType, Env, Error, ObservationWrapper, Observations, Result, Wrapper};
 use ndarray::ArrayD;
 
 /// The statistics, kept in `f32` for `float32` observations and in `f64` otherwise, as
@@ -70,7 +70,7 @@ where
         })
     }
 
-    fn observation(&mut self, obs: &E::Obs) -> Result<ArrayD<f32>> {
+    fn normalize(&mut self, obs: &E::Obs) -> Result<ArrayD<f32>> {
         let space = self.env.observation_space();
         let update = self.update_running_mean;
         match &mut self.stats {
@@ -162,42 +162,37 @@ impl<E> NormalizeObservation<E> {
     }
 }
 
-impl<E: Env> Env for NormalizeObservation<E>
+impl<E: Env> Wrapper for NormalizeObservation<E>
 where
     E::ObsSpace: NumericSpace,
 {
-    type Obs = ArrayD<f32>;
-    type Act = E::Act;
-    type ObsSpace = BoxSpace<f32>;
-    type ActSpace = E::ActSpace;
+    type Inner = E;
+    type Kind = Observations;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn observation_space(&self) -> &BoxSpace<f32> {
+impl<E: Env> ObservationWrapper for NormalizeObservation<E>
+where
+    E::ObsSpace: NumericSpace,
+{
+    type Space = BoxSpace<f32>;
+
+    fn space(&self) -> &BoxSpace<f32> {
         &self.space
     }
 
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn observation(&mut self, observation: E::Obs) -> Result<ArrayD<f32>> {
+        self.normalize(&observation)
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(ArrayD<f32>, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok((self.observation(&obs)?, info))
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<ArrayD<f32>>> {
-        let step = self.env.step(action)?;
-        let obs = self.observation(&step.observation)?;
-        Ok(step.map_observation(|_| obs))
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(NormalizeObservation);
 
 #[cfg(test)]
 mod tests {

@@ -2,7 +2,7 @@
 //! return.
 
 use crate::running_mean_std::RunningMeanStd;
-use gym_core::{Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{Env, Error, Result, Step};
 use ndarray::{ArrayD, IxDyn};
 
 /// Gymnasium's `NormalizeReward(env, gamma=0.99, epsilon=1e-8)`.
@@ -84,45 +84,34 @@ impl<E: Env> NormalizeReward<E> {
     }
 }
 
-impl<E: Env> Env for NormalizeReward<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mut step = self.env.step(action)?;
+impl<E: Env> gym_core::StepWrapper for NormalizeReward<E> {
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let mut step = this.env.step(action)?;
         let not_terminated = if step.terminated { 0.0 } else { 1.0 };
-        self.discounted_reward = self.discounted_reward * self.gamma * not_terminated + step.reward;
-        if self.update_running_mean {
-            let x = ArrayD::from_elem(IxDyn(&[]), self.discounted_reward);
-            self.return_rms
+        this.discounted_reward = this.discounted_reward * this.gamma * not_terminated + step.reward;
+        if this.update_running_mean {
+            let x = ArrayD::from_elem(IxDyn(&[]), this.discounted_reward);
+            this.return_rms
                 .update_from_moments(&x, &ArrayD::zeros(IxDyn(&[])), 1.0);
         }
-        step.reward /= (self.return_rms.var()[[]] + self.epsilon).sqrt();
+        step.reward /= (this.return_rms.var()[[]] + this.epsilon).sqrt();
         Ok(step)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(NormalizeReward);
+impl<E: Env> gym_core::Wrapper for NormalizeReward<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -5,7 +5,9 @@
 //! work on typed spaces and on the dynamic [`AnySpace`] alike.
 
 use gym_core::spaces::{AnyBox, AnySpace, BoxSpace, Discrete, MultiBinary, MultiDiscrete};
-use gym_core::{ArrayElement, ArrayValue, DType, Error, Result, Space, SpaceError, Value};
+use gym_core::{
+    ArrayElement, ArrayValue, DType, DynSpace, Error, Result, Space, SpaceError, Value,
+};
 use ndarray::{ArrayD, IxDyn, Zip};
 use std::any::Any;
 

@@ -37,49 +37,46 @@ impl<E: Env> OrderEnforcing<E> {
     }
 }
 
-impl<E: Env> Env for OrderEnforcing<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
+impl<E: Env> gym_core::StepWrapper for OrderEnforcing<E> {
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        self.has_reset = true;
-        self.env.reset(seed, options)
+        this.has_reset = true;
+        this.env.reset(seed, options)
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        if !self.has_reset {
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        if !this.has_reset {
             return Err(Error::ResetNeeded);
         }
-        self.env.step(action)
+        this.env.step(action)
     }
 
     /// # Errors
     /// [`Error::ResetNeeded`] before the first `reset` (unless disabled); the inner error.
-    fn render(&mut self) -> Result<Option<Frame>> {
-        if !self.disable_render_order_enforcing && !self.has_reset {
+    fn render(this: &mut Self) -> Result<Option<Frame>> {
+        if !this.disable_render_order_enforcing && !this.has_reset {
             return Err(Error::ResetNeeded);
         }
-        self.env.render()
+        this.env.render()
     }
-
-    forward_env_except_render!();
 }
 
-impl_wrapper!(OrderEnforcing);
+impl<E: Env> gym_core::Wrapper for OrderEnforcing<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -7,7 +7,7 @@ use conformance_tests::{
     Failure, SpaceType, Warning, check_info_types, check_obs, check_render_metadata,
     check_render_return, check_reward, check_space,
 };
-use gym_core::{Env, Error, Frame, Info, RenderMode, ResetOptions, Result, Space, Step};
+use gym_core::{DynSpace, Env, Error, Frame, Info, RenderMode, ResetOptions, Result, Step};
 
 /// A failed check as an [`Error::Contract`] naming `check`.
 fn contract(check: &str, failure: Failure) -> Error {
@@ -121,53 +121,50 @@ impl<E: Env> PassiveEnvChecker<E> {
     }
 }
 
-impl<E: Env> Env for PassiveEnvChecker<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
+impl<E: Env> gym_core::StepWrapper for PassiveEnvChecker<E> {
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        let first = !self.checked_reset;
-        self.checked_reset = true;
-        self.check_obs(&obs, "reset", first)?;
+        let (obs, info) = this.env.reset(seed, options)?;
+        let first = !this.checked_reset;
+        this.checked_reset = true;
+        this.check_obs(&obs, "reset", first)?;
         check_info_types(&info, "reset").map_err(|f| contract("info", f))?;
         Ok((obs, info))
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let step = self.env.step(action)?;
-        let first = !self.checked_step;
-        self.checked_step = true;
-        self.check_obs(&step.observation, "step", first)?;
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let step = this.env.step(action)?;
+        let first = !this.checked_step;
+        this.checked_step = true;
+        this.check_obs(&step.observation, "step", first)?;
         check_reward(step.reward).map_err(|f| contract("step", f))?;
         check_info_types(&step.info, "step").map_err(|f| contract("info", f))?;
         Ok(step)
     }
 
-    fn render(&mut self) -> Result<Option<Frame>> {
-        let frame = self.env.render()?;
-        self.check_render(&frame)?;
+    fn render(this: &mut Self) -> Result<Option<Frame>> {
+        let frame = this.env.render()?;
+        this.check_render(&frame)?;
         Ok(frame)
     }
-
-    forward_env_except_render!();
 }
 
-impl_wrapper!(PassiveEnvChecker);
+impl<E: Env> gym_core::Wrapper for PassiveEnvChecker<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -83,67 +83,64 @@ impl<E: Env> RecordEpisodeStatistics<E> {
     }
 }
 
-impl<E: Env> Env for RecordEpisodeStatistics<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
+impl<E: Env> gym_core::StepWrapper for RecordEpisodeStatistics<E> {
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        let out = self.env.reset(seed, options)?;
-        self.episode_start = Instant::now();
-        self.episode_return = 0.0;
-        self.episode_length = 0;
+        let out = this.env.reset(seed, options)?;
+        this.episode_start = Instant::now();
+        this.episode_return = 0.0;
+        this.episode_length = 0;
         Ok(out)
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mut step = self.env.step(action)?;
-        self.episode_return += step.reward;
-        self.episode_length += 1;
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let mut step = this.env.step(action)?;
+        this.episode_return += step.reward;
+        this.episode_length += 1;
         if step.terminated || step.truncated {
-            if step.info.contains_key(&self.stats_key) {
+            if step.info.contains_key(&this.stats_key) {
                 return Err(Error::Contract {
                     check: "RecordEpisodeStatistics".into(),
                     message: format!(
                         "the inner info already contains the key `{}`",
-                        self.stats_key
+                        this.stats_key
                     )
                     .into(),
                 });
             }
-            let t = (self.episode_start.elapsed().as_secs_f64() * 1e6).round() / 1e6;
+            let t = (this.episode_start.elapsed().as_secs_f64() * 1e6).round() / 1e6;
             let stats = Info::new()
-                .with("r", self.episode_return)
-                .with("l", self.episode_length)
+                .with("r", this.episode_return)
+                .with("l", this.episode_length)
                 .with("t", t);
-            step.info.insert(self.stats_key.clone(), stats);
-            let cap = self.buffer_length;
-            Self::push(&mut self.time_queue, cap, t);
-            Self::push(&mut self.return_queue, cap, self.episode_return);
-            Self::push(&mut self.length_queue, cap, self.episode_length);
-            self.episode_count += 1;
-            self.episode_start = Instant::now();
+            step.info.insert(this.stats_key.clone(), stats);
+            let cap = this.buffer_length;
+            Self::push(&mut this.time_queue, cap, t);
+            Self::push(&mut this.return_queue, cap, this.episode_return);
+            Self::push(&mut this.length_queue, cap, this.episode_length);
+            this.episode_count += 1;
+            this.episode_start = Instant::now();
         }
         Ok(step)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(RecordEpisodeStatistics);
+impl<E: Env> gym_core::Wrapper for RecordEpisodeStatistics<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

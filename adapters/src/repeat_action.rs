@@ -1,6 +1,6 @@
 //! [`RepeatAction`]: each action repeated a fixed number of times.
 
-use gym_core::{Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{Env, Error, Result, Step};
 
 /// Gymnasium's `RepeatAction(env, num_repeats)` (v1.3): steps the inner environment with
 /// the same action `num_repeats` times, summing the rewards, and stops early when an inner
@@ -32,47 +32,36 @@ impl<E: Env> RepeatAction<E> {
     }
 }
 
-impl<E: Env> Env for RepeatAction<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
+impl<E: Env> gym_core::StepWrapper for RepeatAction<E> {
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
         let mut total = 0.0;
-        let mut last = self.env.step(action)?;
+        let mut last = this.env.step(action)?;
         total += last.reward;
-        for _ in 1..self.num_repeats {
+        for _ in 1..this.num_repeats {
             if last.terminated || last.truncated {
                 break;
             }
-            last = self.env.step(action)?;
+            last = this.env.step(action)?;
             total += last.reward;
         }
         last.reward = total;
         Ok(last)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(RepeatAction);
+impl<E: Env> gym_core::Wrapper for RepeatAction<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

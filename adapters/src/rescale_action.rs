@@ -1,7 +1,7 @@
 //! [`RescaleAction`]: an affine map from a new Box action range to the environment's.
 
 use crate::numeric::NumericSpace;
-use gym_core::{DType, Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{ActionWrapper, Actions, DType, Env, Error, Result, Wrapper};
 use ndarray::{ArrayD, IxDyn, Zip};
 
 /// A bound for [`RescaleAction`]: one value for every component, or one per component.
@@ -176,40 +176,37 @@ where
     }
 }
 
-impl<E: Env> Env for RescaleAction<E>
+impl<E: Env> Wrapper for RescaleAction<E>
 where
     E::ActSpace: NumericSpace,
 {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
+    type Inner = E;
+    type Kind = Actions;
+    fn inner(&self) -> &E {
+        &self.env
     }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn action_space(&self) -> &E::ActSpace {
+impl<E: Env> ActionWrapper for RescaleAction<E>
+where
+    E::ActSpace: NumericSpace,
+{
+    type Space = E::ActSpace;
+
+    fn space(&self) -> &E::ActSpace {
         &self.space
     }
 
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
+    fn action(&mut self, action: &E::Act) -> Result<E::Act> {
+        self.backward(action).map_err(Error::into_invalid_action)
     }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mapped = self.backward(action).map_err(Error::into_invalid_action)?;
-        self.env.step(&mapped)
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(RescaleAction);
 
 #[cfg(test)]
 mod tests {

@@ -112,44 +112,41 @@ impl<E: Env> StickyAction<E> {
     }
 }
 
-impl<E: Env> Env for StickyAction<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
+impl<E: Env> gym_core::StepWrapper for StickyAction<E> {
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        self.last_action = None;
-        self.is_sticky = false;
-        self.num_repeats = 0;
-        self.repeats_taken = 0;
+        this.last_action = None;
+        this.is_sticky = false;
+        this.num_repeats = 0;
+        this.repeats_taken = 0;
         if let Some(s) = seed {
-            self.rng = Some(rng_from_seed(s ^ STREAM));
+            this.rng = Some(rng_from_seed(s ^ STREAM));
         }
-        self.env.reset(seed, options)
+        this.env.reset(seed, options)
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let chosen = self.action(action);
-        self.env.step(&chosen)
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let chosen = this.action(action);
+        this.env.step(&chosen)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(StickyAction);
+impl<E: Env> gym_core::Wrapper for StickyAction<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -46,44 +46,41 @@ impl<E: Env> TimeLimit<E> {
     }
 }
 
-impl<E: Env> Env for TimeLimit<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-
+impl<E: Env> gym_core::StepWrapper for TimeLimit<E> {
     fn reset(
-        &mut self,
+        this: &mut Self,
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        self.elapsed_steps = Some(0);
-        self.env.reset(seed, options)
+        this.elapsed_steps = Some(0);
+        this.env.reset(seed, options)
     }
 
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let elapsed = self.elapsed_steps.ok_or(Error::ResetNeeded)?;
-        let mut step = self.env.step(action)?;
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
+        let elapsed = this.elapsed_steps.ok_or(Error::ResetNeeded)?;
+        let mut step = this.env.step(action)?;
         let elapsed = elapsed + 1;
-        self.elapsed_steps = Some(elapsed);
-        if elapsed >= self.max_episode_steps {
+        this.elapsed_steps = Some(elapsed);
+        if elapsed >= this.max_episode_steps {
             step.truncated = true;
         }
         Ok(step)
     }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(TimeLimit);
+impl<E: Env> gym_core::Wrapper for TimeLimit<E> {
+    type Inner = E;
+    type Kind = gym_core::Steps;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,6 @@
 //! [`TransformAction`]: actions mapped by a closure before stepping.
 
-use gym_core::{Env, Info, ResetOptions, Result, Space, Step};
+use gym_core::{ActionWrapper, Actions, DynSpace, Env, Flatten, Result, Space, Wrapper};
 
 /// Gymnasium's `TransformAction(env, func, action_space)`: the wrapper accepts actions of
 /// `action_space` and steps the inner environment with `func(action)`.
@@ -45,41 +45,39 @@ impl<E: std::fmt::Debug, F, S: std::fmt::Debug> std::fmt::Debug for TransformAct
     }
 }
 
-impl<E: Env, F, S: Space> Env for TransformAction<E, F, S>
+impl<E: Env, F, S: Space> Wrapper for TransformAction<E, F, S>
 where
     F: FnMut(&S::Element) -> E::Act + Send + 'static,
-    S::Element: Send,
+    S: Flatten + DynSpace,
 {
-    type Obs = E::Obs;
-    type Act = S::Element;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = S;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
+    type Inner = E;
+    type Kind = Actions;
+    fn inner(&self) -> &E {
+        &self.env
     }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn action_space(&self) -> &S {
+impl<E: Env, F, S: Space> ActionWrapper for TransformAction<E, F, S>
+where
+    F: FnMut(&S::Element) -> E::Act + Send + 'static,
+    S: Flatten + DynSpace,
+{
+    type Space = S;
+
+    fn space(&self) -> &S {
         &self.space
     }
 
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
+    fn action(&mut self, action: &S::Element) -> Result<E::Act> {
+        Ok((self.func)(action))
     }
-
-    fn step(&mut self, action: &S::Element) -> Result<Step<E::Obs>> {
-        let inner = (self.func)(action);
-        self.env.step(&inner)
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(TransformAction, F, S);
 
 #[cfg(test)]
 mod tests {

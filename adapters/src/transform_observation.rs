@@ -1,6 +1,6 @@
 //! [`TransformObservation`]: observations mapped by a closure.
 
-use gym_core::{Env, Info, ResetOptions, Result, Space, Step};
+use gym_core::{DynSpace, Env, Flatten, ObservationWrapper, Observations, Result, Space, Wrapper};
 
 /// Gymnasium's `TransformObservation(env, func, observation_space)`: each observation (from
 /// `reset` and `step`) becomes `func(obs)`, which must lie in the new observation space.
@@ -46,42 +46,39 @@ impl<E: std::fmt::Debug, F, S: std::fmt::Debug> std::fmt::Debug for TransformObs
     }
 }
 
-impl<E: Env, F, S: Space> Env for TransformObservation<E, F, S>
+impl<E: Env, F, S: Space> Wrapper for TransformObservation<E, F, S>
 where
     F: FnMut(E::Obs) -> S::Element + Send + 'static,
-    S::Element: Send,
+    S: Flatten + DynSpace,
 {
-    type Obs = S::Element;
-    type Act = E::Act;
-    type ObsSpace = S;
-    type ActSpace = E::ActSpace;
+    type Inner = E;
+    type Kind = Observations;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
 
-    fn observation_space(&self) -> &S {
+impl<E: Env, F, S: Space> ObservationWrapper for TransformObservation<E, F, S>
+where
+    F: FnMut(E::Obs) -> S::Element + Send + 'static,
+    S: Flatten + DynSpace,
+{
+    type Space = S;
+
+    fn space(&self) -> &S {
         &self.space
     }
 
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn observation(&mut self, observation: E::Obs) -> Result<S::Element> {
+        Ok((self.func)(observation))
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(S::Element, Info)> {
-        let (obs, info) = self.env.reset(seed, options)?;
-        Ok(((self.func)(obs), info))
-    }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<S::Element>> {
-        let step = self.env.step(action)?;
-        Ok(step.map_observation(&mut self.func))
-    }
-
-    gym_core::forward_env!();
 }
-
-impl_wrapper!(TransformObservation, F, S);
 
 #[cfg(test)]
 mod tests {

@@ -1,6 +1,6 @@
 //! [`TransformReward`]: rewards mapped by a closure.
 
-use gym_core::{Env, Info, ResetOptions, Result, Step};
+use gym_core::{Env, RewardWrapper, Rewards, Wrapper};
 
 /// Gymnasium's `TransformReward(env, func)`: each reward becomes `func(reward)`.
 pub struct TransformReward<E, F> {
@@ -23,38 +23,25 @@ impl<E: std::fmt::Debug, F> std::fmt::Debug for TransformReward<E, F> {
     }
 }
 
-impl<E: Env, F: FnMut(f64) -> f64 + Send + 'static> Env for TransformReward<E, F> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
+impl<E: Env, F: FnMut(f64) -> f64 + Send + 'static> Wrapper for TransformReward<E, F> {
+    type Inner = E;
+    type Kind = Rewards;
+    fn inner(&self) -> &E {
+        &self.env
     }
-
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
     }
-
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
+    fn into_inner(self) -> E {
+        self.env
     }
-
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        let mut step = self.env.step(action)?;
-        step.reward = (self.func)(step.reward);
-        Ok(step)
-    }
-
-    gym_core::forward_env!();
 }
 
-impl_wrapper!(TransformReward, F);
+impl<E: Env, F: FnMut(f64) -> f64 + Send + 'static> RewardWrapper for TransformReward<E, F> {
+    fn reward(&mut self, reward: f64) -> f64 {
+        (self.func)(reward)
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -9,7 +9,9 @@ use adapters::{
 };
 use common::{CountEnv, DictEnv, WalkEnv, a32, a64};
 use gym_core::spaces::{AnySpace, BoxSpace};
-use gym_core::{BoxedEnv, DType, Env, EnvExt, Error, IntoBoxedEnv, Space, Value, Wrapper};
+use gym_core::{
+    BoxedEnv, DType, DynSpace, Env, EnvExt, Error, Flatten, IntoBoxedEnv, Space, Value, Wrapper,
+};
 use ndarray::ArrayD;
 
 fn assert_send<T: Send + 'static>(_: &T) {}

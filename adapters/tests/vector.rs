@@ -415,7 +415,9 @@ fn sub_environment_errors_are_typed_and_recoverable() {
         };
         let bad = arr2(&[[0.0f32, 0.0], [5.0, 0.0]]).into_dyn();
         match v(&bad) {
-            Err(Error::InvalidAction(m)) => assert!(m.to_string().contains("sub-environment 1"), "{m}"),
+            Err(Error::InvalidAction(m)) => {
+                assert!(m.to_string().contains("sub-environment 1"), "{m}")
+            }
             other => panic!("{other:?}"),
         }
         assert!(matches!(v(&a32(&[0.0, 0.0])), Err(Error::InvalidAction(_))));

@@ -130,7 +130,8 @@ fn a_forked_child_gets_an_error_not_a_hang() {
     pool.reset(1u64).unwrap();
     let a = batch(&[[0.1, 0.1]; 4]);
     let code = in_forked_child(Duration::from_secs(20), move || {
-        let step = matches!(v.step(&a), Err(Error::Unsupported(m)) if m.to_string().contains("fork"));
+        let step =
+            matches!(v.step(&a), Err(Error::Unsupported(m)) if m.to_string().contains("fork"));
         let reset = matches!(v.reset(2u64, None), Err(Error::Unsupported(_)));
         let recv = matches!(pool.recv(), Err(Error::Unsupported(_)));
         v.close();

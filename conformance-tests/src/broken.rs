@@ -22,9 +22,9 @@ use crate::prop::{EpisodeEndSpec, PropConfig, Property, StateHook};
 use crate::report::Check;
 use crate::toy::{PointMass, PointMassState, position_probe};
 use gym_core::{
-    AnyBox, AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, Env, EnvRng, Error, Frame,
-    Info, Metadata, RenderMode, ResetOptions, Result, Space, SpaceError, Step, TupleSpace, Value,
-    rng_from_seed,
+    AnyBox, AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, DynSpace, Env, EnvRng,
+    Error, Flatten, Frame, Info, Metadata, RenderMode, ResetOptions, Result, Space, SpaceError,
+    Step, TupleSpace, Value, rng_from_seed,
 };
 use ndarray::{ArrayD, IxDyn, arr1};
 use rand::RngExt;
@@ -403,9 +403,7 @@ impl<E: Env> StateHook<E> for BrokenStateHook {
     fn get_state(&self, env: &E) -> Result<PointMassState> {
         env.unwrapped_any()
             .downcast_ref::<BrokenEnv>()
-            .ok_or_else(|| {
-                Error::unsupported("the unwrapped environment is not a BrokenEnv".into())
-            })?
+            .ok_or_else(|| Error::unsupported("the unwrapped environment is not a BrokenEnv"))?
             .inner
             .get_state()
     }
@@ -414,9 +412,7 @@ impl<E: Env> StateHook<E> for BrokenStateHook {
         let env = env
             .unwrapped_any_mut()
             .downcast_mut::<BrokenEnv>()
-            .ok_or_else(|| {
-                Error::unsupported("the unwrapped environment is not a BrokenEnv".into())
-            })?;
+            .ok_or_else(|| Error::unsupported("the unwrapped environment is not a BrokenEnv"))?;
         let mut state = state.clone();
         if env.defect == Defect::StateRoundTripLosesVelocity {
             state.velocity = 0.0;

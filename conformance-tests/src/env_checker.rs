@@ -15,7 +15,8 @@ use crate::report::{Check, ConformanceError, Failure, Report, Skipped, Warning, 
 use crate::sb3::sb3_check_spaces;
 use crate::spaces::{SpaceType, check_space, check_space_limit};
 use gym_core::{
-    AnySpace, BoxedEnv, Env, EnvRng, Info, ResetOptions, Space, Step, Value, rng_from_seed,
+    AnySpace, BoxedEnv, DynSpace, Env, EnvRng, Info, ResetOptions, Space, Step, Value,
+    rng_from_seed,
 };
 use std::any::{Any, TypeId};
 use std::panic::{AssertUnwindSafe, catch_unwind};

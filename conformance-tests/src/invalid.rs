@@ -2,7 +2,7 @@
 //! out-of-range discrete value, a missing dict key. Used by
 //! [`Check::InvalidAction`](crate::Check::InvalidAction) and the property suite.
 
-use gym_core::{AnySpace, ArrayValue, DictValue, Scalar, Space, Value};
+use gym_core::{AnySpace, ArrayValue, DictValue, DynSpace, Scalar, Value};
 use ndarray::{ArrayD, IxDyn};
 use std::any::Any;
 
@@ -31,7 +31,7 @@ pub struct InvalidAction<A> {
 ///
 /// A typed action (for example `ArrayD<f32>`) can express NaN and wrong lengths but not a
 /// missing dict key; such candidates are left out. At most `limit` actions are returned.
-pub fn invalid_actions<S: Space>(
+pub fn invalid_actions<S: DynSpace>(
     space: &S,
     base: &S::Element,
     out_of_bounds: bool,
@@ -65,7 +65,7 @@ fn downcast<T: 'static, U: 'static>(x: T) -> Option<U> {
 /// [`DynSpace::from_value`] when the element type is one of gym-core's own (`Value`,
 /// `ArrayValue`, `ArrayD<T>`, `i64`, `Vec<Value>`, `DictValue`), so a wrong length or a
 /// missing key survives; otherwise falls back to `from_value`.
-pub fn element_from_value<S: Space>(space: &S, v: &Value) -> Option<S::Element> {
+pub fn element_from_value<S: DynSpace>(space: &S, v: &Value) -> Option<S::Element> {
     if let Some(e) = downcast::<Value, S::Element>(v.clone()) {
         return Some(e);
     }
@@ -263,7 +263,7 @@ fn dtype_max(d: gym_core::DType) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use gym_core::{BoxSpace, DictSpace, Discrete, rng_from_seed};
+    use gym_core::{BoxSpace, DictSpace, Discrete, Space, rng_from_seed};
 
     #[test]
     fn typed_box_actions() {

@@ -22,7 +22,7 @@ use crate::env_checker::{panic_message, reset_call, short_debug};
 use crate::invalid::invalid_actions;
 use crate::obs::check_obs;
 use gym_core::proptest::{action_sequence, any_space, seed};
-use gym_core::{AnySpace, Env, Info, Space, Step, Value, rng_from_seed};
+use gym_core::{AnySpace, DynSpace, Env, Flatten, Info, Space, Step, Value, rng_from_seed};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngSeed, TestCaseError, TestError, TestRunner};
 use std::cell::RefCell;
@@ -515,7 +515,7 @@ fn run_until_done<E: Env>(
 ///
 /// # Errors
 /// The property that failed, with the minimal sampler seed.
-pub fn prop_space<S: Space>(space: &S, config: &PropConfig) -> Result<(), PropFailure> {
+pub fn prop_space<S: DynSpace>(space: &S, config: &PropConfig) -> Result<(), PropFailure> {
     let space = space.to_any();
     run_property(
         Property::SpaceSamples,

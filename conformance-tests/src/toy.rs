@@ -316,18 +316,14 @@ impl<E: Env> StateHook<E> for PointMassStateHook {
     fn get_state(&self, env: &E) -> Result<PointMassState> {
         env.unwrapped_any()
             .downcast_ref::<PointMass>()
-            .ok_or_else(|| {
-                Error::unsupported("the unwrapped environment is not a PointMass".into())
-            })?
+            .ok_or_else(|| Error::unsupported("the unwrapped environment is not a PointMass"))?
             .get_state()
     }
 
     fn set_state(&self, env: &mut E, state: &PointMassState) -> Result<()> {
         env.unwrapped_any_mut()
             .downcast_mut::<PointMass>()
-            .ok_or_else(|| {
-                Error::unsupported("the unwrapped environment is not a PointMass".into())
-            })?
+            .ok_or_else(|| Error::unsupported("the unwrapped environment is not a PointMass"))?
             .set_state(state)
     }
 }

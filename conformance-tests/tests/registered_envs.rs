@@ -117,12 +117,12 @@ fn every_registered_env_passes_the_property_suite() {
 
 fn robosuite(env: &BoxedEnv) -> Result<&RobosuiteEnv> {
     env.unwrapped_as::<RobosuiteEnv>()
-        .ok_or_else(|| Error::unsupported("not a RobosuiteEnv".into()))
+        .ok_or_else(|| Error::unsupported("not a RobosuiteEnv"))
 }
 
 fn robosuite_mut(env: &mut BoxedEnv) -> Result<&mut RobosuiteEnv> {
     env.unwrapped_as_mut::<RobosuiteEnv>()
-        .ok_or_else(|| Error::unsupported("not a RobosuiteEnv".into()))
+        .ok_or_else(|| Error::unsupported("not a RobosuiteEnv"))
 }
 
 #[test]

@@ -9,7 +9,7 @@ use conformance_tests::toy::{GridWorld, PointMass, PointMassStateHook, position_
 use conformance_tests::{Check, CheckOptions, WarningKind, check_env};
 use gym_core::{
     BoxSpace, BoxedEnv, Env, EnvRng, Info, IntoBoxedEnv, RenderMode, ResetOptions, Result, Step,
-    Wrapper, rng_from_seed,
+    StepWrapper, Steps, Wrapper, rng_from_seed,
 };
 use ndarray::ArrayD;
 
@@ -225,6 +225,7 @@ struct Identity<E: Env>(E);
 
 impl<E: Env> Wrapper for Identity<E> {
     type Inner = E;
+    type Kind = Steps;
     fn inner(&self) -> &E {
         &self.0
     }
@@ -236,29 +237,8 @@ impl<E: Env> Wrapper for Identity<E> {
     }
 }
 
-impl<E: Env> Env for Identity<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.0.observation_space()
-    }
-    fn action_space(&self) -> &E::ActSpace {
-        self.0.action_space()
-    }
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.0.reset(seed, options)
-    }
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        self.0.step(action)
-    }
-    gym_core::forward_env!();
-}
+/// Every hook forwards.
+impl<E: Env> StepWrapper for Identity<E> {}
 
 #[test]
 fn wrapped_envs_get_the_unwrapped_warning() {

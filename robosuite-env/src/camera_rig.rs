@@ -284,9 +284,7 @@ impl CameraRig {
         #[cfg(not(feature = "render"))]
         {
             let _ = data;
-            Err(Error::unsupported(
-                "built without the `render` feature".into(),
-            ))
+            Err(Error::unsupported("built without the `render` feature"))
         }
     }
 
@@ -386,9 +384,7 @@ impl CameraRig {
         #[cfg(not(feature = "render"))]
         {
             let _ = (data, mode);
-            Err(Error::unsupported(
-                "built without the `render` feature".into(),
-            ))
+            Err(Error::unsupported("built without the `render` feature"))
         }
     }
 }

@@ -206,8 +206,7 @@ impl CameraConfig {
                 RenderMode::Human => {
                     return Err(Error::unsupported(
                         "render_mode=\"human\" needs a display and a viewer window; this build \
-                         renders offscreen only: use \"rgb_array\" or \"depth_array\""
-                            .into(),
+                         renders offscreen only: use \"rgb_array\" or \"depth_array\"",
                     ));
                 }
                 other => {

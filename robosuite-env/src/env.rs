@@ -234,7 +234,7 @@ impl RobosuiteEnv {
         let assets = Assets::locate()?;
         let composed = compose(spec, &config, &assets)?;
         if xml.contains('\0') {
-            return Err(Error::model("the scene XML contains a NUL byte".into()));
+            return Err(Error::model("the scene XML contains a NUL byte"));
         }
         let xml = redirect_asset_paths(xml, &assets);
         let model = compile_cached(&xml)?;

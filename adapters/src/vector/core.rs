@@ -115,7 +115,7 @@ pub(crate) fn check_batch<S: BatchSpace>(
     actions: &BatchOf<S>,
     rows: usize,
 ) -> Result<()> {
-    use gym_core::Space;
+    use gym_core::Flatten;
     for k in 0..rows {
         single
             .read_item(actions, k)

@@ -423,9 +423,7 @@ where
             .as_ref()
             .is_some_and(|tx| tx.send((id, op)).is_ok());
         if !sent {
-            return Err(Error::simulation(
-                "the pool's worker threads have exited".into(),
-            ));
+            return Err(Error::simulation("the pool's worker threads have exited"));
         }
         self.turns[id] = Turn::Pending;
         Ok(())
@@ -434,7 +432,7 @@ where
     fn next_done(&mut self) -> Result<Done<E::Obs>> {
         self.done
             .recv()
-            .map_err(|_| Error::simulation("the pool's worker threads have exited".into()))
+            .map_err(|_| Error::simulation("the pool's worker threads have exited"))
     }
 }
 

@@ -293,7 +293,7 @@ where
         let outcomes = self.dispatch(ops.into_iter().map(Some).collect());
         let outcomes = outcomes
             .into_iter()
-            .map(|o| o.unwrap_or_else(|| Err(Error::simulation("a worker did not answer".into()))))
+            .map(|o| o.unwrap_or_else(|| Err(Error::simulation("a worker did not answer"))))
             .collect();
         let infos = self.core.finish_step(outcomes)?;
         Ok(self.core.view(infos))

@@ -13,7 +13,8 @@
 
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, Discrete};
 use gym_core::{
-    DictValue, Env, EnvRng, Error, Info, ResetOptions, Result, Space, Step, Value, rng_from_seed,
+    DictValue, DynSpace, Env, EnvRng, Error, Flatten, Info, ResetOptions, Result, Space, Step,
+    Value, rng_from_seed,
 };
 use ndarray::{ArrayD, IxDyn, arr1};
 use rand::RngExt;
@@ -93,7 +94,7 @@ fn at<T: Clone>(v: &[T], i: usize, default: T) -> T {
     }
 }
 
-impl<S: Space, A: Space> Env for ScriptEnv<S, A>
+impl<S: Flatten + DynSpace, A: Flatten + DynSpace> Env for ScriptEnv<S, A>
 where
     S::Element: Send,
     A::Element: Send,
@@ -208,7 +209,9 @@ impl Env for CountEnv {
     }
     fn step(&mut self, action: &i64) -> Result<Step<ArrayD<f64>>> {
         if !self.action_space.contains(action) {
-            return Err(Error::invalid_action(format!("{action} not in Discrete(2)")));
+            return Err(Error::invalid_action(format!(
+                "{action} not in Discrete(2)"
+            )));
         }
         self.t += 1;
         Ok(Step {
@@ -503,7 +506,9 @@ impl Env for DiscreteEnv {
     }
     fn step(&mut self, action: &i64) -> Result<Step<i64>> {
         if !self.action_space.contains(action) {
-            return Err(Error::invalid_action(format!("{action} not in Discrete(2)")));
+            return Err(Error::invalid_action(format!(
+                "{action} not in Discrete(2)"
+            )));
         }
         self.pos += if *action == 1 { 1 } else { -1 };
         let end = self.pos == 0 || self.pos == 4;

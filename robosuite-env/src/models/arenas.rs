@@ -84,7 +84,7 @@ fn finish(doc: &mut MjcfDoc) {
 fn floor_at_origin(doc: &mut MjcfDoc) -> Result<()> {
     let floor = tree::children_mut(doc.worldbody_mut())
         .find(|e| e.name == "geom" && attr(e, "name") == Some("floor"))
-        .ok_or_else(|| Error::model("the arena has no geom named `floor`".into()))?;
+        .ok_or_else(|| Error::model("the arena has no geom named `floor`"))?;
     set_attr(floor, "pos", array_to_string(&[0.0; 3]));
     Ok(())
 }

@@ -48,7 +48,7 @@ impl Scene {
     ) -> Result<Self> {
         let mut doc = MjcfDoc::load(&assets.file("base.xml")?)?;
         let option = tree::find_mut(doc.root_mut(), "option", &[])
-            .ok_or_else(|| Error::model("base.xml has no <option>".into()))?;
+            .ok_or_else(|| Error::model("base.xml has no <option>"))?;
         set_attr(option, "timestep", tree::format_number(SIMULATION_TIMESTEP));
         doc.merge(arena.doc.clone(), MergeBody::World)?;
         for robot in robots {

@@ -29,5 +29,5 @@ pub fn check_mujoco_version() -> Result<()> {
             }
         })
         .clone()
-        .map_err(Error::Model)
+        .map_err(Error::model)
 }

@@ -258,7 +258,7 @@ impl TaskSpec for WipeSpec {
         let config = self.task_config.clone();
         let robot = robots
             .first()
-            .ok_or_else(|| Error::model("Wipe needs a robot".into()))?;
+            .ok_or_else(|| Error::model("Wipe needs a robot"))?;
         let arm = robot.arm();
         let corners: [usize; 4] = arm.gripper().corners().try_into().map_err(|_| {
             Error::model(format!(

@@ -7,8 +7,8 @@
 
 use gym_core::spaces::{BoxSpace, DictSpace, Discrete};
 use gym_core::{
-    AnySpace, DictValue, Env, EnvRng, Error, Info, IntoBoxedEnv, ResetOptions, Result, Step, Value,
-    Wrapper, entropy_seed, rng_from_seed,
+    AnySpace, DictValue, Env, EnvRng, Error, Info, IntoBoxedEnv, ResetOptions, Result, Step,
+    StepWrapper, Steps, Value, Wrapper, entropy_seed, rng_from_seed,
 };
 use ndarray::{ArrayD, IxDyn};
 use pyo3::prelude::*;
@@ -130,6 +130,7 @@ pub struct ActionRepeat<E: Env> {
 
 impl<E: Env> Wrapper for ActionRepeat<E> {
     type Inner = E;
+    type Kind = Steps;
     fn inner(&self) -> &E {
         &self.env
     }
@@ -141,40 +142,22 @@ impl<E: Env> Wrapper for ActionRepeat<E> {
     }
 }
 
-impl<E: Env> Env for ActionRepeat<E> {
-    type Obs = E::Obs;
-    type Act = E::Act;
-    type ObsSpace = E::ObsSpace;
-    type ActSpace = E::ActSpace;
-
-    fn observation_space(&self) -> &E::ObsSpace {
-        self.env.observation_space()
-    }
-    fn action_space(&self) -> &E::ActSpace {
-        self.env.action_space()
-    }
-    fn reset(
-        &mut self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(E::Obs, Info)> {
-        self.env.reset(seed, options)
-    }
-    fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
+/// Only `step` changes; everything else forwards to the inner environment.
+impl<E: Env> StepWrapper for ActionRepeat<E> {
+    fn step(this: &mut Self, action: &E::Act) -> Result<Step<E::Obs>> {
         let mut total = 0.0;
-        let mut step = self.env.step(action)?;
+        let mut step = this.env.step(action)?;
         total += step.reward;
-        for _ in 1..self.repeat {
+        for _ in 1..this.repeat {
             if step.terminated || step.truncated {
                 break;
             }
-            step = self.env.step(action)?;
+            step = this.env.step(action)?;
             total += step.reward;
         }
         step.reward = total;
         Ok(step)
     }
-    gym_core::forward_env!();
 }
 
 /// The corridor as a `gymnasium.Env`.
