@@ -209,8 +209,7 @@ impl CameraRig {
             );
             Err(Error::unsupported(
                 "camera observations and render modes need a build with the `render` feature \
-                 (cargo feature robosuite-env/render)"
-                    .into(),
+                 (cargo feature robosuite-env/render)",
             ))
         }
     }
