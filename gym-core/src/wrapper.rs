@@ -257,9 +257,20 @@ fn move_step<O>(step: Step<O>, observation: &mut O, info: &mut Info) -> Transiti
     }
 }
 
+mod sealed {
+    /// Keeps [`WrapperKind`](super::WrapperKind) to the kinds of this module.
+    pub trait Sealed {}
+    impl Sealed for super::Observations {}
+    impl Sealed for super::Actions {}
+    impl Sealed for super::Rewards {}
+    impl Sealed for super::Steps {}
+    impl Sealed for super::Custom {}
+}
+
 /// How a kind of wrapper makes its wrapper `W` an [`Env`]: implemented by the kind markers
-/// ([`Observations`], ...) for the wrappers of their trait. Not implemented outside gym-core.
-pub trait WrapperKind<W>: 'static {
+/// ([`Observations`], ...) for the wrappers of their trait, and sealed (a new kind of wrapper
+/// is a change to gym-core, not to a user's crate).
+pub trait WrapperKind<W>: sealed::Sealed + 'static {
     /// [`Env::Obs`] of the wrapper.
     type Obs: Clone + std::fmt::Debug + Send + 'static;
     /// [`Env::Act`] of the wrapper.
