@@ -1,7 +1,11 @@
 //! Composable Gymnasium wrappers and vector environments over any [`gym_core::Env`].
 //!
-//! Every wrapper is a typed [`gym_core::Wrapper`] that owns the environment it wraps, so a
-//! stack is a plain value (`NormalizeObservation<TimeLimit<GymWrapper<RobosuiteEnv>>>`),
+//! Every wrapper is a typed [`gym_core::Wrapper`] that owns the environment it wraps and is
+//! written as Gymnasium writes it: the observation maps are
+//! [`gym_core::ObservationWrapper`]s, the action maps [`gym_core::ActionWrapper`]s, the
+//! reward maps [`gym_core::RewardWrapper`]s, the rest override only the hooks they change
+//! ([`gym_core::StepWrapper`], [`gym_core::CustomWrapper`]); none writes an `Env`
+//! implementation of its own. A stack is a plain value (`NormalizeObservation<TimeLimit<GymWrapper<RobosuiteEnv>>>`),
 //! `Send` when the innermost environment is, and convertible into the dynamic
 //! [`gym_core::BoxedEnv`] with [`IntoBoxedEnv::boxed`](gym_core::IntoBoxedEnv::boxed).
 //! [`WrapperExt`] adds one method per wrapper to every environment so stacks read in order:
