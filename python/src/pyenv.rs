@@ -3,10 +3,12 @@
 //! `robosuite_rs.vector.RustVectorEnv` (a `gymnasium.vector.VectorEnv`) delegate to them.
 
 use crate::convert::{
-    array_into_py, info_into_py, py_to_info, py_to_value, space_spec, value_into_py,
+    array_to_py, info_into_py, py_into_value, py_to_info, py_to_value, space_spec,
+    value_into_py, value_to_py,
 };
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
+use adapters::BatchSpace;
 use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
 use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata};
 use numpy::{PyArray1, PyArray2, PyArray3};
@@ -174,13 +176,42 @@ pub(crate) fn frame_into_py(py: Python<'_>, frame: Frame) -> Bound<'_, PyAny> {
     }
 }
 
+/// Locks `mutex` without ever blocking while holding the GIL: when another thread holds
+/// it (a step running with the GIL released, which needs the GIL back to return), this
+/// thread waits for it with the GIL released, then tries again.
+///
+/// # Errors
+/// As [`ForkAwareMutex::lock`].
+pub(crate) fn lock_with_gil<'a, T: Send>(
+    py: Python<'_>,
+    mutex: &'a ForkAwareMutex<T>,
+) -> gym_core::Result<MutexGuard<'a, T>> {
+    loop {
+        if let Some(guard) = mutex.try_lock()? {
+            return Ok(guard);
+        }
+        py.detach(|| mutex.lock().map(drop))?;
+    }
+}
+
+/// A vector env and the batch of actions that Python's actions are written into.
+struct VecState {
+    vec: ThreadVectorEnv<BoxedEnv>,
+    actions: gym_core::Value,
+}
+
 /// Several boxed environments stepped in parallel on persistent Rust worker threads
 /// (adapters' [`ThreadVectorEnv`], Gymnasium's `NEXT_STEP` autoreset) with the GIL
 /// released. Observations come back batched (`(n, ...)` arrays), infos with Gymnasium's
 /// `_key` masks.
+///
+/// A step takes one lock, converts the actions once (a NumPy array of the action space's
+/// shape is copied straight into the batch the vector env reads, casting a float dtype to
+/// the space's), steps with the GIL released, and copies the observations once, straight
+/// from the vector env's batch into fresh NumPy arrays.
 #[pyclass(name = "NativeVecEnv", module = "robosuite_rs._native")]
 pub struct PyVecEnv {
-    vec: ForkAwareMutex<ThreadVectorEnv<BoxedEnv>>,
+    state: ForkAwareMutex<VecState>,
     observation_space: AnySpace,
     action_space: AnySpace,
     batched_action_space: AnySpace,
@@ -199,18 +230,15 @@ impl PyVecEnv {
             None => ThreadVectorEnv::new(envs),
         }
         .map_err(to_pyerr)?;
+        let actions = vec.single_action_space().create_empty_batch(vec.num_envs());
         Ok(Self {
             observation_space: vec.single_observation_space().clone(),
             action_space: vec.single_action_space().clone(),
             batched_action_space: vec.action_space().clone(),
             metadata: vec.metadata().clone(),
             num_envs: vec.num_envs(),
-            vec: ForkAwareMutex::new(vec),
+            state: ForkAwareMutex::new(VecState { vec, actions }),
         })
-    }
-
-    fn lock(&self) -> gym_core::Result<MutexGuard<'_, ThreadVectorEnv<BoxedEnv>>> {
-        self.vec.lock()
     }
 }
 
@@ -225,7 +253,7 @@ pub(crate) fn vector_info_into_py<'py>(
             VectorInfoValue::Bool(b) => PyArray1::from_slice(py, b).into_any(),
             VectorInfoValue::Int(x) => PyArray1::from_slice(py, x).into_any(),
             VectorInfoValue::Float(x) => PyArray1::from_slice(py, x).into_any(),
-            VectorInfoValue::Array(a) => array_into_py(py, a.clone()),
+            VectorInfoValue::Array(a) => array_to_py(py, a),
             VectorInfoValue::Objects(items) => {
                 let objs = items
                     .iter()
@@ -244,7 +272,7 @@ pub(crate) fn vector_info_into_py<'py>(
                     .iter()
                     .map(|o| match o {
                         None => Ok(py.None().into_bound(py)),
-                        Some(x) => value_into_py(py, x.clone(), false),
+                        Some(x) => value_to_py(py, x, false),
                     })
                     .collect::<PyResult<Vec<_>>>()?;
                 object_array(py, objs)?
@@ -299,43 +327,28 @@ impl PyVecEnv {
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
         let seeds = extract_seeds(seed)?;
         let options = options.map(py_to_info).transpose()?;
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let vec = &mut state.vec;
         let (obs, info) = py
-            .detach(|| {
-                let mut vec = self.lock()?;
-                vec.reset(seeds, options.as_ref())
-                    .map(|(o, i)| (o.clone(), i))
-            })
+            .detach(move || vec.reset(seeds, options.as_ref()))
             .map_err(to_pyerr)?;
-        Ok((
-            value_into_py(py, obs, false)?,
-            vector_info_into_py(py, &info)?,
-        ))
+        Ok((value_to_py(py, obs, false)?, vector_info_into_py(py, info)?))
     }
 
     /// `step(actions) -> (batched obs, rewards, terminations, truncations, infos)` for
     /// batched actions (an `(n, ...)` array for Box action spaces).
     fn step<'py>(&self, py: Python<'py>, actions: &Bound<'py, PyAny>) -> PyResult<VecStepPy<'py>> {
-        let actions = py_to_value(actions, &self.batched_action_space)?;
-        let (obs, rewards, terms, truncs, info) = py
-            .detach(|| {
-                let mut vec = self.lock()?;
-                vec.step(&actions).map(|s| {
-                    (
-                        s.observations.clone(),
-                        s.rewards.to_vec(),
-                        s.terminations.to_vec(),
-                        s.truncations.to_vec(),
-                        s.infos,
-                    )
-                })
-            })
-            .map_err(to_pyerr)?;
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let VecState { vec, actions: batch } = &mut *state;
+        py_into_value(actions, &self.batched_action_space, batch)?;
+        let batch = &*batch;
+        let s = py.detach(move || vec.step(batch)).map_err(to_pyerr)?;
         Ok((
-            value_into_py(py, obs, false)?,
-            PyArray1::from_vec(py, rewards),
-            PyArray1::from_vec(py, terms),
-            PyArray1::from_vec(py, truncs),
-            vector_info_into_py(py, &info)?,
+            value_to_py(py, s.observations, false)?,
+            PyArray1::from_slice(py, s.rewards),
+            PyArray1::from_slice(py, s.terminations),
+            PyArray1::from_slice(py, s.truncations),
+            vector_info_into_py(py, s.infos)?,
         ))
     }
 
@@ -359,8 +372,8 @@ impl PyVecEnv {
     /// In a forked child whose copy was locked at the fork it does nothing.
     fn close(&self, py: Python<'_>) {
         py.detach(|| {
-            if let Ok(mut vec) = self.lock() {
-                vec.close();
+            if let Ok(mut state) = self.state.lock() {
+                state.vec.close();
             }
         });
     }

@@ -36,7 +36,9 @@
 mod core;
 pub mod info;
 mod pool;
+mod slot;
 mod sync;
+mod team;
 mod thread;
 
 pub use info::{VectorInfo, VectorInfoValue};
@@ -139,8 +141,8 @@ pub struct VectorStep<'a, O> {
     pub terminations: &'a [bool],
     /// One `truncated` flag per sub-environment.
     pub truncations: &'a [bool],
-    /// The batched infos.
-    pub infos: VectorInfo,
+    /// The batched infos (refilled by the next call).
+    pub infos: &'a VectorInfo,
 }
 
 /// A batch of environments stepped together (Gymnasium's `VectorEnv`; not an `Env`).
@@ -180,7 +182,7 @@ pub trait VectorEnv {
         &mut self,
         seed: impl Into<Seeds>,
         options: Option<&ResetOptions>,
-    ) -> Result<(&BatchOf<Self::ObsSpace>, VectorInfo)>;
+    ) -> Result<(&BatchOf<Self::ObsSpace>, &VectorInfo)>;
 
     /// Resets the sub-environments whose `mask` entry is true (Gymnasium's
     /// `options={"reset_mask": mask}`); the others keep their observation and state.
@@ -192,7 +194,7 @@ pub trait VectorEnv {
         mask: &[bool],
         seed: impl Into<Seeds>,
         options: Option<&ResetOptions>,
-    ) -> Result<(&BatchOf<Self::ObsSpace>, VectorInfo)>;
+    ) -> Result<(&BatchOf<Self::ObsSpace>, &VectorInfo)>;
 
     /// Steps every sub-environment with its row of `actions`.
     ///
@@ -252,9 +254,9 @@ macro_rules! delegate_to_core {
             &mut self,
             seed: impl Into<Seeds>,
             options: Option<&ResetOptions>,
-        ) -> Result<(&BatchOf<$obs>, VectorInfo)> {
-            let infos = self.run_reset(seed.into(), options, None)?;
-            Ok((&self.core.observations, infos))
+        ) -> Result<(&BatchOf<$obs>, &VectorInfo)> {
+            self.run_reset(seed.into(), options, None)?;
+            Ok((&self.core.observations, &self.core.infos))
         }
 
         fn reset_masked(
@@ -262,9 +264,9 @@ macro_rules! delegate_to_core {
             mask: &[bool],
             seed: impl Into<Seeds>,
             options: Option<&ResetOptions>,
-        ) -> Result<(&BatchOf<$obs>, VectorInfo)> {
-            let infos = self.run_reset(seed.into(), options, Some(mask))?;
-            Ok((&self.core.observations, infos))
+        ) -> Result<(&BatchOf<$obs>, &VectorInfo)> {
+            self.run_reset(seed.into(), options, Some(mask))?;
+            Ok((&self.core.observations, &self.core.infos))
         }
 
         fn observations(&self) -> &BatchOf<$obs> {
