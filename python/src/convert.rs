@@ -140,19 +140,20 @@ fn dict_into_py(py: Python<'_>, d: DictValue, ordered: bool) -> PyResult<Bound<'
     Ok(out)
 }
 
-/// An [`Info`] as a Python `dict` (bools, ints, floats, strs, fresh arrays, nested dicts).
+/// An [`Info`] as a Python `dict` (bools, ints, floats, strs, arrays copied into fresh
+/// NumPy arrays, nested dicts).
 ///
 /// # Errors
 /// Only when Python itself fails.
-pub fn info_into_py(py: Python<'_>, info: Info) -> PyResult<Bound<'_, PyDict>> {
+pub fn info_into_py<'py>(py: Python<'py>, info: &Info) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    for (k, v) in info {
+    for (k, v) in info.iter() {
         let v = match v {
-            InfoValue::Bool(b) => PyBool::new(py, b).to_owned().into_any(),
+            InfoValue::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
             InfoValue::Int(i) => i.into_pyobject(py)?.into_any(),
-            InfoValue::Float(f) => PyFloat::new(py, f).into_any(),
-            InfoValue::Str(s) => PyString::new(py, &s).into_any(),
-            InfoValue::Array(a) => array_into_py(py, a),
+            InfoValue::Float(f) => PyFloat::new(py, *f).into_any(),
+            InfoValue::Str(s) => PyString::new(py, s).into_any(),
+            InfoValue::Array(a) => array_to_py(py, a),
             InfoValue::Map(m) => info_into_py(py, m)?.into_any(),
         };
         out.set_item(k, v)?;

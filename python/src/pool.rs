@@ -80,14 +80,20 @@ type RecvPy<'py> = (
 impl PyEnvPool {
     /// The number of environments.
     #[getter]
-    fn num_envs(&self) -> PyResult<usize> {
-        Ok(self.lock().map_err(to_pyerr)?.pool.num_envs())
+    fn num_envs(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(lock_with_gil(py, &self.state)
+            .map_err(to_pyerr)?
+            .pool
+            .num_envs())
     }
 
     /// How many environments each `recv` returns.
     #[getter]
-    fn batch_size(&self) -> PyResult<usize> {
-        Ok(self.lock().map_err(to_pyerr)?.pool.batch_size())
+    fn batch_size(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(lock_with_gil(py, &self.state)
+            .map_err(to_pyerr)?
+            .pool
+            .batch_size())
     }
 
     /// Queues a reset of every environment (an integer seed gives env `i` `seed + i`; a

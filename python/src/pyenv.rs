@@ -3,14 +3,14 @@
 //! `robosuite_rs.vector.RustVectorEnv` (a `gymnasium.vector.VectorEnv`) delegate to them.
 
 use crate::convert::{
-    array_to_py, info_into_py, py_into_value, py_to_info, py_to_value, space_spec,
-    value_into_py, value_to_py,
+    array_to_py, info_into_py, py_into_value, py_to_info, space_spec, value_into_py,
+    value_to_py,
 };
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
 use adapters::BatchSpace;
 use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
-use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata};
+use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata, Value};
 use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -62,10 +62,35 @@ pub(crate) fn metadata_into_py<'py>(py: Python<'py>, m: &Metadata) -> PyResult<B
 /// environment stays usable after an invalid action.
 #[pyclass(name = "NativeEnv", module = "robosuite_rs._native")]
 pub struct PyEnv {
-    env: Mutex<BoxedEnv>,
+    state: Mutex<EnvState>,
     observation_space: AnySpace,
     action_space: AnySpace,
     metadata: Metadata,
+}
+
+/// An environment and the buffers its steps go through: the action Python's action is
+/// written into, and the observation and info `step_into` writes in place.
+struct EnvState {
+    env: BoxedEnv,
+    action: Value,
+    observation: Value,
+    info: Info,
+}
+
+/// A locked [`PyEnv`]'s environment.
+pub struct EnvGuard<'a>(MutexGuard<'a, EnvState>);
+
+impl std::ops::Deref for EnvGuard<'_> {
+    type Target = BoxedEnv;
+    fn deref(&self) -> &BoxedEnv {
+        &self.0.env
+    }
+}
+
+impl std::ops::DerefMut for EnvGuard<'_> {
+    fn deref_mut(&mut self) -> &mut BoxedEnv {
+        &mut self.0.env
+    }
 }
 
 impl PyEnv {
@@ -75,7 +100,12 @@ impl PyEnv {
         let action_space = env.action_space().clone();
         let metadata = env.metadata().clone();
         Self {
-            env: Mutex::new(env),
+            state: Mutex::new(EnvState {
+                action: action_space.zero_element(),
+                observation: observation_space.zero_element(),
+                info: Info::new(),
+                env,
+            }),
             observation_space,
             action_space,
             metadata,
@@ -83,8 +113,22 @@ impl PyEnv {
     }
 
     /// Locks the environment (ignoring poisoning by an earlier panic).
-    pub fn lock(&self) -> MutexGuard<'_, BoxedEnv> {
-        self.env.lock().unwrap_or_else(PoisonError::into_inner)
+    pub fn lock(&self) -> EnvGuard<'_> {
+        EnvGuard(self.state.lock().unwrap_or_else(PoisonError::into_inner))
+    }
+}
+
+/// Locks `mutex` (ignoring poisoning) without ever blocking while holding the GIL; see
+/// [`lock_with_gil`].
+fn lock_plain_with_gil<'a, T: Send>(py: Python<'_>, mutex: &'a Mutex<T>) -> MutexGuard<'a, T> {
+    loop {
+        match mutex.try_lock() {
+            Ok(guard) => return guard,
+            Err(std::sync::TryLockError::Poisoned(p)) => return p.into_inner(),
+            Err(std::sync::TryLockError::WouldBlock) => {
+                py.detach(|| drop(mutex.lock()));
+            }
+        }
     }
 }
 
@@ -109,19 +153,32 @@ impl PyEnv {
         let (obs, info) = py
             .detach(|| self.lock().reset(seed, options.as_ref()))
             .map_err(to_pyerr)?;
-        Ok((value_into_py(py, obs, false)?, info_into_py(py, info)?))
+        Ok((value_into_py(py, obs, false)?, info_into_py(py, &info)?))
     }
 
     /// `step(action) -> (obs, reward: float, terminated: bool, truncated: bool, info)`.
+    /// The action is converted once (a NumPy array of the space's shape is copied straight
+    /// into the kept action), the env steps in place (`step_into`) with the GIL released,
+    /// and the observation is copied once into a fresh NumPy array.
     fn step<'py>(&self, py: Python<'py>, action: &Bound<'py, PyAny>) -> PyResult<StepPy<'py>> {
-        let action = py_to_value(action, &self.action_space)?;
-        let step = py.detach(|| self.lock().step(&action)).map_err(to_pyerr)?;
+        let mut state = lock_plain_with_gil(py, &self.state);
+        let EnvState {
+            env,
+            action: buffer,
+            observation,
+            info,
+        } = &mut *state;
+        py_into_value(action, &self.action_space, buffer)?;
+        let (buffer, obs, inf) = (&*buffer, &mut *observation, &mut *info);
+        let t = py
+            .detach(move || env.step_into(buffer, obs, inf))
+            .map_err(to_pyerr)?;
         Ok((
-            value_into_py(py, step.observation, false)?,
-            step.reward,
-            step.terminated,
-            step.truncated,
-            info_into_py(py, step.info)?,
+            value_to_py(py, observation, false)?,
+            t.reward,
+            t.terminated,
+            t.truncated,
+            info_into_py(py, info)?,
         ))
     }
 
@@ -142,8 +199,11 @@ impl PyEnv {
 
     /// The render mode chosen when the env was made (`"rgb_array"`, `"depth_array"`) or
     /// `None`.
-    fn render_mode(&self) -> Option<&'static str> {
-        self.lock().render_mode().map(|m| m.as_str())
+    fn render_mode(&self, py: Python<'_>) -> Option<&'static str> {
+        lock_plain_with_gil(py, &self.state)
+            .env
+            .render_mode()
+            .map(|m| m.as_str())
     }
 
     /// `render()`: the frame of the render mode (an `H×W×3` uint8 array for `rgb_array`,
@@ -260,7 +320,7 @@ pub(crate) fn vector_info_into_py<'py>(
                     .map(|o| match o {
                         None => Ok(py.None().into_bound(py)),
                         Some(x) => {
-                            let d = info_into_py(py, Info::new().with("v", x.clone()))?;
+                            let d = info_into_py(py, &Info::new().with("v", x.clone()))?;
                             Ok(d.get_item("v")?.expect("just inserted"))
                         }
                     })
