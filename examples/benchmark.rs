@@ -118,9 +118,9 @@ fn parse_args() -> Args {
                 "vector" => args.only = Some(Only::Vector),
                 "cost" => args.only = Some(Only::Cost),
                 "model" => args.only = Some(Only::Model),
-                other => eprintln!(
-                    "benchmark: --only takes steps, cost, vector or model, not {other}"
-                ),
+                other => {
+                    eprintln!("benchmark: --only takes steps, cost, vector or model, not {other}")
+                }
             },
             other => eprintln!("benchmark: ignoring unknown argument {other}"),
         }
@@ -595,7 +595,12 @@ fn main() -> Result<()> {
             }
         }
         let wall_model = r["barrier_model_wall"].as_array();
-        for (k, m) in r["barrier_model"].as_array().into_iter().flatten().enumerate() {
+        for (k, m) in r["barrier_model"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
             let measured = (m["threads"].as_u64() == Some(cpus as u64)
                 && m["assignment"] == "dynamic")
                 .then(|| {

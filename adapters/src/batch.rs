@@ -119,7 +119,10 @@ fn check_any_batch<S: BatchSpace + ?Sized>(space: &S, batch: &BatchOf<S>, n: usi
     if !flat.all_finite() {
         let values = flat.to_f64_vec();
         let at = values.iter().position(|v| !v.is_finite()).unwrap_or(0);
-        return Err(not_finite(at / (values.len() / n.max(1)).max(1), values[at]));
+        return Err(not_finite(
+            at / (values.len() / n.max(1)).max(1),
+            values[at],
+        ));
     }
     Ok(())
 }

@@ -59,7 +59,12 @@ fn alone<E: Env<Obs = ArrayD<f32>, Act = ArrayD<f32>>>(
             } else {
                 let s = env.step(&b.index_axis(Axis(0), i).to_owned()).unwrap();
                 ended = s.terminated || s.truncated;
-                (bits(&s.observation), s.reward.to_bits(), s.terminated, s.truncated)
+                (
+                    bits(&s.observation),
+                    s.reward.to_bits(),
+                    s.terminated,
+                    s.truncated,
+                )
             }
         })
         .collect()
@@ -131,9 +136,14 @@ fn same_step_autoreset_equals_the_sync_vector_env_for_any_thread_count() {
         s.reset(4u64, None).unwrap();
         for b in &batches {
             let a = t.step(b).unwrap();
-            let (a_obs, a_rew, a_info) = (a.observations.clone(), a.rewards.to_vec(), a.infos.clone());
+            let (a_obs, a_rew, a_info) =
+                (a.observations.clone(), a.rewards.to_vec(), a.infos.clone());
             let b = s.step(b).unwrap();
-            assert_eq!(bits(&a_obs), bits(b.observations), "{n} envs on {threads} threads");
+            assert_eq!(
+                bits(&a_obs),
+                bits(b.observations),
+                "{n} envs on {threads} threads"
+            );
             assert_eq!(a_rew, b.rewards);
             assert_eq!(&a_info, b.infos);
         }
@@ -142,7 +152,12 @@ fn same_step_autoreset_equals_the_sync_vector_env_for_any_thread_count() {
 
 #[test]
 fn lift_trajectories_equal_single_envs_typed_and_boxed() {
-    let make = || robosuite_env::make("Lift").unwrap().flat_gym_wrapper(None).unwrap();
+    let make = || {
+        robosuite_env::make("Lift")
+            .unwrap()
+            .flat_gym_wrapper(None)
+            .unwrap()
+    };
     let n = 3;
     let mut typed = ThreadVectorEnv::with_threads((0..n).map(|_| make()).collect(), 2).unwrap();
     let batches = action_batches(typed.single_action_space(), n, 12, 5);

@@ -66,7 +66,12 @@ fn step_allocations<V: VectorEnv>(mut v: V, batches: &[adapters::BatchOf<V::ActS
 
 #[test]
 fn vector_steps_do_not_allocate() {
-    let make = || robosuite_env::make("Lift").unwrap().flat_gym_wrapper(None).unwrap();
+    let make = || {
+        robosuite_env::make("Lift")
+            .unwrap()
+            .flat_gym_wrapper(None)
+            .unwrap()
+    };
     let n = 4;
     let single = make().action_space().clone();
     let batched = single.batch_space(n).unwrap();
@@ -76,9 +81,17 @@ fn vector_steps_do_not_allocate() {
     assert_eq!(step_allocations(sync, &batches), 0, "SyncVectorEnv");
     for threads in [1, 2, 3, 4] {
         let v = ThreadVectorEnv::with_threads((0..n).map(|_| make()).collect(), threads).unwrap();
-        assert_eq!(step_allocations(v, &batches), 0, "ThreadVectorEnv, {threads} threads");
+        assert_eq!(
+            step_allocations(v, &batches),
+            0,
+            "ThreadVectorEnv, {threads} threads"
+        );
     }
     let boxed_batches: Vec<Value> = batches.iter().map(|b| Value::from(b.clone())).collect();
     let boxed = ThreadVectorEnv::with_threads((0..n).map(|_| make().boxed()).collect(), 2).unwrap();
-    assert_eq!(step_allocations(boxed, &boxed_batches), 0, "boxed ThreadVectorEnv");
+    assert_eq!(
+        step_allocations(boxed, &boxed_batches),
+        0,
+        "boxed ThreadVectorEnv"
+    );
 }

@@ -4,12 +4,12 @@
 
 use crate::env::{Env, Frame, Metadata, RenderMode, Step, Transition};
 use crate::error::{Error, Result};
+use crate::for_each_array;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
 use crate::space::Space;
 use crate::spaces::AnySpace;
 use crate::value::Value;
-use crate::for_each_array;
 use std::any::Any;
 
 /// An environment seen through dynamic values; object safe.

@@ -82,7 +82,9 @@ fn copy_into(obj: &Bound<'_, PyAny>, dst: &mut ArrayValue, float_cast: bool) -> 
         if src.shape() != dst.shape() {
             return Some(false);
         }
-        Zip::from(dst).and(&src).for_each(|d, &s| *d = s.cast_to::<T>());
+        Zip::from(dst)
+            .and(&src)
+            .for_each(|d, &s| *d = s.cast_to::<T>());
         Some(true)
     }
     macro_rules! exact_or_float {

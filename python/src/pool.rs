@@ -134,7 +134,10 @@ impl PyEnvPool {
             })
             .collect::<PyResult<Vec<_>>>()?;
         let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
-        let PoolState { pool, actions: batch } = &mut *state;
+        let PoolState {
+            pool,
+            actions: batch,
+        } = &mut *state;
         py_into_value(actions, &self.batched_action_space, batch)?;
         let batch = &*batch;
         py.detach(move || pool.send(batch, &ids)).map_err(to_pyerr)

@@ -3,8 +3,7 @@
 //! `robosuite_rs.vector.RustVectorEnv` (a `gymnasium.vector.VectorEnv`) delegate to them.
 
 use crate::convert::{
-    array_to_py, info_into_py, py_into_value, py_to_info, space_spec, value_into_py,
-    value_to_py,
+    array_to_py, info_into_py, py_into_value, py_to_info, space_spec, value_into_py, value_to_py,
 };
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
@@ -399,7 +398,10 @@ impl PyVecEnv {
     /// batched actions (an `(n, ...)` array for Box action spaces).
     fn step<'py>(&self, py: Python<'py>, actions: &Bound<'py, PyAny>) -> PyResult<VecStepPy<'py>> {
         let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
-        let VecState { vec, actions: batch } = &mut *state;
+        let VecState {
+            vec,
+            actions: batch,
+        } = &mut *state;
         py_into_value(actions, &self.batched_action_space, batch)?;
         let batch = &*batch;
         let s = py.detach(move || vec.step(batch)).map_err(to_pyerr)?;

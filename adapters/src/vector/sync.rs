@@ -33,7 +33,11 @@ where
     /// [`gym_core::Error::InvalidArgument`] for no environments or differing spaces.
     pub fn new(envs: Vec<E>) -> Result<Self> {
         let core = VectorCore::new(&envs)?;
-        let slots = envs.iter().enumerate().map(|(i, e)| Slot::new(i, e)).collect();
+        let slots = envs
+            .iter()
+            .enumerate()
+            .map(|(i, e)| Slot::new(i, e))
+            .collect();
         Ok(Self { envs, slots, core })
     }
 
