@@ -201,12 +201,16 @@ mod tests {
         // The barrier loses more with more threads, and dynamic assignment of several envs
         // per thread wins it back.
         let sample = [1.0, 1.0, 1.0, 3.0];
-        let one = |n, t, a| predicted_efficiency(&sample, n, t, a, 20_000, &mut rng);
+        let mut one = |n, t, a| predicted_efficiency(&sample, n, t, a, 20_000, &mut rng);
         let (e2, e16) = (
             one(2, 2, Assignment::Static),
             one(16, 16, Assignment::Static),
         );
         assert!(e16 < e2, "{e16} {e2}");
-        assert!(one(64, 16, Assignment::Dynamic) > one(64, 16, Assignment::Static));
+        let (dynamic, fixed) = (
+            one(64, 16, Assignment::Dynamic),
+            one(64, 16, Assignment::Static),
+        );
+        assert!(dynamic > fixed, "{dynamic} {fixed}");
     }
 }

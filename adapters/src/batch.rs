@@ -105,7 +105,7 @@ pub(crate) fn tile<T: Clone>(a: &ArrayD<T>, n: usize) -> ArrayD<T> {
 }
 
 /// The default [`BatchSpace::check_batch`]: reads every item and flattens the batch.
-fn check_any_batch<S: BatchSpace + ?Sized>(space: &S, batch: &BatchOf<S>, n: usize) -> Result<()> {
+fn check_any_batch<S: BatchSpace>(space: &S, batch: &BatchOf<S>, n: usize) -> Result<()> {
     for k in 0..n {
         space
             .read_item(batch, k)
