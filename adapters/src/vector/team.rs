@@ -230,3 +230,13 @@ impl<J: Job> Team<J> {
         std::mem::forget(std::mem::take(&mut self.workers));
     }
 }
+
+impl<J: Job> Drop for Team<J> {
+    /// Stops the workers that are still running (none after [`Team::stop`] or
+    /// [`Team::abandon`]).
+    fn drop(&mut self) {
+        if !self.workers.is_empty() {
+            self.stop();
+        }
+    }
+}
