@@ -28,7 +28,11 @@
 //!   is checked before any sub-environment steps, so a rejected call changes nothing.
 //! * A sub-environment's error is returned as its typed error (messages prefixed with its
 //!   index); the other sub-environments' results of that call are still recorded. A panic
-//!   in a worker thread becomes [`Error::Simulation`](gym_core::Error), never a hang.
+//!   in a sub-environment (on any thread) becomes [`Error::Simulation`](gym_core::Error),
+//!   never a hang, and that sub-environment refuses further calls.
+//! * Steps go through [`Env::step_into`](gym_core::Env::step_into) into per-environment
+//!   buffers and the infos are refilled in place, so over environments whose `step_into`
+//!   reuses its buffers a vector step does not allocate.
 //! * After `fork()`, a [`ThreadVectorEnv`] or [`ThreadEnvPool`] used in the child returns
 //!   [`Error::Unsupported`](gym_core::Error) (its threads exist only in the parent); closing
 //!   or dropping it there neither joins nor waits.
