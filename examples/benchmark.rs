@@ -9,8 +9,18 @@
 //! ```text
 //! cargo run --release -p examples --example benchmark -- [--task Lift] [--robot Sawyer]
 //!     [--controller OSC_POSITION] [--robots] [--controllers] [--cpu-time] [--seconds 3]
-//!     [--max-envs 4] [--rounds 5] [--only steps|cost|vector] [--json bench.json]
+//!     [--max-envs 4] [--rounds 5] [--only steps|cost|vector|model] [--json bench.json]
 //! ```
+//!
+//! The vector table has one row per env count (1, 2, 4, ... up to `--max-envs`, by default
+//! twice the logical CPUs): `ThreadVectorEnv`'s steps/s on its default threads, the
+//! independent-thread ceiling for as many envs, and the efficiency (the median of the
+//! per-round ratios); the pool line has its efficiency against the ceiling of as many envs
+//! as it has threads. `--only model` measures the distribution of one env's step times
+//! (`step_into` with random actions, an episode's reset counted as a step, as a vector
+//! env's autoreset is) and prints the barrier model's predicted efficiency (see
+//! `examples::barrier_model`) for 2, 8 and 16 threads beside the vector table measured
+//! here.
 //!
 //! `--robot` and `--controller` put every task on that robot (default: the Panda) and that
 //! arm controller (robosuite's part config file for it; default: the robot's own config).
@@ -25,9 +35,10 @@
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
 use adapters::{BatchSpace, ThreadEnvPool, ThreadVectorEnv, VectorEnv, WrapperExt};
+use examples::barrier_model::{Assignment, expected_max, predicted_efficiency, summarize};
 use examples::case::Case;
 use examples::physics_only::PhysicsOnly;
-use gym_core::{Env, Result, Space, rng_from_seed};
+use gym_core::{Env, Info, Result, Space, rng_from_seed};
 use robosuite_env::controllers::config::ARM_CONTROLLER_TYPES;
 use serde_json::json;
 use std::time::{Duration, Instant};
@@ -42,6 +53,8 @@ enum Only {
     /// One env's steps/s beside the physics-only rate of its model, reset time and
     /// memory, without the vector figures (`--only cost`, `--robots`, `--controllers`).
     Cost,
+    /// The step-time distribution, the barrier model's predictions and the vector table.
+    Model,
 }
 
 struct Args {
@@ -104,7 +117,10 @@ fn parse_args() -> Args {
                 "steps" => args.only = Some(Only::Steps),
                 "vector" => args.only = Some(Only::Vector),
                 "cost" => args.only = Some(Only::Cost),
-                other => eprintln!("benchmark: --only takes steps, cost or vector, not {other}"),
+                "model" => args.only = Some(Only::Model),
+                other => {
+                    eprintln!("benchmark: --only takes steps, cost, vector or model, not {other}")
+                }
             },
             other => eprintln!("benchmark: ignoring unknown argument {other}"),
         }
@@ -184,8 +200,9 @@ fn rate(budget: Duration, mut step: impl FnMut() -> Result<()>) -> Result<f64> {
     Ok(n as f64 / start.elapsed().as_secs_f64())
 }
 
-/// Steps/s of `n` flat-GymWrapper envs stepped by `n` independent threads (no vector env,
-/// no synchronisation): what the machine itself allows for `n` parallel envs.
+/// Steps/s of `n` flat-GymWrapper envs stepped (`step_into`, as the vector envs do) by `n`
+/// independent threads (no vector env, no synchronisation): what the machine itself allows
+/// for `n` parallel envs.
 fn parallel_ceiling(task: &Case, n: usize, budget: Duration) -> Result<f64> {
     let envs = (0..n)
         .map(|_| task.make()?.flat_gym_wrapper(None))
@@ -197,11 +214,11 @@ fn parallel_ceiling(task: &Case, n: usize, budget: Duration) -> Result<f64> {
             .map(|(i, mut env)| {
                 scope.spawn(move || {
                     let mut rng = rng_from_seed(100 + i as u64);
-                    env.reset(Some(i as u64), None)?;
+                    let (mut obs, mut info) = env.reset(Some(i as u64), None)?;
                     rate(budget, || {
                         let a = env.action_space().sample(&mut rng);
-                        if env.step(&a)?.done() {
-                            env.reset(None, None)?;
+                        if env.step_into(&a, &mut obs, &mut info)?.done() {
+                            (obs, info) = env.reset(None, None)?;
                         }
                         Ok(())
                     })
@@ -263,7 +280,13 @@ fn vector_scaling(
     let mut vector_rates = vec![Vec::new(); counts.len()];
     let mut ceiling_rates = vec![Vec::new(); counts.len()];
     let mut pool_rates = Vec::new();
+    // The ceiling of as many envs as the pool has threads, where no row measures it.
+    let pool_row = counts.iter().position(|&n| n == pool.num_threads());
+    let mut pool_ceiling_rates = Vec::new();
     for _ in 0..args.rounds {
+        if pool_row.is_none() {
+            pool_ceiling_rates.push(parallel_ceiling(task, pool.num_threads(), window)?);
+        }
         pool_rates.push(
             rate(window, || {
                 let actions = pool_actions.sample(rng);
@@ -286,12 +309,15 @@ fn vector_scaling(
         }
     }
     let ratio = |a: &[f64], b: &[f64]| median(a.iter().zip(b).map(|(x, y)| x / y).collect());
+    let pool_ceiling = pool_row.map_or(&pool_ceiling_rates, |i| &ceiling_rates[i]);
     let pool = json!({
         "envs": pool.num_envs(),
         "batch_size": pool.batch_size(),
         "threads": pool.num_threads(),
         "steps_per_s": median(pool_rates.clone()),
         "speedup": ratio(&pool_rates, &vector_rates[0]),
+        "ceiling_steps_per_s": median(pool_ceiling.clone()),
+        "efficiency": ratio(&pool_rates, pool_ceiling),
     });
     let vector = counts
         .iter()
@@ -334,12 +360,100 @@ fn bench_task(task: &Case, args: &Args) -> Result<serde_json::Value> {
     if matches!(args.only, None | Some(Only::Cost)) {
         reset_and_memory(task, &mut rng, &mut figures)?;
     }
-    if args.only.is_none() || args.only == Some(Only::Vector) {
+    if matches!(args.only, None | Some(Only::Model)) {
+        step_time_model(task, args, &mut rng, &mut figures)?;
+    }
+    if matches!(args.only, None | Some(Only::Vector) | Some(Only::Model)) {
         let (vector, pool) = vector_scaling(task, args, &mut rng)?;
         figures["vector"] = json!(vector);
         figures["pool"] = pool;
     }
     Ok(figures)
+}
+
+/// CPU time this thread has run, in seconds (`CLOCK_THREAD_CPUTIME_ID`: exact, unlike
+/// [`thread_cpu_seconds`], which is updated at scheduler ticks).
+fn thread_cpu_now() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to fill.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
+fn summary_json(times: &[f64]) -> serde_json::Value {
+    let s = summarize(times);
+    json!({
+        "count": s.count, "mean": s.mean, "sd": s.sd, "min": s.min, "p50": s.p50,
+        "p90": s.p90, "p99": s.p99, "max": s.max,
+    })
+}
+
+/// The barrier model's predictions for 2, 8 and 16 threads from a sample of step times.
+fn model_rows(times: &[f64], rng: &mut gym_core::EnvRng) -> Vec<serde_json::Value> {
+    let rounds = 20_000;
+    let mean = summarize(times).mean;
+    let mut rows = Vec::new();
+    for threads in [2usize, 8, 16] {
+        let e_max = expected_max(times, threads, rounds, rng);
+        for (envs, assignment) in [
+            (threads, Assignment::Static),
+            (threads, Assignment::Dynamic),
+            (2 * threads, Assignment::Static),
+            (2 * threads, Assignment::Dynamic),
+            (4 * threads, Assignment::Static),
+            (4 * threads, Assignment::Dynamic),
+        ] {
+            rows.push(json!({
+                "threads": threads,
+                "envs": envs,
+                "assignment": format!("{assignment:?}").to_lowercase(),
+                "predicted_efficiency":
+                    predicted_efficiency(times, envs, threads, assignment, rounds, rng),
+                "expected_max_over_mean": e_max / mean,
+            }));
+        }
+    }
+    rows
+}
+
+/// One env's single-step times (`step_into`, random actions; the reset after an episode's
+/// end counted as a step, as a vector env's autoreset is), in wall-clock and in CPU time of
+/// the stepping thread (what a dedicated core sees: without preemption by other work), their
+/// summaries in µs, and the barrier model's predicted efficiency for 2, 8 and 16 threads
+/// from each sample (see `examples::barrier_model`).
+fn step_time_model(
+    task: &Case,
+    args: &Args,
+    rng: &mut gym_core::EnvRng,
+    figures: &mut serde_json::Value,
+) -> Result<()> {
+    let mut env = task.make()?.flat_gym_wrapper(None)?;
+    let (mut obs, _) = env.reset(Some(0), None)?;
+    let mut info = Info::new();
+    let (mut wall, mut cpu) = (Vec::new(), Vec::new());
+    let budget = Duration::from_secs_f64(args.seconds);
+    let start = Instant::now();
+    let mut ended = false;
+    while start.elapsed() < budget || wall.len() < 200 {
+        let a = env.action_space().sample(rng);
+        let (t, c) = (Instant::now(), thread_cpu_now());
+        if ended {
+            (obs, info) = env.reset(None, None)?;
+            ended = false;
+        } else {
+            ended = env.step_into(&a, &mut obs, &mut info)?.done();
+        }
+        cpu.push((thread_cpu_now() - c) * 1e6);
+        wall.push(t.elapsed().as_secs_f64() * 1e6);
+    }
+    figures["step_times_us"] = summary_json(&wall);
+    figures["step_cpu_times_us"] = summary_json(&cpu);
+    figures["barrier_model"] = json!(model_rows(&cpu, rng));
+    figures["barrier_model_wall"] = json!(model_rows(&wall, rng));
+    Ok(())
 }
 
 /// One env's steps/s with random actions (resets at the horizon included), raw and through
@@ -461,6 +575,60 @@ fn main() -> Result<()> {
                 println!("  {label:<36} {v:>10.digits$}{unit}");
             }
         }
+        for (key, label) in [
+            ("step_times_us", "step time, wall-clock"),
+            ("step_cpu_times_us", "step time, thread CPU"),
+        ] {
+            if let Some(t) = r.get(key) {
+                println!(
+                    "  {label} (us, {} steps): mean {:.1}, sd {:.1}, min {:.1}, p50 {:.1}, \
+                     p90 {:.1}, p99 {:.1}, max {:.1}",
+                    t["count"],
+                    t["mean"].as_f64().unwrap_or(0.0),
+                    t["sd"].as_f64().unwrap_or(0.0),
+                    t["min"].as_f64().unwrap_or(0.0),
+                    t["p50"].as_f64().unwrap_or(0.0),
+                    t["p90"].as_f64().unwrap_or(0.0),
+                    t["p99"].as_f64().unwrap_or(0.0),
+                    t["max"].as_f64().unwrap_or(0.0)
+                );
+            }
+        }
+        let wall_model = r["barrier_model_wall"].as_array();
+        for (k, m) in r["barrier_model"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .enumerate()
+        {
+            let measured = (m["threads"].as_u64() == Some(cpus as u64)
+                && m["assignment"] == "dynamic")
+                .then(|| {
+                    r["vector"]
+                        .as_array()
+                        .into_iter()
+                        .flatten()
+                        .find(|v| v["envs"] == m["envs"] && v["threads"] == m["threads"])
+                })
+                .flatten()
+                .and_then(|v| v["efficiency"].as_f64());
+            let wall = wall_model
+                .and_then(|w| w.get(k))
+                .and_then(|w| w["predicted_efficiency"].as_f64())
+                .unwrap_or(f64::NAN);
+            println!(
+                "  model: {:>2} threads, {:>2} envs, {:<7} predicted efficiency {:.3} \
+                 (E[max of {}] / mean {:.2}; from wall-clock times {:.3}){}",
+                m["threads"],
+                m["envs"],
+                m["assignment"].as_str().unwrap_or(""),
+                m["predicted_efficiency"].as_f64().unwrap_or(0.0),
+                m["threads"],
+                m["expected_max_over_mean"].as_f64().unwrap_or(0.0),
+                wall,
+                measured.map_or(String::new(), |e| format!("; measured here {e:.3}"))
+            );
+        }
         for v in r["vector"].as_array().into_iter().flatten() {
             println!(
                 "  ThreadVectorEnv {:>2} envs / {} threads {:>10.0} steps/s ({:.2}x one env; \
@@ -476,11 +644,14 @@ fn main() -> Result<()> {
         }
         if let Some(p) = r.get("pool") {
             println!(
-                "  ThreadEnvPool {} envs, batches of {} {:>10.0} steps/s ({:.2}x one env)",
+                "  ThreadEnvPool {} envs, batches of {} {:>10.0} steps/s ({:.2}x one env; \
+                 efficiency {:.2} against {} independent threads)",
                 p["envs"],
                 p["batch_size"],
                 p["steps_per_s"].as_f64().unwrap_or(0.0),
-                p["speedup"].as_f64().unwrap_or(0.0)
+                p["speedup"].as_f64().unwrap_or(0.0),
+                p["efficiency"].as_f64().unwrap_or(0.0),
+                p["threads"]
             );
         }
         results.push(r);

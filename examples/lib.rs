@@ -1,5 +1,6 @@
 //! Helpers shared by the example programs in this folder.
 
+pub mod barrier_model;
 pub mod case;
 pub mod physics_only;
 

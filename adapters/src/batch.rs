@@ -49,6 +49,32 @@ pub trait BatchSpace: Flatten + DynSpace {
     /// When `batch` does not have the structure of the space, or `i` is out of range.
     fn read_item(&self, batch: &BatchOf<Self>, i: usize) -> Result<Self::Element>;
 
+    /// [`BatchSpace::read_item`] into `out`, reusing its storage when it already has the
+    /// item's shape (arrays; other elements are replaced), so that reading the rows of a
+    /// batch in a loop does not allocate.
+    ///
+    /// # Errors
+    /// As [`BatchSpace::read_item`]; `out` is unchanged then.
+    fn read_item_into(
+        &self,
+        batch: &BatchOf<Self>,
+        i: usize,
+        out: &mut Self::Element,
+    ) -> Result<()> {
+        *out = self.read_item(batch, i)?;
+        Ok(())
+    }
+
+    /// Checks that `batch` holds exactly `n` items of this space's shape and no NaN or
+    /// ±inf value (what a vector environment checks before any sub-environment steps).
+    /// Array spaces check without allocating.
+    ///
+    /// # Errors
+    /// [`Error::InvalidAction`] naming the first problem.
+    fn check_batch(&self, batch: &BatchOf<Self>, n: usize) -> Result<()> {
+        check_any_batch(self, batch, n)
+    }
+
     /// Gymnasium's `create_zero_array(space)`: the element closest to zero that is still
     /// valid (Box zeros moved into the bounds, Discrete/MultiDiscrete `start`, zeros).
     fn zero_element(&self) -> Self::Element;
@@ -77,6 +103,121 @@ pub(crate) fn tile<T: Clone>(a: &ArrayD<T>, n: usize) -> ArrayD<T> {
     a.broadcast(IxDyn(&batched_shape(n, a.shape())))
         .expect("prepending an axis always broadcasts")
         .to_owned()
+}
+
+/// The default [`BatchSpace::check_batch`]: reads every item and flattens the batch.
+fn check_any_batch<S: BatchSpace>(space: &S, batch: &BatchOf<S>, n: usize) -> Result<()> {
+    for k in 0..n {
+        space
+            .read_item(batch, k)
+            .map_err(|e| Error::invalid_action(format!("actions[{k}]: {e}")))?;
+    }
+    // Every item exists and has the item's shape; the flat length then pins the number of
+    // items to exactly `n`.
+    let flat = space.batch_space(n)?.flatten(batch).map_err(|e| {
+        Error::invalid_action(format!("expected a batch of exactly {n} actions: {e}"))
+    })?;
+    if !flat.all_finite() {
+        let values = flat.to_f64_vec();
+        let at = values.iter().position(|v| !v.is_finite()).unwrap_or(0);
+        return Err(not_finite(
+            at / (values.len() / n.max(1)).max(1),
+            values[at],
+        ));
+    }
+    Ok(())
+}
+
+fn not_finite(row: usize, value: f64) -> Error {
+    Error::invalid_action(format!(
+        "actions[{row}] holds a value that is not finite ({value}); nothing was stepped"
+    ))
+}
+
+/// [`BatchSpace::check_batch`] for an array batch whose items have shape `item_shape`,
+/// without allocating.
+fn check_typed<T: ArrayElement>(batch: &ArrayD<T>, n: usize, item_shape: &[usize]) -> Result<()> {
+    if batch.ndim() == 0 || &batch.shape()[1..] != item_shape {
+        return Err(Error::invalid_action(format!(
+            "actions[0]: {}",
+            SpaceError::ShapeMismatch {
+                expected: batched_shape(n, item_shape),
+                got: batch.shape().to_vec(),
+            }
+        )));
+    }
+    if batch.shape()[0] != n {
+        return Err(Error::invalid_action(format!(
+            "expected a batch of exactly {n} actions, got {}",
+            batch.shape()[0]
+        )));
+    }
+    let per_row = item_shape.iter().product::<usize>().max(1);
+    match batch.iter().position(|x| !x.is_finite()) {
+        Some(at) => Err(not_finite(
+            at / per_row,
+            batch.iter().nth(at).map_or(f64::NAN, |x| x.to_f64()),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Reads row `i` of `batch` into `out`, in place when `out` has the row's shape.
+fn read_typed_into<T: ArrayElement>(
+    batch: &ArrayD<T>,
+    i: usize,
+    item_shape: &[usize],
+    out: &mut ArrayD<T>,
+) -> Result<()> {
+    if out.shape() != item_shape {
+        *out = read_typed(batch, i, item_shape)?;
+        return Ok(());
+    }
+    let n = batch.shape().first().copied().unwrap_or(0);
+    if i >= n {
+        return Err(out_of_range(i, n));
+    }
+    if &batch.shape()[1..] != item_shape {
+        return Err(SpaceError::ShapeMismatch {
+            expected: batched_shape(n, item_shape),
+            got: batch.shape().to_vec(),
+        }
+        .into());
+    }
+    out.assign(&batch.index_axis(Axis(0), i));
+    Ok(())
+}
+
+/// [`read_typed_into`] for dynamic arrays: in place when `out` has the batch's dtype.
+fn read_array_value_into(
+    batch: &ArrayValue,
+    i: usize,
+    item_shape: &[usize],
+    out: &mut ArrayValue,
+) -> Result<()> {
+    fn go<T: ArrayElement>(
+        batch: &ArrayD<T>,
+        i: usize,
+        item_shape: &[usize],
+        out: &mut ArrayValue,
+    ) -> Result<()> {
+        // Borrow `out` as the batch's array type when the dtypes agree.
+        let typed: Option<&mut ArrayD<T>> = gym_core::for_each_array!(out, a => {
+            (a as &mut dyn std::any::Any).downcast_mut::<ArrayD<T>>()
+        });
+        match typed {
+            Some(a) => read_typed_into(batch, i, item_shape, a),
+            None => {
+                *out = T::wrap(read_typed(batch, i, item_shape)?);
+                Ok(())
+            }
+        }
+    }
+    gym_core::for_each_array!(batch, b => go(b, i, item_shape, out))
+}
+
+fn check_array_value(batch: &ArrayValue, n: usize, item_shape: &[usize]) -> Result<()> {
+    gym_core::for_each_array!(batch, b => check_typed(b, n, item_shape))
 }
 
 fn out_of_range(i: usize, n: usize) -> Error {
@@ -193,6 +334,14 @@ impl<T: ArrayElement> BatchSpace for BoxSpace<T> {
         read_typed(batch, i, self.low().shape())
     }
 
+    fn read_item_into(&self, batch: &ArrayD<T>, i: usize, out: &mut ArrayD<T>) -> Result<()> {
+        read_typed_into(batch, i, self.low().shape(), out)
+    }
+
+    fn check_batch(&self, batch: &ArrayD<T>, n: usize) -> Result<()> {
+        check_typed(batch, n, self.low().shape())
+    }
+
     fn zero_element(&self) -> ArrayD<T> {
         box_zero(self)
     }
@@ -216,6 +365,10 @@ impl BatchSpace for Discrete {
 
     fn write_item(&self, batch: &mut ArrayD<i64>, i: usize, x: &i64) -> Result<()> {
         write_typed(batch, i, &ArrayD::from_elem(IxDyn(&[]), *x))
+    }
+
+    fn check_batch(&self, batch: &ArrayD<i64>, n: usize) -> Result<()> {
+        check_typed(batch, n, &[])
     }
 
     fn read_item(&self, batch: &ArrayD<i64>, i: usize) -> Result<i64> {
@@ -255,6 +408,14 @@ impl BatchSpace for MultiDiscrete {
         read_typed(batch, i, self.nvec().shape())
     }
 
+    fn read_item_into(&self, batch: &ArrayD<i64>, i: usize, out: &mut ArrayD<i64>) -> Result<()> {
+        read_typed_into(batch, i, self.nvec().shape(), out)
+    }
+
+    fn check_batch(&self, batch: &ArrayD<i64>, n: usize) -> Result<()> {
+        check_typed(batch, n, self.nvec().shape())
+    }
+
     fn zero_element(&self) -> ArrayD<i64> {
         self.start().clone()
     }
@@ -284,6 +445,14 @@ impl BatchSpace for MultiBinary {
         read_typed(batch, i, self.shape().unwrap_or(&[]))
     }
 
+    fn read_item_into(&self, batch: &ArrayD<i8>, i: usize, out: &mut ArrayD<i8>) -> Result<()> {
+        read_typed_into(batch, i, self.shape().unwrap_or(&[]), out)
+    }
+
+    fn check_batch(&self, batch: &ArrayD<i8>, n: usize) -> Result<()> {
+        check_typed(batch, n, self.shape().unwrap_or(&[]))
+    }
+
     fn zero_element(&self) -> ArrayD<i8> {
         ArrayD::zeros(IxDyn(self.shape().unwrap_or(&[])))
     }
@@ -308,6 +477,14 @@ impl BatchSpace for AnyBox {
 
     fn read_item(&self, batch: &ArrayValue, i: usize) -> Result<ArrayValue> {
         read_array_value(batch, i, self.shape().unwrap_or(&[]))
+    }
+
+    fn read_item_into(&self, batch: &ArrayValue, i: usize, out: &mut ArrayValue) -> Result<()> {
+        read_array_value_into(batch, i, self.shape().unwrap_or(&[]), out)
+    }
+
+    fn check_batch(&self, batch: &ArrayValue, n: usize) -> Result<()> {
+        check_array_value(batch, n, self.shape().unwrap_or(&[]))
     }
 
     fn zero_element(&self) -> ArrayValue {
@@ -406,6 +583,31 @@ impl BatchSpace for AnySpace {
             (AnySpace::Dict(d), Value::Dict(b)) => Ok(Value::Dict(d.read_item(b, i)?)),
             (AnySpace::Tuple(t), Value::Tuple(b)) => Ok(Value::Tuple(t.read_item(b, i)?)),
             (_, b) => Err(wrong_kind("a batch of this space", b)),
+        }
+    }
+
+    fn read_item_into(&self, batch: &Value, i: usize, out: &mut Value) -> Result<()> {
+        match (self, batch, out) {
+            (
+                AnySpace::Box(_) | AnySpace::MultiDiscrete(_) | AnySpace::MultiBinary(_),
+                Value::Array(b),
+                Value::Array(o),
+            ) => read_array_value_into(b, i, self.shape().unwrap_or(&[]), o),
+            (_, _, out) => {
+                *out = self.read_item(batch, i)?;
+                Ok(())
+            }
+        }
+    }
+
+    fn check_batch(&self, batch: &Value, n: usize) -> Result<()> {
+        match (self, batch) {
+            (
+                AnySpace::Box(_) | AnySpace::MultiDiscrete(_) | AnySpace::MultiBinary(_),
+                Value::Array(b),
+            ) => check_array_value(b, n, self.shape().unwrap_or(&[])),
+            (AnySpace::Discrete(_), Value::Array(b)) => check_array_value(b, n, &[]),
+            _ => check_any_batch(self, batch, n),
         }
     }
 

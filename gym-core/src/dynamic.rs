@@ -2,8 +2,9 @@
 //! actions are [`Value`]s and whose spaces are [`AnySpace`]s. Registries, heterogeneous
 //! collections and the Python export work at this level.
 
-use crate::env::{Env, Frame, Metadata, RenderMode, Step};
+use crate::env::{Env, Frame, Metadata, RenderMode, Step, Transition};
 use crate::error::{Error, Result};
+use crate::for_each_array;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
 use crate::space::DynSpace;
@@ -29,6 +30,31 @@ pub trait DynEnv: Send + 'static {
     /// # Errors
     /// As [`Env::step`].
     fn step(&mut self, action: &Value) -> Result<Step<Value>>;
+    /// See [`Env::step_into`]: the observation is written into `observation` and the info
+    /// into `info`, the reward and end flags are returned. The default moves the result of
+    /// `step` into the buffers; a [`DynAdapter`] steps its typed environment's `step_into`
+    /// straight into `observation` when that value already holds the typed observation
+    /// (the value of an earlier step or reset) and borrows the typed action out of
+    /// `action` when it holds one, so a loop of steps converts nothing and, over an
+    /// environment whose `step_into` reuses its buffers, allocates nothing.
+    ///
+    /// # Errors
+    /// As [`Env::step`].
+    fn step_into(
+        &mut self,
+        action: &Value,
+        observation: &mut Value,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let step = self.step(action)?;
+        *observation = step.observation;
+        *info = step.info;
+        Ok(Transition {
+            reward: step.reward,
+            terminated: step.terminated,
+            truncated: step.truncated,
+        })
+    }
     /// See [`Env::metadata`].
     fn metadata(&self) -> &Metadata;
     /// See [`Env::render_mode`].
@@ -106,6 +132,36 @@ impl<E: Env> DynEnv for DynAdapter<E> {
         let space = self.env.observation_space();
         Ok(step.map_observation(|o| space.to_value(&o)))
     }
+    fn step_into(
+        &mut self,
+        action: &Value,
+        observation: &mut Value,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let converted;
+        let action = match typed_ref::<E::Act>(action) {
+            Some(a) => a,
+            None => {
+                converted = self
+                    .env
+                    .action_space()
+                    .from_value(action)
+                    .map_err(|e| Error::InvalidAction(e.into()))?;
+                &converted
+            }
+        };
+        if let Some(typed) = typed_mut::<E::Obs>(observation) {
+            return self.env.step_into(action, typed, info);
+        }
+        let step = self.env.step(action)?;
+        *observation = self.env.observation_space().to_value(&step.observation);
+        *info = step.info;
+        Ok(Transition {
+            reward: step.reward,
+            terminated: step.terminated,
+            truncated: step.truncated,
+        })
+    }
     fn metadata(&self) -> &Metadata {
         self.env.metadata()
     }
@@ -126,6 +182,33 @@ impl<E: Env> DynEnv for DynAdapter<E> {
     }
     fn unwrapped_any_mut(&mut self) -> &mut dyn Any {
         self.env.unwrapped_any_mut()
+    }
+}
+
+/// The element of type `T` inside `v`: `v` itself, or the array, integer, dict or tuple it
+/// holds, when that has type `T` (no conversion, no copy).
+fn typed_ref<T: 'static>(v: &Value) -> Option<&T> {
+    if let Some(t) = (v as &dyn Any).downcast_ref::<T>() {
+        return Some(t);
+    }
+    match v {
+        Value::Array(a) => for_each_array!(a, x => (x as &dyn Any).downcast_ref::<T>()),
+        Value::Discrete(i) => (i as &dyn Any).downcast_ref::<T>(),
+        Value::Dict(d) => (d as &dyn Any).downcast_ref::<T>(),
+        Value::Tuple(t) => (t as &dyn Any).downcast_ref::<T>(),
+    }
+}
+
+/// Mutable form of [`typed_ref`].
+fn typed_mut<T: 'static>(v: &mut Value) -> Option<&mut T> {
+    if (&*v as &dyn Any).is::<T>() {
+        return (v as &mut dyn Any).downcast_mut::<T>();
+    }
+    match v {
+        Value::Array(a) => for_each_array!(a, x => (x as &mut dyn Any).downcast_mut::<T>()),
+        Value::Discrete(i) => (i as &mut dyn Any).downcast_mut::<T>(),
+        Value::Dict(d) => (d as &mut dyn Any).downcast_mut::<T>(),
+        Value::Tuple(t) => (t as &mut dyn Any).downcast_mut::<T>(),
     }
 }
 
@@ -163,6 +246,14 @@ impl Env for BoxedEnv {
     }
     fn step(&mut self, action: &Value) -> Result<Step<Value>> {
         (**self).step(action)
+    }
+    fn step_into(
+        &mut self,
+        action: &Value,
+        observation: &mut Value,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        (**self).step_into(action, observation, info)
     }
     fn metadata(&self) -> &Metadata {
         (**self).metadata()

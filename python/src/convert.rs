@@ -1,6 +1,9 @@
 //! Conversions between the dynamic values of gym-core and Python objects.
 
-use gym_core::{AnySpace, ArrayValue, DictValue, Info, InfoValue, Space, Value, for_each_array};
+use gym_core::{
+    AnySpace, ArrayValue, DictValue, Info, InfoValue, Scalar, Space, Value, for_each_array,
+};
+use ndarray::{ArrayD, Zip};
 use numpy::{
     PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
@@ -11,6 +14,101 @@ use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 /// A fresh NumPy array owning a copy of the values, of the value's dtype.
 pub fn array_into_py(py: Python<'_>, a: ArrayValue) -> Bound<'_, PyAny> {
     for_each_array!(a, x => PyArrayDyn::from_owned_array(py, x).into_any())
+}
+
+/// A fresh NumPy array holding a copy of `a`, made in one pass (no intermediate copy).
+pub fn array_to_py<'py>(py: Python<'py>, a: &ArrayValue) -> Bound<'py, PyAny> {
+    for_each_array!(a, x => PyArrayDyn::from_array(py, x).into_any())
+}
+
+/// [`value_into_py`] for a borrowed value: every array is copied once, straight into its
+/// NumPy array.
+///
+/// # Errors
+/// Only when Python itself fails.
+pub fn value_to_py<'py>(py: Python<'py>, v: &Value, ordered: bool) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Array(a) => array_to_py(py, a),
+        Value::Discrete(i) => i.into_pyobject(py)?.into_any(),
+        Value::Dict(d) => {
+            let out = if ordered {
+                py.import("collections")?.getattr("OrderedDict")?.call0()?
+            } else {
+                PyDict::new(py).into_any()
+            };
+            for (k, x) in d {
+                out.set_item(k, value_to_py(py, x, ordered)?)?;
+            }
+            out
+        }
+        Value::Tuple(t) => {
+            let items = t
+                .iter()
+                .map(|x| value_to_py(py, x, ordered))
+                .collect::<PyResult<Vec<_>>>()?;
+            PyTuple::new(py, items)?.into_any()
+        }
+    })
+}
+
+/// Writes the Python object `obj` as an element of `space` into `out`. When `space` is a
+/// Box, `out` already holds an array of the Box's dtype and `obj` is a NumPy array of
+/// `out`'s shape with the same dtype (or, for a float Box, any float dtype, cast as
+/// `np.asarray(obj, dtype=space.dtype)` does), the values are copied into `out` in one
+/// pass without allocating; anything else goes through [`py_to_value`].
+///
+/// # Errors
+/// As [`py_to_value`].
+pub fn py_into_value(obj: &Bound<'_, PyAny>, space: &AnySpace, out: &mut Value) -> PyResult<()> {
+    if let (AnySpace::Box(b), Value::Array(dst)) = (space, &mut *out)
+        && dst.dtype() == b.dtype()
+        && copy_into(obj, dst, b.dtype().is_float())
+    {
+        return Ok(());
+    }
+    *out = py_to_value(obj, space)?;
+    Ok(())
+}
+
+/// Copies the NumPy array `obj` into `dst` when it has `dst`'s shape and dtype (or a float
+/// dtype, with `float_cast`); `false` when it does not.
+fn copy_into(obj: &Bound<'_, PyAny>, dst: &mut ArrayValue, float_cast: bool) -> bool {
+    fn copy<S: numpy::Element + Scalar, T: Scalar>(
+        obj: &Bound<'_, PyAny>,
+        dst: &mut ArrayD<T>,
+    ) -> Option<bool> {
+        let src = obj.cast::<PyArrayDyn<S>>().ok()?.try_readonly().ok()?;
+        let src = src.as_array();
+        if src.shape() != dst.shape() {
+            return Some(false);
+        }
+        Zip::from(dst)
+            .and(&src)
+            .for_each(|d, &s| *d = s.cast_to::<T>());
+        Some(true)
+    }
+    macro_rules! exact_or_float {
+        ($a:expr, $t:ty) => {
+            copy::<$t, $t>(obj, $a)
+                .or_else(|| {
+                    float_cast
+                        .then(|| copy::<f64, $t>(obj, $a).or_else(|| copy::<f32, $t>(obj, $a)))
+                        .flatten()
+                })
+                .unwrap_or(false)
+        };
+    }
+    match dst {
+        ArrayValue::I8(a) => exact_or_float!(a, i8),
+        ArrayValue::I16(a) => exact_or_float!(a, i16),
+        ArrayValue::I32(a) => exact_or_float!(a, i32),
+        ArrayValue::I64(a) => exact_or_float!(a, i64),
+        ArrayValue::U8(a) => exact_or_float!(a, u8),
+        ArrayValue::F32(a) => exact_or_float!(a, f32),
+        ArrayValue::F64(a) => exact_or_float!(a, f64),
+        // Bool Boxes go through `py_to_value`, which checks NumPy's bool dtype.
+        ArrayValue::Bool(_) => false,
+    }
 }
 
 /// An observation (or any space element) as Python objects: arrays become fresh NumPy
@@ -46,19 +144,20 @@ fn dict_into_py(py: Python<'_>, d: DictValue, ordered: bool) -> PyResult<Bound<'
     Ok(out)
 }
 
-/// An [`Info`] as a Python `dict` (bools, ints, floats, strs, fresh arrays, nested dicts).
+/// An [`Info`] as a Python `dict` (bools, ints, floats, strs, arrays copied into fresh
+/// NumPy arrays, nested dicts).
 ///
 /// # Errors
 /// Only when Python itself fails.
-pub fn info_into_py(py: Python<'_>, info: Info) -> PyResult<Bound<'_, PyDict>> {
+pub fn info_into_py<'py>(py: Python<'py>, info: &Info) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    for (k, v) in info {
+    for (k, v) in info.iter() {
         let v = match v {
-            InfoValue::Bool(b) => PyBool::new(py, b).to_owned().into_any(),
+            InfoValue::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
             InfoValue::Int(i) => i.into_pyobject(py)?.into_any(),
-            InfoValue::Float(f) => PyFloat::new(py, f).into_any(),
-            InfoValue::Str(s) => PyString::new(py, &s).into_any(),
-            InfoValue::Array(a) => array_into_py(py, a),
+            InfoValue::Float(f) => PyFloat::new(py, *f).into_any(),
+            InfoValue::Str(s) => PyString::new(py, s).into_any(),
+            InfoValue::Array(a) => array_to_py(py, a),
             InfoValue::Map(m) => info_into_py(py, m)?.into_any(),
         };
         out.set_item(k, v)?;

@@ -39,13 +39,31 @@ impl<T> ForkAwareMutex<T> {
         match self.inner.try_lock() {
             Ok(guard) => Ok(guard),
             Err(TryLockError::Poisoned(p)) => Ok(p.into_inner()),
-            Err(TryLockError::WouldBlock) => Err(Error::unsupported(format!(
-                "this object was in use by another thread when process {} forked; it cannot \
-                 be used in this child (process {}): make a new one here",
-                self.owner,
-                std::process::id()
-            ))),
+            Err(TryLockError::WouldBlock) => Err(self.held_at_fork()),
         }
+    }
+
+    /// Locks the value if no other thread holds it (`None` when one does), ignoring the
+    /// poison flag.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] in a forked child when the lock was held at the fork.
+    pub fn try_lock(&self) -> Result<Option<MutexGuard<'_, T>>> {
+        match self.inner.try_lock() {
+            Ok(guard) => Ok(Some(guard)),
+            Err(TryLockError::Poisoned(p)) => Ok(Some(p.into_inner())),
+            Err(TryLockError::WouldBlock) if std::process::id() == self.owner => Ok(None),
+            Err(TryLockError::WouldBlock) => Err(self.held_at_fork()),
+        }
+    }
+
+    fn held_at_fork(&self) -> Error {
+        Error::unsupported(format!(
+            "this object was in use by another thread when process {} forked; it cannot be \
+             used in this child (process {}): make a new one here",
+            self.owner,
+            std::process::id()
+        ))
     }
 }
 
@@ -58,5 +76,9 @@ mod tests {
         let m = ForkAwareMutex::new(1);
         *m.lock().unwrap() += 1;
         assert_eq!(*m.lock().unwrap(), 2);
+        let held = m.lock().unwrap();
+        assert!(m.try_lock().unwrap().is_none());
+        drop(held);
+        assert_eq!(m.try_lock().unwrap().map(|g| *g), Some(2));
     }
 }

@@ -45,4 +45,4 @@ pub use errors::to_pyerr;
 #[cfg(feature = "python")]
 pub use pool::PyEnvPool;
 #[cfg(feature = "python")]
-pub use pyenv::{PyEnv, PyVecEnv, export_env, export_native_env};
+pub use pyenv::{EnvGuard, PyEnv, PyVecEnv, export_env, export_native_env};

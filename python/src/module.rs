@@ -87,7 +87,7 @@ fn make_robosuite_pool(
     PyEnvPool::new(envs, batch_size, threads)
 }
 
-/// `num_envs` robosuite envs behind a GymWrapper, boxed.
+/// `num_envs` robosuite envs behind a GymWrapper (the flat one with `flatten_obs`), boxed.
 fn gym_wrapped(
     py: Python<'_>,
     env_name: &str,
@@ -102,7 +102,13 @@ fn gym_wrapped(
         (0..num_envs)
             .map(|_| {
                 let env = build(env_name, config.clone(), model_xml.as_ref())?;
-                Ok(adapters::GymWrapper::new(env, keys.clone(), flatten_obs)?.boxed())
+                // The flat wrapper's `step_into` writes the flat observation in place (the
+                // same observations as GymWrapper's with `flatten_obs`).
+                Ok(if flatten_obs {
+                    adapters::FlatGymWrapper::new(env, keys.clone())?.boxed()
+                } else {
+                    adapters::GymWrapper::new(env, keys.clone(), false)?.boxed()
+                })
             })
             .collect::<gym_core::Result<Vec<BoxedEnv>>>()
     })

@@ -1,24 +1,31 @@
 //! [`PyEnvPool`]: adapters' `ThreadEnvPool` (EnvPool's asynchronous mode) as a Python
 //! object; the Python class `robosuite_rs.pool.EnvPool` delegates to it.
 
-use crate::convert::{py_to_value, space_spec, value_into_py};
+use crate::convert::{py_into_value, space_spec, value_to_py};
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
-use crate::pyenv::{extract_seeds, metadata_into_py, vector_info_into_py};
+use crate::pyenv::{extract_seeds, lock_with_gil, metadata_into_py, vector_info_into_py};
 use adapters::{BatchSpace, ThreadEnvPool};
-use gym_core::{AnySpace, BoxedEnv, Metadata};
+use gym_core::{AnySpace, BoxedEnv, Metadata, Value};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::MutexGuard;
 
+/// A pool and the batch of actions that Python's actions are written into.
+struct PoolState {
+    pool: ThreadEnvPool<BoxedEnv>,
+    actions: Value,
+}
+
 /// A pool of environments stepped asynchronously on Rust threads with the GIL released:
 /// `recv` returns the first `batch_size` to finish (their ids in `info["env_id"]`), `send`
-/// gives those their next actions.
+/// gives those their next actions. As for [`PyVecEnv`](crate::PyVecEnv), a call takes one
+/// lock, converts actions once into a kept batch and copies observations once into NumPy.
 #[pyclass(name = "NativeEnvPool", module = "robosuite_rs._native")]
 pub struct PyEnvPool {
-    pool: ForkAwareMutex<ThreadEnvPool<BoxedEnv>>,
+    state: ForkAwareMutex<PoolState>,
     observation_space: AnySpace,
     action_space: AnySpace,
     batched_action_space: AnySpace,
@@ -45,8 +52,9 @@ impl PyEnvPool {
         let observation_space = pool.single_observation_space().clone();
         let action_space = pool.single_action_space().clone();
         let batched_action_space = action_space.batch_space(batch_size).map_err(to_pyerr)?;
+        let actions = action_space.create_empty_batch(batch_size);
         Ok(Self {
-            pool: ForkAwareMutex::new(pool),
+            state: ForkAwareMutex::new(PoolState { pool, actions }),
             observation_space,
             action_space,
             batched_action_space,
@@ -54,8 +62,8 @@ impl PyEnvPool {
         })
     }
 
-    fn lock(&self) -> gym_core::Result<MutexGuard<'_, ThreadEnvPool<BoxedEnv>>> {
-        self.pool.lock()
+    fn lock(&self) -> gym_core::Result<MutexGuard<'_, PoolState>> {
+        self.state.lock()
     }
 }
 
@@ -72,14 +80,20 @@ type RecvPy<'py> = (
 impl PyEnvPool {
     /// The number of environments.
     #[getter]
-    fn num_envs(&self) -> PyResult<usize> {
-        Ok(self.lock().map_err(to_pyerr)?.num_envs())
+    fn num_envs(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(lock_with_gil(py, &self.state)
+            .map_err(to_pyerr)?
+            .pool
+            .num_envs())
     }
 
     /// How many environments each `recv` returns.
     #[getter]
-    fn batch_size(&self) -> PyResult<usize> {
-        Ok(self.lock().map_err(to_pyerr)?.batch_size())
+    fn batch_size(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(lock_with_gil(py, &self.state)
+            .map_err(to_pyerr)?
+            .pool
+            .batch_size())
     }
 
     /// Queues a reset of every environment (an integer seed gives env `i` `seed + i`; a
@@ -87,34 +101,24 @@ impl PyEnvPool {
     #[pyo3(signature = (seed=None))]
     fn async_reset(&self, py: Python<'_>, seed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
         let seeds = extract_seeds(seed)?;
-        py.detach(|| self.lock()?.reset(seeds)).map_err(to_pyerr)
+        py.detach(|| self.lock()?.pool.reset(seeds))
+            .map_err(to_pyerr)
     }
 
     /// `recv() -> (obs, rewards, terminations, truncations, info)` for the first
     /// `batch_size` environments to finish; `info["env_id"]` holds their ids.
     fn recv<'py>(&self, py: Python<'py>) -> PyResult<RecvPy<'py>> {
-        let (obs, rewards, terms, truncs, ids, info) = py
-            .detach(|| {
-                let mut pool = self.lock()?;
-                pool.recv().map(|s| {
-                    (
-                        s.observations.clone(),
-                        s.rewards.to_vec(),
-                        s.terminations.to_vec(),
-                        s.truncations.to_vec(),
-                        s.env_ids.iter().map(|&i| i as i64).collect::<Vec<_>>(),
-                        s.infos,
-                    )
-                })
-            })
-            .map_err(to_pyerr)?;
-        let info_py = vector_info_into_py(py, &info)?;
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let pool = &mut state.pool;
+        let s = py.detach(move || pool.recv()).map_err(to_pyerr)?;
+        let info_py = vector_info_into_py(py, &s.infos)?;
+        let ids: Vec<i64> = s.env_ids.iter().map(|&i| i as i64).collect();
         info_py.set_item("env_id", PyArray1::from_vec(py, ids))?;
         Ok((
-            value_into_py(py, obs, false)?,
-            PyArray1::from_vec(py, rewards),
-            PyArray1::from_vec(py, terms),
-            PyArray1::from_vec(py, truncs),
+            value_to_py(py, s.observations, false)?,
+            PyArray1::from_slice(py, s.rewards),
+            PyArray1::from_slice(py, s.terminations),
+            PyArray1::from_slice(py, s.truncations),
             info_py,
         ))
     }
@@ -122,7 +126,6 @@ impl PyEnvPool {
     /// Gives the environments `env_ids` (those of the last `recv`, one per row of
     /// `actions`) their next actions.
     fn send(&self, py: Python<'_>, actions: &Bound<'_, PyAny>, env_ids: Vec<i64>) -> PyResult<()> {
-        let actions = py_to_value(actions, &self.batched_action_space)?;
         let ids = env_ids
             .iter()
             .map(|&i| {
@@ -130,8 +133,14 @@ impl PyEnvPool {
                     .map_err(|_| PyValueError::new_err(format!("env_id {i} is negative")))
             })
             .collect::<PyResult<Vec<_>>>()?;
-        py.detach(|| self.lock()?.send(&actions, &ids))
-            .map_err(to_pyerr)
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let PoolState {
+            pool,
+            actions: batch,
+        } = &mut *state;
+        py_into_value(actions, &self.batched_action_space, batch)?;
+        let batch = &*batch;
+        py.detach(move || pool.send(batch, &ids)).map_err(to_pyerr)
     }
 
     /// The description of one environment's observation space.
@@ -154,8 +163,8 @@ impl PyEnvPool {
     /// In a forked child whose copy was locked at the fork it does nothing.
     fn close(&self, py: Python<'_>) {
         py.detach(|| {
-            if let Ok(mut pool) = self.lock() {
-                pool.close();
+            if let Ok(mut state) = self.lock() {
+                state.pool.close();
             }
         });
     }

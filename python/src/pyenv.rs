@@ -3,12 +3,13 @@
 //! `robosuite_rs.vector.RustVectorEnv` (a `gymnasium.vector.VectorEnv`) delegate to them.
 
 use crate::convert::{
-    array_into_py, info_into_py, py_to_info, py_to_value, space_spec, value_into_py,
+    array_to_py, info_into_py, py_into_value, py_to_info, space_spec, value_into_py, value_to_py,
 };
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
+use adapters::BatchSpace;
 use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
-use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata};
+use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata, Value};
 use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -60,10 +61,35 @@ pub(crate) fn metadata_into_py<'py>(py: Python<'py>, m: &Metadata) -> PyResult<B
 /// environment stays usable after an invalid action.
 #[pyclass(name = "NativeEnv", module = "robosuite_rs._native")]
 pub struct PyEnv {
-    env: Mutex<BoxedEnv>,
+    state: Mutex<EnvState>,
     observation_space: AnySpace,
     action_space: AnySpace,
     metadata: Metadata,
+}
+
+/// An environment and the buffers its steps go through: the action Python's action is
+/// written into, and the observation and info `step_into` writes in place.
+struct EnvState {
+    env: BoxedEnv,
+    action: Value,
+    observation: Value,
+    info: Info,
+}
+
+/// A locked [`PyEnv`]'s environment.
+pub struct EnvGuard<'a>(MutexGuard<'a, EnvState>);
+
+impl std::ops::Deref for EnvGuard<'_> {
+    type Target = BoxedEnv;
+    fn deref(&self) -> &BoxedEnv {
+        &self.0.env
+    }
+}
+
+impl std::ops::DerefMut for EnvGuard<'_> {
+    fn deref_mut(&mut self) -> &mut BoxedEnv {
+        &mut self.0.env
+    }
 }
 
 impl PyEnv {
@@ -73,7 +99,12 @@ impl PyEnv {
         let action_space = env.action_space().clone();
         let metadata = env.metadata().clone();
         Self {
-            env: Mutex::new(env),
+            state: Mutex::new(EnvState {
+                action: action_space.zero_element(),
+                observation: observation_space.zero_element(),
+                info: Info::new(),
+                env,
+            }),
             observation_space,
             action_space,
             metadata,
@@ -81,8 +112,22 @@ impl PyEnv {
     }
 
     /// Locks the environment (ignoring poisoning by an earlier panic).
-    pub fn lock(&self) -> MutexGuard<'_, BoxedEnv> {
-        self.env.lock().unwrap_or_else(PoisonError::into_inner)
+    pub fn lock(&self) -> EnvGuard<'_> {
+        EnvGuard(self.state.lock().unwrap_or_else(PoisonError::into_inner))
+    }
+}
+
+/// Locks `mutex` (ignoring poisoning) without ever blocking while holding the GIL; see
+/// [`lock_with_gil`].
+fn lock_plain_with_gil<'a, T: Send>(py: Python<'_>, mutex: &'a Mutex<T>) -> MutexGuard<'a, T> {
+    loop {
+        match mutex.try_lock() {
+            Ok(guard) => return guard,
+            Err(std::sync::TryLockError::Poisoned(p)) => return p.into_inner(),
+            Err(std::sync::TryLockError::WouldBlock) => {
+                py.detach(|| drop(mutex.lock()));
+            }
+        }
     }
 }
 
@@ -107,19 +152,32 @@ impl PyEnv {
         let (obs, info) = py
             .detach(|| self.lock().reset(seed, options.as_ref()))
             .map_err(to_pyerr)?;
-        Ok((value_into_py(py, obs, false)?, info_into_py(py, info)?))
+        Ok((value_into_py(py, obs, false)?, info_into_py(py, &info)?))
     }
 
     /// `step(action) -> (obs, reward: float, terminated: bool, truncated: bool, info)`.
+    /// The action is converted once (a NumPy array of the space's shape is copied straight
+    /// into the kept action), the env steps in place (`step_into`) with the GIL released,
+    /// and the observation is copied once into a fresh NumPy array.
     fn step<'py>(&self, py: Python<'py>, action: &Bound<'py, PyAny>) -> PyResult<StepPy<'py>> {
-        let action = py_to_value(action, &self.action_space)?;
-        let step = py.detach(|| self.lock().step(&action)).map_err(to_pyerr)?;
+        let mut state = lock_plain_with_gil(py, &self.state);
+        let EnvState {
+            env,
+            action: buffer,
+            observation,
+            info,
+        } = &mut *state;
+        py_into_value(action, &self.action_space, buffer)?;
+        let (buffer, obs, inf) = (&*buffer, &mut *observation, &mut *info);
+        let t = py
+            .detach(move || env.step_into(buffer, obs, inf))
+            .map_err(to_pyerr)?;
         Ok((
-            value_into_py(py, step.observation, false)?,
-            step.reward,
-            step.terminated,
-            step.truncated,
-            info_into_py(py, step.info)?,
+            value_to_py(py, observation, false)?,
+            t.reward,
+            t.terminated,
+            t.truncated,
+            info_into_py(py, info)?,
         ))
     }
 
@@ -140,8 +198,11 @@ impl PyEnv {
 
     /// The render mode chosen when the env was made (`"rgb_array"`, `"depth_array"`) or
     /// `None`.
-    fn render_mode(&self) -> Option<&'static str> {
-        self.lock().render_mode().map(|m| m.as_str())
+    fn render_mode(&self, py: Python<'_>) -> Option<&'static str> {
+        lock_plain_with_gil(py, &self.state)
+            .env
+            .render_mode()
+            .map(|m| m.as_str())
     }
 
     /// `render()`: the frame of the render mode (an `H×W×3` uint8 array for `rgb_array`,
@@ -174,13 +235,42 @@ pub(crate) fn frame_into_py(py: Python<'_>, frame: Frame) -> Bound<'_, PyAny> {
     }
 }
 
+/// Locks `mutex` without ever blocking while holding the GIL: when another thread holds
+/// it (a step running with the GIL released, which needs the GIL back to return), this
+/// thread waits for it with the GIL released, then tries again.
+///
+/// # Errors
+/// As [`ForkAwareMutex::lock`].
+pub(crate) fn lock_with_gil<'a, T: Send>(
+    py: Python<'_>,
+    mutex: &'a ForkAwareMutex<T>,
+) -> gym_core::Result<MutexGuard<'a, T>> {
+    loop {
+        if let Some(guard) = mutex.try_lock()? {
+            return Ok(guard);
+        }
+        py.detach(|| mutex.lock().map(drop))?;
+    }
+}
+
+/// A vector env and the batch of actions that Python's actions are written into.
+struct VecState {
+    vec: ThreadVectorEnv<BoxedEnv>,
+    actions: gym_core::Value,
+}
+
 /// Several boxed environments stepped in parallel on persistent Rust worker threads
 /// (adapters' [`ThreadVectorEnv`], Gymnasium's `NEXT_STEP` autoreset) with the GIL
 /// released. Observations come back batched (`(n, ...)` arrays), infos with Gymnasium's
 /// `_key` masks.
+///
+/// A step takes one lock, converts the actions once (a NumPy array of the action space's
+/// shape is copied straight into the batch the vector env reads, casting a float dtype to
+/// the space's), steps with the GIL released, and copies the observations once, straight
+/// from the vector env's batch into fresh NumPy arrays.
 #[pyclass(name = "NativeVecEnv", module = "robosuite_rs._native")]
 pub struct PyVecEnv {
-    vec: ForkAwareMutex<ThreadVectorEnv<BoxedEnv>>,
+    state: ForkAwareMutex<VecState>,
     observation_space: AnySpace,
     action_space: AnySpace,
     batched_action_space: AnySpace,
@@ -199,18 +289,15 @@ impl PyVecEnv {
             None => ThreadVectorEnv::new(envs),
         }
         .map_err(to_pyerr)?;
+        let actions = vec.single_action_space().create_empty_batch(vec.num_envs());
         Ok(Self {
             observation_space: vec.single_observation_space().clone(),
             action_space: vec.single_action_space().clone(),
             batched_action_space: vec.action_space().clone(),
             metadata: vec.metadata().clone(),
             num_envs: vec.num_envs(),
-            vec: ForkAwareMutex::new(vec),
+            state: ForkAwareMutex::new(VecState { vec, actions }),
         })
-    }
-
-    fn lock(&self) -> gym_core::Result<MutexGuard<'_, ThreadVectorEnv<BoxedEnv>>> {
-        self.vec.lock()
     }
 }
 
@@ -225,14 +312,14 @@ pub(crate) fn vector_info_into_py<'py>(
             VectorInfoValue::Bool(b) => PyArray1::from_slice(py, b).into_any(),
             VectorInfoValue::Int(x) => PyArray1::from_slice(py, x).into_any(),
             VectorInfoValue::Float(x) => PyArray1::from_slice(py, x).into_any(),
-            VectorInfoValue::Array(a) => array_into_py(py, a.clone()),
+            VectorInfoValue::Array(a) => array_to_py(py, a),
             VectorInfoValue::Objects(items) => {
                 let objs = items
                     .iter()
                     .map(|o| match o {
                         None => Ok(py.None().into_bound(py)),
                         Some(x) => {
-                            let d = info_into_py(py, Info::new().with("v", x.clone()))?;
+                            let d = info_into_py(py, &Info::new().with("v", x.clone()))?;
                             Ok(d.get_item("v")?.expect("just inserted"))
                         }
                     })
@@ -244,7 +331,7 @@ pub(crate) fn vector_info_into_py<'py>(
                     .iter()
                     .map(|o| match o {
                         None => Ok(py.None().into_bound(py)),
-                        Some(x) => value_into_py(py, x.clone(), false),
+                        Some(x) => value_to_py(py, x, false),
                     })
                     .collect::<PyResult<Vec<_>>>()?;
                 object_array(py, objs)?
@@ -299,43 +386,31 @@ impl PyVecEnv {
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
         let seeds = extract_seeds(seed)?;
         let options = options.map(py_to_info).transpose()?;
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let vec = &mut state.vec;
         let (obs, info) = py
-            .detach(|| {
-                let mut vec = self.lock()?;
-                vec.reset(seeds, options.as_ref())
-                    .map(|(o, i)| (o.clone(), i))
-            })
+            .detach(move || vec.reset(seeds, options.as_ref()))
             .map_err(to_pyerr)?;
-        Ok((
-            value_into_py(py, obs, false)?,
-            vector_info_into_py(py, &info)?,
-        ))
+        Ok((value_to_py(py, obs, false)?, vector_info_into_py(py, info)?))
     }
 
     /// `step(actions) -> (batched obs, rewards, terminations, truncations, infos)` for
     /// batched actions (an `(n, ...)` array for Box action spaces).
     fn step<'py>(&self, py: Python<'py>, actions: &Bound<'py, PyAny>) -> PyResult<VecStepPy<'py>> {
-        let actions = py_to_value(actions, &self.batched_action_space)?;
-        let (obs, rewards, terms, truncs, info) = py
-            .detach(|| {
-                let mut vec = self.lock()?;
-                vec.step(&actions).map(|s| {
-                    (
-                        s.observations.clone(),
-                        s.rewards.to_vec(),
-                        s.terminations.to_vec(),
-                        s.truncations.to_vec(),
-                        s.infos,
-                    )
-                })
-            })
-            .map_err(to_pyerr)?;
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let VecState {
+            vec,
+            actions: batch,
+        } = &mut *state;
+        py_into_value(actions, &self.batched_action_space, batch)?;
+        let batch = &*batch;
+        let s = py.detach(move || vec.step(batch)).map_err(to_pyerr)?;
         Ok((
-            value_into_py(py, obs, false)?,
-            PyArray1::from_vec(py, rewards),
-            PyArray1::from_vec(py, terms),
-            PyArray1::from_vec(py, truncs),
-            vector_info_into_py(py, &info)?,
+            value_to_py(py, s.observations, false)?,
+            PyArray1::from_slice(py, s.rewards),
+            PyArray1::from_slice(py, s.terminations),
+            PyArray1::from_slice(py, s.truncations),
+            vector_info_into_py(py, s.infos)?,
         ))
     }
 
@@ -359,8 +434,8 @@ impl PyVecEnv {
     /// In a forked child whose copy was locked at the fork it does nothing.
     fn close(&self, py: Python<'_>) {
         py.detach(|| {
-            if let Ok(mut vec) = self.lock() {
-                vec.close();
+            if let Ok(mut state) = self.state.lock() {
+                state.vec.close();
             }
         });
     }

@@ -84,7 +84,7 @@ impl PyRobosuiteEnv {
             value_into_py(py, Value::Dict(step.observation), true)?,
             step.reward,
             done,
-            info_into_py(py, step.info)?,
+            info_into_py(py, &step.info)?,
         ))
     }
 
@@ -259,8 +259,14 @@ impl PyRobosuiteEnv {
     #[pyo3(signature = (keys=None, flatten_obs=true))]
     fn gym_env(&self, keys: Option<Vec<String>>, flatten_obs: bool) -> PyResult<PyEnv> {
         let shared = SharedEnv::from_arc(Arc::clone(&self.env));
-        let wrapper = adapters::GymWrapper::new(shared, keys, flatten_obs).map_err(to_pyerr)?;
-        Ok(PyEnv::new(wrapper.boxed()))
+        // The flat wrapper's `step_into` writes the flat observation in place (the same
+        // observations as GymWrapper's with `flatten_obs`).
+        let env = if flatten_obs {
+            adapters::FlatGymWrapper::new(shared, keys).map(IntoBoxedEnv::boxed)
+        } else {
+            adapters::GymWrapper::new(shared, keys, false).map(IntoBoxedEnv::boxed)
+        };
+        Ok(PyEnv::new(env.map_err(to_pyerr)?))
     }
 
     fn __repr__(&self) -> String {

@@ -1,7 +1,9 @@
 //! [`SharedEnv`]: one environment reachable from two places, such as robosuite's Python env
 //! object and the `GymWrapper` built over it (robosuite's wrappers share the env they wrap).
 
-use gym_core::{Env, EnvRng, Frame, Info, Metadata, RenderMode, ResetOptions, Result, Step};
+use gym_core::{
+    Env, EnvRng, Frame, Info, Metadata, RenderMode, ResetOptions, Result, Step, Transition,
+};
 use std::any::Any;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
@@ -100,6 +102,14 @@ impl<E: Env> Env for SharedEnv<E> {
     }
     fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
         self.lock().step(action)
+    }
+    fn step_into(
+        &mut self,
+        action: &E::Act,
+        observation: &mut E::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        self.lock().step_into(action, observation, info)
     }
     fn metadata(&self) -> &Metadata {
         &self.metadata

@@ -1,17 +1,18 @@
-//! The bookkeeping both vector environments share: what each sub-environment must do for a
-//! `step` or `reset`, and how the results are written into the batch buffers and infos.
-//! [`SyncVectorEnv`](super::SyncVectorEnv) runs the operations in turn,
-//! [`ThreadVectorEnv`](super::ThreadVectorEnv) on its worker threads; the semantics are
-//! identical.
+//! The bookkeeping both vector environments share: what each sub-environment's
+//! [`Slot`] must do for a `step` or `reset`, and how the results are written into the batch
+//! buffers and infos. [`SyncVectorEnv`](super::SyncVectorEnv) runs the slots in turn,
+//! [`ThreadVectorEnv`](super::ThreadVectorEnv) on its threads; the semantics are
+//! identical. The pool's operations ([`Op`], [`Outcome`]) are here too.
 
 use super::info::VectorInfo;
+use super::slot::{Done, Slot, Task};
 use super::{AutoresetMode, Seeds, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
-use gym_core::{Env, Error, Info, InfoValue, Metadata, ResetOptions, Result, Step};
+use gym_core::{Env, Error, Info, InfoValue, Metadata, ResetOptions, Result, Step, Transition};
 use std::any::Any;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
-/// What one sub-environment does.
+/// What one environment of a pool does.
 #[derive(Debug)]
 pub(crate) enum Op<A> {
     /// An explicit reset.
@@ -23,23 +24,15 @@ pub(crate) enum Op<A> {
     AutoReset,
     /// A step.
     Step(A),
-    /// `SAME_STEP`: a step, then `reset()` if it ended the episode.
-    StepThenReset(A),
 }
 
-/// What one sub-environment returned.
+/// What one environment of a pool returned.
 #[derive(Debug)]
 pub(crate) enum Outcome<O> {
     /// From `Reset` or `AutoReset`.
     Reset(O, Info),
-    /// From `Step`, or `StepThenReset` when the episode went on.
+    /// From `Step`.
     Step(Step<O>),
-    /// From `StepThenReset` when the step ended the episode.
-    StepReset {
-        step: Step<O>,
-        observation: O,
-        info: Info,
-    },
 }
 
 /// Runs one operation on one environment.
@@ -54,19 +47,6 @@ pub(crate) fn run_op<E: Env>(env: &mut E, op: Op<E::Act>) -> Result<Outcome<E::O
             Ok(Outcome::Reset(o, i))
         }
         Op::Step(a) => Ok(Outcome::Step(env.step(&a)?)),
-        Op::StepThenReset(a) => {
-            let step = env.step(&a)?;
-            if step.terminated || step.truncated {
-                let (observation, info) = env.reset(None, None)?;
-                Ok(Outcome::StepReset {
-                    step,
-                    observation,
-                    info,
-                })
-            } else {
-                Ok(Outcome::Step(step))
-            }
-        }
     }
 }
 
@@ -92,51 +72,12 @@ pub(crate) fn run_op_guarded<E: Env>(
     })
 }
 
-fn panic_message(payload: &(dyn Any + Send)) -> String {
+pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
     payload
         .downcast_ref::<&str>()
         .map(|s| (*s).to_owned())
         .or_else(|| payload.downcast_ref::<String>().cloned())
         .unwrap_or_else(|| "unknown panic payload".to_owned())
-}
-
-/// Prefixes the message of a sub-environment's error with its index, where the variant
-/// carries one.
-/// Checks a whole batch of actions before any sub-environment steps, so that a rejected
-/// call changes nothing: `actions` must hold exactly the items `batched` (the batched space
-/// of those items) has, each of `single`'s shape, and no NaN or ±inf value (which every
-/// environment of this workspace rejects).
-///
-/// # Errors
-/// [`Error::InvalidAction`] naming the first problem.
-pub(crate) fn check_batch<S: BatchSpace>(
-    single: &S,
-    batched: &S::Batched,
-    actions: &BatchOf<S>,
-    rows: usize,
-) -> Result<()> {
-    use gym_core::Flatten;
-    for k in 0..rows {
-        single
-            .read_item(actions, k)
-            .map_err(|e| Error::invalid_action(format!("actions[{k}]: {e}")))?;
-    }
-    // Every item exists and has the item's shape; the flat length then pins the number of
-    // items to exactly `rows`.
-    let flat = batched.flatten(actions).map_err(|e| {
-        Error::invalid_action(format!("expected a batch of exactly {rows} actions: {e}"))
-    })?;
-    if !flat.all_finite() {
-        let values = flat.to_f64_vec();
-        let at = values.iter().position(|v| !v.is_finite()).unwrap_or(0);
-        let per_row = (values.len() / rows.max(1)).max(1);
-        return Err(Error::invalid_action(format!(
-            "actions[{}] holds a value that is not finite ({}); nothing was stepped",
-            at / per_row,
-            values[at]
-        )));
-    }
-    Ok(())
 }
 
 /// The process that made a threaded vector env or pool. Its worker threads exist only in
@@ -194,6 +135,8 @@ pub(crate) struct VectorCore<OS: BatchSpace, AS: BatchSpace> {
     pub(crate) terminations: Vec<bool>,
     pub(crate) truncations: Vec<bool>,
     pub(crate) autoreset: Vec<bool>,
+    /// The infos of the last call, refilled by every call.
+    pub(crate) infos: VectorInfo,
     pub(crate) closed: bool,
 }
 
@@ -241,6 +184,7 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
             terminations: vec![false; n],
             truncations: vec![false; n],
             autoreset: vec![false; n],
+            infos: VectorInfo::new(n),
             closed: false,
         })
     }
@@ -253,102 +197,119 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
         }
     }
 
-    /// One operation per sub-environment for `step(actions)`.
-    pub(crate) fn plan_step(&self, actions: &BatchOf<AS>) -> Result<Vec<Op<AS::Element>>> {
+    /// Checks a `step(actions)` call before any sub-environment steps: open, no ended
+    /// episode under `Disabled`, and exactly one finite action per sub-environment.
+    ///
+    /// # Errors
+    /// [`Error::Closed`], [`Error::EpisodeEnded`], [`Error::InvalidAction`].
+    pub(crate) fn check_step(&self, actions: &BatchOf<AS>) -> Result<()> {
         self.check_open()?;
         if self.mode == AutoresetMode::Disabled && self.autoreset.iter().any(|&a| a) {
             // Gymnasium asserts; the caller must reset the ended sub-environments first.
             return Err(Error::EpisodeEnded);
         }
-        check_batch(&self.single_act, &self.batched_act, actions, self.n)?;
-        (0..self.n)
-            .map(|i| {
-                let a = self
-                    .single_act
-                    .read_item(actions, i)
-                    .map_err(|e| Error::invalid_action(format!("actions[{i}]: {e}")))?;
-                Ok(match self.mode {
-                    AutoresetMode::NextStep if self.autoreset[i] => Op::AutoReset,
-                    AutoresetMode::NextStep | AutoresetMode::Disabled => Op::Step(a),
-                    AutoresetMode::SameStep => Op::StepThenReset(a),
-                })
-            })
-            .collect()
+        self.single_act.check_batch(actions, self.n)
     }
 
-    /// Records the outcomes of a step (in sub-environment order) and builds the infos. The
-    /// successful sub-environments are recorded even when another failed; the first error
-    /// is then returned.
-    pub(crate) fn finish_step(
+    /// Sets `slot`'s task for `step(actions)` and copies its action row into it (call
+    /// [`check_step`](Self::check_step) first).
+    ///
+    /// # Errors
+    /// [`Error::InvalidAction`] when the row cannot be read.
+    pub(crate) fn plan_step<E: Env<ObsSpace = OS, ActSpace = AS>>(
+        &self,
+        slot: &mut Slot<E>,
+        actions: &BatchOf<AS>,
+    ) -> Result<()>
+    where
+        AS: gym_core::Space<Element = E::Act>,
+    {
+        let i = slot.id;
+        slot.task = match self.mode {
+            AutoresetMode::NextStep if self.autoreset[i] => Task::AutoReset,
+            AutoresetMode::NextStep | AutoresetMode::Disabled => Task::Step,
+            AutoresetMode::SameStep => Task::StepThenReset,
+        };
+        if !matches!(slot.task, Task::AutoReset) {
+            self.single_act
+                .read_item_into(actions, i, &mut slot.action)
+                .map_err(|e| Error::invalid_action(format!("actions[{i}]: {e}")))?;
+        }
+        Ok(())
+    }
+
+    /// Starts recording the results of a call (empties the infos).
+    pub(crate) fn begin(&mut self) {
+        self.infos.clear();
+    }
+
+    /// Records what `slot` did in a step (call in sub-environment order, after
+    /// [`begin`](Self::begin)). A failed sub-environment keeps its row.
+    ///
+    /// # Errors
+    /// The sub-environment's error, its message prefixed with its index.
+    pub(crate) fn finish_step<E: Env<ObsSpace = OS, ActSpace = AS>>(
         &mut self,
-        outcomes: Vec<Result<Outcome<OS::Element>>>,
-    ) -> Result<VectorInfo> {
-        let mut infos = VectorInfo::new(self.n);
-        let mut first_err = None;
-        for (i, outcome) in outcomes.into_iter().enumerate() {
-            let written = match outcome {
-                Ok(Outcome::Reset(obs, info)) => {
-                    self.rewards[i] = 0.0;
-                    self.terminations[i] = false;
-                    self.truncations[i] = false;
-                    let w = self.single_obs.write_item(&mut self.observations, i, &obs);
-                    infos.add(&info, i);
-                    w
-                }
-                Ok(Outcome::Step(step)) => {
-                    self.set_step(i, &step);
-                    let w =
-                        self.single_obs
-                            .write_item(&mut self.observations, i, &step.observation);
-                    infos.add(&step.info, i);
-                    w
-                }
-                Ok(Outcome::StepReset {
-                    step,
-                    observation,
-                    info,
-                }) => {
-                    self.set_step(i, &step);
-                    infos.add_final(i, self.single_obs.to_value(&step.observation), &step.info);
-                    let w = self
-                        .single_obs
-                        .write_item(&mut self.observations, i, &observation);
-                    infos.add(&info, i);
-                    w
-                }
-                Err(e) => Err(in_env(e, i)),
-            };
-            match written {
-                Ok(()) => self.autoreset[i] = self.terminations[i] || self.truncations[i],
-                Err(e) => {
-                    first_err.get_or_insert(e);
-                }
+        slot: &mut Slot<E>,
+    ) -> Result<()>
+    where
+        OS: gym_core::Space<Element = E::Obs>,
+    {
+        let i = slot.id;
+        let done = std::mem::replace(&mut slot.done, Ok(Done::Idle));
+        let written = match done {
+            Ok(Done::Idle) => Ok(()),
+            Ok(Done::Reset) => {
+                self.rewards[i] = 0.0;
+                self.terminations[i] = false;
+                self.truncations[i] = false;
+                self.infos.add(&slot.info, i);
+                self.single_obs
+                    .write_item(&mut self.observations, i, &slot.observation)
             }
-        }
-        match first_err {
-            Some(e) => Err(e),
-            None => Ok(infos),
-        }
+            Ok(Done::Stepped(t)) => {
+                self.set_step(i, t);
+                self.infos.add(&slot.info, i);
+                self.single_obs
+                    .write_item(&mut self.observations, i, &slot.observation)
+            }
+            Ok(Done::SteppedAndReset {
+                transition,
+                final_observation,
+                final_info,
+            }) => {
+                self.set_step(i, transition);
+                self.infos
+                    .add_final(i, self.single_obs.to_value(&final_observation), &final_info);
+                self.infos.add(&slot.info, i);
+                self.single_obs
+                    .write_item(&mut self.observations, i, &slot.observation)
+            }
+            Err(e) => Err(in_env(e, i)),
+        };
+        written?;
+        self.autoreset[i] = self.terminations[i] || self.truncations[i];
+        Ok(())
     }
 
-    /// The step's view of the buffers, with `infos`.
-    pub(crate) fn view(&self, infos: VectorInfo) -> VectorStep<'_, BatchOf<OS>> {
+    /// The step's view of the buffers and infos.
+    pub(crate) fn view(&self) -> VectorStep<'_, BatchOf<OS>> {
         VectorStep {
             observations: &self.observations,
             rewards: &self.rewards,
             terminations: &self.terminations,
             truncations: &self.truncations,
-            infos,
+            infos: &self.infos,
         }
     }
 
-    fn set_step(&mut self, i: usize, step: &Step<OS::Element>) {
-        self.rewards[i] = step.reward;
-        self.terminations[i] = step.terminated;
-        self.truncations[i] = step.truncated;
+    fn set_step(&mut self, i: usize, t: Transition) {
+        self.rewards[i] = t.reward;
+        self.terminations[i] = t.terminated;
+        self.truncations[i] = t.truncated;
     }
 
-    /// One optional reset per sub-environment (`None` where the mask is off). A
+    /// One task per sub-environment for a reset ([`Task::Idle`] where the mask is off). A
     /// `"reset_mask"` entry of `options` (an integer array of 0/1 of shape `(n,)`, the form
     /// a NumPy bool array takes in an [`Info`]) is the mask, removed from the options the
     /// sub-environments see; `mask` is the typed form. Both at once are an error.
@@ -357,7 +318,7 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
         seeds: Seeds,
         options: Option<&ResetOptions>,
         mask: Option<&[bool]>,
-    ) -> Result<Vec<Option<Op<AS::Element>>>> {
+    ) -> Result<Vec<Task>> {
         self.check_open()?;
         let seeds = seeds.resolve(self.n)?;
         let mut options = options.cloned();
@@ -420,49 +381,50 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
             .into_iter()
             .enumerate()
             .map(|(i, seed)| {
-                mask.as_ref().is_none_or(|m| m[i]).then(|| Op::Reset {
-                    seed,
-                    options: options.clone(),
-                })
+                if mask.as_ref().is_none_or(|m| m[i]) {
+                    Task::Reset {
+                        seed,
+                        options: options.clone(),
+                    }
+                } else {
+                    Task::Idle
+                }
             })
             .collect())
     }
 
-    /// Records the outcomes of a (masked) reset: the reset sub-environments' observations,
-    /// cleared flags (including pending autoresets) and infos.
-    pub(crate) fn finish_reset(
+    /// Records what `slot` did in a (masked) reset (call in sub-environment order, after
+    /// [`begin`](Self::begin)): a reset sub-environment's observation, cleared flags
+    /// (including a pending autoreset) and info.
+    ///
+    /// # Errors
+    /// The sub-environment's error, its message prefixed with its index.
+    pub(crate) fn finish_reset<E: Env<ObsSpace = OS, ActSpace = AS>>(
         &mut self,
-        outcomes: Vec<Option<Result<Outcome<OS::Element>>>>,
-    ) -> Result<VectorInfo> {
-        let mut infos = VectorInfo::new(self.n);
-        let mut first_err = None;
-        for (i, outcome) in outcomes.into_iter().enumerate() {
-            let result = match outcome {
-                None => continue,
-                Some(Ok(Outcome::Reset(obs, info))) => {
-                    infos.add(&info, i);
-                    self.single_obs.write_item(&mut self.observations, i, &obs)
-                }
-                Some(Ok(_)) => Err(Error::Contract {
+        slot: &mut Slot<E>,
+    ) -> Result<()>
+    where
+        OS: gym_core::Space<Element = E::Obs>,
+    {
+        let i = slot.id;
+        match std::mem::replace(&mut slot.done, Ok(Done::Idle)) {
+            Ok(Done::Idle) => return Ok(()),
+            Ok(Done::Reset) => {
+                self.infos.add(&slot.info, i);
+                self.single_obs
+                    .write_item(&mut self.observations, i, &slot.observation)?;
+            }
+            Ok(_) => {
+                return Err(Error::Contract {
                     check: "vector reset".into(),
                     message: "a reset returned a step".into(),
-                }),
-                Some(Err(e)) => Err(in_env(e, i)),
-            };
-            match result {
-                Ok(()) => {
-                    self.terminations[i] = false;
-                    self.truncations[i] = false;
-                    self.autoreset[i] = false;
-                }
-                Err(e) => {
-                    first_err.get_or_insert(e);
-                }
+                });
             }
+            Err(e) => return Err(in_env(e, i)),
         }
-        match first_err {
-            Some(e) => Err(e),
-            None => Ok(infos),
-        }
+        self.terminations[i] = false;
+        self.truncations[i] = false;
+        self.autoreset[i] = false;
+        Ok(())
     }
 }

@@ -126,13 +126,82 @@ fn write_row(batch: &mut ArrayValue, i: usize, x: &ArrayValue) -> bool {
 /// under `"_" + key` saying which sub-environments reported it. Nested maps are batched
 /// recursively (with their own masks). Keys keep first-seen order, each followed by its mask.
 ///
+/// A vector environment keeps one `VectorInfo` and refills it at every call: the columns of
+/// earlier calls are kept (hidden) and reused, so a step that reports the same keys as an
+/// earlier one does not allocate.
+///
 /// Deviation: when sub-environments report different kinds for one key, Gymnasium lets
 /// NumPy cast into the first kind's array (truncating floats into an int array); here a
 /// Bool/Int column is promoted to Int/Float, and other mixes become an `Objects` column.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Clone)]
 pub struct VectorInfo {
     num_envs: usize,
+    /// Entries `..live` are this call's, in order; the others are kept for reuse.
     entries: IndexMap<String, VectorInfoValue>,
+    live: usize,
+    /// Where `"_" + key` is built without allocating.
+    scratch: String,
+}
+
+impl PartialEq for VectorInfo {
+    fn eq(&self, other: &Self) -> bool {
+        self.num_envs == other.num_envs
+            && self.len() == other.len()
+            && self.iter().zip(other.iter()).all(|(a, b)| a == b)
+    }
+}
+
+impl std::fmt::Debug for VectorInfo {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("VectorInfo")
+            .field("num_envs", &self.num_envs)
+            .field("entries", &DebugEntries(self))
+            .finish()
+    }
+}
+
+struct DebugEntries<'a>(&'a VectorInfo);
+
+impl std::fmt::Debug for DebugEntries<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_map().entries(self.0.iter()).finish()
+    }
+}
+
+/// Resets `col` to an absent column of the same kind (keeping its storage) when it can
+/// hold `v`; `false` when a fresh column is needed.
+fn reset_for(col: &mut VectorInfoValue, v: &InfoValue) -> bool {
+    match (col, v) {
+        (VectorInfoValue::Bool(c), InfoValue::Bool(_)) => c.fill(false),
+        (VectorInfoValue::Int(c), InfoValue::Int(_)) => c.fill(0),
+        (VectorInfoValue::Float(c), InfoValue::Float(_)) => c.fill(0.0),
+        (VectorInfoValue::Array(b), InfoValue::Array(a))
+            if b.dtype() == a.dtype() && &b.shape()[1..] == a.shape() =>
+        {
+            gym_core::for_each_array!(b, x => fill_zero(x));
+        }
+        (VectorInfoValue::Objects(c), InfoValue::Str(_)) => c.fill(None),
+        (VectorInfoValue::Map(m), InfoValue::Map(_)) => m.clear(),
+        _ => return false,
+    }
+    true
+}
+
+/// Sets every element of `a` to zero.
+fn fill_zero<T: ArrayElement>(a: &mut ArrayD<T>) {
+    a.fill(T::zero());
+}
+
+/// A column for `v` where no sub-environment has reported yet.
+fn fresh(v: &InfoValue, n: usize) -> VectorInfoValue {
+    match v {
+        InfoValue::Bool(_) => VectorInfoValue::Bool(vec![false; n]),
+        InfoValue::Int(_) => VectorInfoValue::Int(vec![0; n]),
+        InfoValue::Float(_) => VectorInfoValue::Float(vec![0.0; n]),
+        InfoValue::Array(a) => VectorInfoValue::Array(stacked_zeros(a, n)),
+        InfoValue::Str(_) => VectorInfoValue::Objects(vec![None; n]),
+        InfoValue::Map(_) => VectorInfoValue::Map(VectorInfo::new(n)),
+    }
 }
 
 impl VectorInfo {
@@ -141,7 +210,14 @@ impl VectorInfo {
         Self {
             num_envs,
             entries: IndexMap::new(),
+            live: 0,
+            scratch: String::new(),
         }
+    }
+
+    /// Empties the info for the next call, keeping its columns' storage for reuse.
+    pub(crate) fn clear(&mut self) {
+        self.live = 0;
     }
 
     /// The number of sub-environments.
@@ -151,45 +227,51 @@ impl VectorInfo {
 
     /// The column under `key` (masks are under `"_" + key`).
     pub fn get(&self, key: &str) -> Option<&VectorInfoValue> {
-        self.entries.get(key)
+        match self.entries.get_full(key) {
+            Some((j, _, v)) if j < self.live => Some(v),
+            _ => None,
+        }
     }
 
     /// The mask of `key`: which sub-environments reported it.
     pub fn mask(&self, key: &str) -> Option<&[bool]> {
-        self.entries.get(&format!("_{key}"))?.as_bools()
+        self.get(&format!("_{key}"))?.as_bools()
     }
 
     /// Whether `key` is present.
     pub fn contains_key(&self, key: &str) -> bool {
-        self.entries.contains_key(key)
+        self.get(key).is_some()
     }
 
     /// Every key, masks included, in order.
     pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.entries.keys().map(String::as_str)
+        self.iter().map(|(k, _)| k)
     }
 
     /// Every entry, masks included, in order.
     pub fn iter(&self) -> impl Iterator<Item = (&str, &VectorInfoValue)> {
-        self.entries.iter().map(|(k, v)| (k.as_str(), v))
+        self.entries
+            .iter()
+            .take(self.live)
+            .map(|(k, v)| (k.as_str(), v))
     }
 
     /// The number of entries, masks included.
     pub fn len(&self) -> usize {
-        self.entries.len()
+        self.live
     }
 
     /// Whether no sub-environment reported anything.
     pub fn is_empty(&self) -> bool {
-        self.entries.is_empty()
+        self.live == 0
     }
 
     /// The info sub-environment `i` reported (the keys whose mask is set at `i`, without
     /// masks and without `final_obs`): Gymnasium's `DictInfoToList` for one environment.
     pub fn env_info(&self, i: usize) -> Info {
         let mut out = Info::new();
-        for (k, v) in &self.entries {
-            if k.starts_with('_') && v.as_bools().is_some() && self.entries.contains_key(&k[1..]) {
+        for (k, v) in self.iter() {
+            if k.starts_with('_') && v.as_bools().is_some() && self.contains_key(&k[1..]) {
                 continue;
             }
             if matches!(v, VectorInfoValue::Observations(_)) {
@@ -200,7 +282,7 @@ impl VectorInfo {
                 .is_some_and(|m| m.get(i).copied().unwrap_or(false))
                 && let Some(x) = v.get(i)
             {
-                out.insert(k.clone(), x);
+                out.insert(k.to_owned(), x);
             }
         }
         out
@@ -208,7 +290,7 @@ impl VectorInfo {
 
     /// The final observation of sub-environment `i` under `AutoresetMode::SameStep`.
     pub fn final_observation(&self, i: usize) -> Option<&Value> {
-        match self.entries.get("final_obs")? {
+        match self.get("final_obs")? {
             VectorInfoValue::Observations(v) => v.get(i)?.as_ref(),
             _ => None,
         }
@@ -216,7 +298,7 @@ impl VectorInfo {
 
     /// The final info of sub-environment `i` under `AutoresetMode::SameStep`.
     pub fn final_info(&self, i: usize) -> Option<Info> {
-        let m = self.entries.get("final_info")?.as_map()?;
+        let m = self.get("final_info")?.as_map()?;
         self.mask("final_info")?
             .get(i)
             .copied()
@@ -224,13 +306,52 @@ impl VectorInfo {
             .then(|| m.env_info(i))
     }
 
+    /// The index of `key`'s column for this call, making it live (appended after this
+    /// call's columns) if it is not yet: a kept column is reset by `reuse` when that
+    /// returns `true`, else replaced by `make()`.
+    fn column(
+        &mut self,
+        key: &str,
+        reuse: impl FnOnce(&mut VectorInfoValue) -> bool,
+        make: impl FnOnce() -> VectorInfoValue,
+    ) -> usize {
+        match self.entries.get_index_of(key) {
+            Some(j) if j < self.live => return j,
+            Some(j) => {
+                let col = &mut self.entries[j];
+                if !reuse(col) {
+                    *col = make();
+                }
+                self.entries.move_index(j, self.live);
+            }
+            None => {
+                self.entries.insert(key.to_owned(), make());
+                self.entries.move_index(self.entries.len() - 1, self.live);
+            }
+        }
+        self.live += 1;
+        self.live - 1
+    }
+
     fn set_mask(&mut self, key: &str, i: usize) {
         let n = self.num_envs;
-        let mask = self
-            .entries
-            .entry(format!("_{key}"))
-            .or_insert_with(|| VectorInfoValue::Bool(vec![false; n]));
-        if let VectorInfoValue::Bool(m) = mask {
+        let mut name = std::mem::take(&mut self.scratch);
+        name.clear();
+        name.push('_');
+        name.push_str(key);
+        let j = self.column(
+            &name,
+            |c| match c {
+                VectorInfoValue::Bool(m) => {
+                    m.fill(false);
+                    true
+                }
+                _ => false,
+            },
+            || VectorInfoValue::Bool(vec![false; n]),
+        );
+        self.scratch = name;
+        if let VectorInfoValue::Bool(m) = &mut self.entries[j] {
             m[i] = true;
         }
     }
@@ -240,7 +361,7 @@ impl VectorInfo {
             .mask(key)
             .map(<[bool]>::to_vec)
             .unwrap_or_else(|| vec![false; self.num_envs]);
-        let col = &self.entries[key];
+        let col = self.get(key).expect("a live column");
         (0..self.num_envs)
             .map(|j| if mask[j] { col.get(j) } else { None })
             .collect()
@@ -255,19 +376,9 @@ impl VectorInfo {
 
     fn add_value(&mut self, key: &str, v: &InfoValue, i: usize) {
         let n = self.num_envs;
-        if !self.entries.contains_key(key) {
-            let fresh = match v {
-                InfoValue::Bool(_) => VectorInfoValue::Bool(vec![false; n]),
-                InfoValue::Int(_) => VectorInfoValue::Int(vec![0; n]),
-                InfoValue::Float(_) => VectorInfoValue::Float(vec![0.0; n]),
-                InfoValue::Array(a) => VectorInfoValue::Array(stacked_zeros(a, n)),
-                InfoValue::Str(_) => VectorInfoValue::Objects(vec![None; n]),
-                InfoValue::Map(_) => VectorInfoValue::Map(VectorInfo::new(n)),
-            };
-            self.entries.insert(key.to_owned(), fresh);
-        }
+        let j = self.column(key, |c| reset_for(c, v), || fresh(v, n));
         // Promote the column where the kinds differ.
-        let promoted = match (&self.entries[key], v) {
+        let promoted = match (&self.entries[j], v) {
             (VectorInfoValue::Bool(b), InfoValue::Int(_)) => Some(VectorInfoValue::Int(
                 b.iter().map(|&x| i64::from(x)).collect(),
             )),
@@ -293,10 +404,9 @@ impl VectorInfo {
             _ => Some(VectorInfoValue::Objects(self.objects_of(key))),
         };
         if let Some(p) = promoted {
-            self.entries.insert(key.to_owned(), p);
+            self.entries[j] = p;
         }
-        let col = self.entries.get_mut(key).expect("inserted above");
-        match (col, v) {
+        match (&mut self.entries[j], v) {
             (VectorInfoValue::Bool(c), InfoValue::Bool(x)) => c[i] = *x,
             (VectorInfoValue::Int(c), InfoValue::Int(x)) => c[i] = *x,
             (VectorInfoValue::Int(c), InfoValue::Bool(x)) => c[i] = i64::from(*x),
@@ -316,19 +426,33 @@ impl VectorInfo {
     /// Adds `final_obs` and `final_info` for sub-environment `i` (`AutoresetMode::SameStep`).
     pub(crate) fn add_final(&mut self, i: usize, observation: Value, info: &Info) {
         let n = self.num_envs;
-        let col = self
-            .entries
-            .entry("final_obs".to_owned())
-            .or_insert_with(|| VectorInfoValue::Observations(vec![None; n]));
-        if let VectorInfoValue::Observations(v) = col {
+        let j = self.column(
+            "final_obs",
+            |c| match c {
+                VectorInfoValue::Observations(v) => {
+                    v.fill(None);
+                    true
+                }
+                _ => false,
+            },
+            || VectorInfoValue::Observations(vec![None; n]),
+        );
+        if let VectorInfoValue::Observations(v) = &mut self.entries[j] {
             v[i] = Some(observation);
         }
         self.set_mask("final_obs", i);
-        let col = self
-            .entries
-            .entry("final_info".to_owned())
-            .or_insert_with(|| VectorInfoValue::Map(VectorInfo::new(n)));
-        if let VectorInfoValue::Map(m) = col {
+        let j = self.column(
+            "final_info",
+            |c| match c {
+                VectorInfoValue::Map(m) => {
+                    m.clear();
+                    true
+                }
+                _ => false,
+            },
+            || VectorInfoValue::Map(VectorInfo::new(n)),
+        );
+        if let VectorInfoValue::Map(m) = &mut self.entries[j] {
             m.add(info, i);
         }
         self.set_mask("final_info", i);

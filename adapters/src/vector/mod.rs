@@ -28,7 +28,11 @@
 //!   is checked before any sub-environment steps, so a rejected call changes nothing.
 //! * A sub-environment's error is returned as its typed error (messages prefixed with its
 //!   index); the other sub-environments' results of that call are still recorded. A panic
-//!   in a worker thread becomes [`Error::Simulation`](gym_core::Error), never a hang.
+//!   in a sub-environment (on any thread) becomes [`Error::Simulation`](gym_core::Error),
+//!   never a hang, and that sub-environment refuses further calls.
+//! * Steps go through [`Env::step_into`](gym_core::Env::step_into) into per-environment
+//!   buffers and the infos are refilled in place, so over environments whose `step_into`
+//!   reuses its buffers a vector step does not allocate.
 //! * After `fork()`, a [`ThreadVectorEnv`] or [`ThreadEnvPool`] used in the child returns
 //!   [`Error::Unsupported`](gym_core::Error) (its threads exist only in the parent); closing
 //!   or dropping it there neither joins nor waits.
@@ -36,7 +40,9 @@
 mod core;
 pub mod info;
 mod pool;
+mod slot;
 mod sync;
+mod team;
 mod thread;
 
 pub use info::{VectorInfo, VectorInfoValue};
@@ -139,8 +145,8 @@ pub struct VectorStep<'a, O> {
     pub terminations: &'a [bool],
     /// One `truncated` flag per sub-environment.
     pub truncations: &'a [bool],
-    /// The batched infos.
-    pub infos: VectorInfo,
+    /// The batched infos (refilled by the next call).
+    pub infos: &'a VectorInfo,
 }
 
 /// A batch of environments stepped together (Gymnasium's `VectorEnv`; not an `Env`).
@@ -180,7 +186,7 @@ pub trait VectorEnv {
         &mut self,
         seed: impl Into<Seeds>,
         options: Option<&ResetOptions>,
-    ) -> Result<(&BatchOf<Self::ObsSpace>, VectorInfo)>;
+    ) -> Result<(&BatchOf<Self::ObsSpace>, &VectorInfo)>;
 
     /// Resets the sub-environments whose `mask` entry is true (Gymnasium's
     /// `options={"reset_mask": mask}`); the others keep their observation and state.
@@ -192,7 +198,7 @@ pub trait VectorEnv {
         mask: &[bool],
         seed: impl Into<Seeds>,
         options: Option<&ResetOptions>,
-    ) -> Result<(&BatchOf<Self::ObsSpace>, VectorInfo)>;
+    ) -> Result<(&BatchOf<Self::ObsSpace>, &VectorInfo)>;
 
     /// Steps every sub-environment with its row of `actions`.
     ///
@@ -252,9 +258,9 @@ macro_rules! delegate_to_core {
             &mut self,
             seed: impl Into<Seeds>,
             options: Option<&ResetOptions>,
-        ) -> Result<(&BatchOf<$obs>, VectorInfo)> {
-            let infos = self.run_reset(seed.into(), options, None)?;
-            Ok((&self.core.observations, infos))
+        ) -> Result<(&BatchOf<$obs>, &VectorInfo)> {
+            self.run_reset(seed.into(), options, None)?;
+            Ok((&self.core.observations, &self.core.infos))
         }
 
         fn reset_masked(
@@ -262,9 +268,9 @@ macro_rules! delegate_to_core {
             mask: &[bool],
             seed: impl Into<Seeds>,
             options: Option<&ResetOptions>,
-        ) -> Result<(&BatchOf<$obs>, VectorInfo)> {
-            let infos = self.run_reset(seed.into(), options, Some(mask))?;
-            Ok((&self.core.observations, infos))
+        ) -> Result<(&BatchOf<$obs>, &VectorInfo)> {
+            self.run_reset(seed.into(), options, Some(mask))?;
+            Ok((&self.core.observations, &self.core.infos))
         }
 
         fn observations(&self) -> &BatchOf<$obs> {

@@ -2,7 +2,7 @@
 //! `batch_size` environments to finish, `send` gives exactly those their next actions, so
 //! no thread waits for the slowest environment of a batch.
 
-use super::core::{Op, Outcome, OwnerProcess, VectorCore, check_batch, in_env, run_op_guarded};
+use super::core::{Op, Outcome, OwnerProcess, VectorCore, in_env, run_op_guarded};
 use super::{Seeds, VectorInfo};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Result};
@@ -286,8 +286,7 @@ where
             }
         }
         if !env_ids.is_empty() {
-            let batched = self.single_act.batch_space(env_ids.len())?;
-            check_batch(&self.single_act, &batched, actions, env_ids.len())?;
+            self.single_act.check_batch(actions, env_ids.len())?;
         }
         let rows = env_ids
             .iter()
@@ -336,7 +335,7 @@ where
                     infos.add(&info, k);
                     self.single_obs.write_item(&mut self.observations, k, &obs)
                 }
-                Outcome::Step(step) | Outcome::StepReset { step, .. } => {
+                Outcome::Step(step) => {
                     self.rewards[k] = step.reward;
                     self.terminations[k] = step.terminated;
                     self.truncations[k] = step.truncated;

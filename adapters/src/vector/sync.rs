@@ -1,13 +1,16 @@
 //! [`SyncVectorEnv`]: sub-environments stepped in turn on the calling thread.
 
-use super::core::{VectorCore, run_op};
+use super::core::VectorCore;
 use super::delegate_to_core;
+use super::slot::Slot;
 use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Metadata, ResetOptions, Result};
 
 /// Gymnasium's `SyncVectorEnv`: `n` environments with identical spaces, stepped one after
-/// the other (see the [module documentation](super) for the semantics).
+/// the other (see the [module documentation](super) for the semantics). Steps go through
+/// [`Env::step_into`] into per-environment buffers, so with environments whose `step_into`
+/// reuses them a step does not allocate.
 #[derive(Debug)]
 pub struct SyncVectorEnv<E: Env>
 where
@@ -15,6 +18,7 @@ where
     E::ActSpace: BatchSpace,
 {
     envs: Vec<E>,
+    slots: Vec<Slot<E>>,
     core: VectorCore<E::ObsSpace, E::ActSpace>,
 }
 
@@ -29,7 +33,12 @@ where
     /// [`gym_core::Error::InvalidArgument`] for no environments or differing spaces.
     pub fn new(envs: Vec<E>) -> Result<Self> {
         let core = VectorCore::new(&envs)?;
-        Ok(Self { envs, core })
+        let slots = envs
+            .iter()
+            .enumerate()
+            .map(|(i, e)| Slot::new(i, e))
+            .collect();
+        Ok(Self { envs, slots, core })
     }
 
     /// `n` environments made by `make(i)`.
@@ -62,14 +71,19 @@ where
         seeds: Seeds,
         options: Option<&ResetOptions>,
         mask: Option<&[bool]>,
-    ) -> Result<VectorInfo> {
-        let ops = self.core.plan_reset(seeds, options, mask)?;
-        let outcomes = ops
-            .into_iter()
-            .zip(&mut self.envs)
-            .map(|(op, env)| op.map(|op| run_op(env, op)))
-            .collect();
-        self.core.finish_reset(outcomes)
+    ) -> Result<()> {
+        let tasks = self.core.plan_reset(seeds, options, mask)?;
+        for ((slot, env), task) in self.slots.iter_mut().zip(&mut self.envs).zip(tasks) {
+            slot.task = task;
+            slot.run(env);
+        }
+        self.core.begin();
+        let mut first_err = Ok(());
+        for slot in &mut self.slots {
+            let r = self.core.finish_reset(slot);
+            first_err = first_err.and(r);
+        }
+        first_err
     }
 }
 
@@ -87,21 +101,28 @@ where
         &mut self,
         actions: &BatchOf<E::ActSpace>,
     ) -> Result<VectorStep<'_, BatchOf<E::ObsSpace>>> {
-        let ops = self.core.plan_step(actions)?;
-        let outcomes = ops
-            .into_iter()
-            .zip(&mut self.envs)
-            .map(|(op, env)| run_op(env, op))
-            .collect();
-        let infos = self.core.finish_step(outcomes)?;
-        Ok(self.core.view(infos))
+        self.core.check_step(actions)?;
+        for slot in &mut self.slots {
+            self.core.plan_step(slot, actions)?;
+        }
+        for (slot, env) in self.slots.iter_mut().zip(&mut self.envs) {
+            slot.run(env);
+        }
+        self.core.begin();
+        let mut first_err = Ok(());
+        for slot in &mut self.slots {
+            let r = self.core.finish_step(slot);
+            first_err = first_err.and(r);
+        }
+        first_err?;
+        Ok(self.core.view())
     }
 
     fn close(&mut self) {
         if !self.core.closed {
             self.core.closed = true;
-            for e in &mut self.envs {
-                e.close();
+            for (slot, env) in self.slots.iter().zip(&mut self.envs) {
+                slot.close(env);
             }
         }
     }

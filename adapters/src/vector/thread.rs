@@ -1,104 +1,49 @@
 //! [`ThreadVectorEnv`]: sub-environments stepped in parallel on persistent worker threads.
 
-use super::core::{Op, Outcome, OwnerProcess, VectorCore, run_op_guarded};
+use super::core::{OwnerProcess, VectorCore};
 use super::delegate_to_core;
+use super::slot::Slot;
+use super::team::{Job, Team};
 use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Metadata, ResetOptions, Result};
-use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::sync::mpsc::{Receiver, Sender, channel};
-use std::thread::JoinHandle;
 
-/// Work for one worker: operations on some of its environments (by local index).
-enum Command<A> {
-    Run(Vec<(usize, Op<A>)>),
-    Close,
+/// A sub-environment with its buffers: one job of the team.
+struct Member<E: Env> {
+    env: E,
+    slot: Slot<E>,
 }
 
-type Reply<O> = Vec<(usize, Result<Outcome<O>>)>;
-
-/// The operations for one worker (by local index) and the global indices they belong to.
-type WorkerBatch<A> = (Vec<(usize, Op<A>)>, Vec<usize>);
-
-struct Worker<E: Env> {
-    tx: Option<Sender<Command<E::Act>>>,
-    rx: Receiver<Reply<E::Obs>>,
-    handle: Option<JoinHandle<()>>,
-}
-
-/// Sub-environments (with their global indices) stepped by one thread, and which of them
-/// panicked: a panicking environment is reported and then refused.
-struct Block<E> {
-    envs: Vec<(usize, E)>,
-    poisoned: Vec<bool>,
-}
-
-impl<E: Env> Block<E> {
-    fn new(envs: Vec<(usize, E)>) -> Self {
-        let poisoned = vec![false; envs.len()];
-        Self { envs, poisoned }
-    }
-
-    /// Runs `ops` (by local index) and returns the outcomes by global index.
-    fn run(&mut self, ops: Vec<(usize, Op<E::Act>)>) -> Reply<E::Obs> {
-        ops.into_iter()
-            .map(|(local, op)| {
-                let (global, env) = &mut self.envs[local];
-                let r = run_op_guarded(env, op, *global, &mut self.poisoned[local]);
-                (*global, r)
-            })
-            .collect()
-    }
-
-    /// Closes every environment that has not panicked.
-    fn close(&mut self) {
-        for ((_, env), bad) in self.envs.iter_mut().zip(&self.poisoned) {
-            if !bad {
-                let _ = catch_unwind(AssertUnwindSafe(|| env.close()));
-            }
-        }
+impl<E: Env> Job for Member<E> {
+    fn run(&mut self) {
+        self.slot.run(&mut self.env);
     }
 }
 
-/// A worker thread: runs commands on its block until `Close` or until the vector
-/// environment is dropped.
-fn worker_loop<E: Env>(
-    mut block: Block<E>,
-    rx: Receiver<Command<E::Act>>,
-    tx: Sender<Reply<E::Obs>>,
-) {
-    while let Ok(Command::Run(ops)) = rx.recv() {
-        if tx.send(block.run(ops)).is_err() {
-            break;
-        }
-    }
-    block.close();
-}
-
-/// Gymnasium's `AsyncVectorEnv` with threads: the sub-environments are split into
-/// `num_threads` contiguous blocks; the calling thread steps the first block itself while
-/// persistent worker threads step the others in parallel (so one env needs no thread
-/// hand-off at all, and with one block per core no core sits idle waiting). The semantics
-/// are those of [`SyncVectorEnv`](super::SyncVectorEnv) (same code), so both give identical
-/// trajectories.
+/// Gymnasium's `AsyncVectorEnv` with threads: the sub-environments are stepped in parallel
+/// by `num_threads` threads, the calling thread included, that persist between calls. Each
+/// thread owns a contiguous block of sub-environments and steps it first, then takes the
+/// sub-environments of other blocks that are still waiting (dynamic assignment), so a step
+/// waits for the slowest *environment* rather than the slowest *block*; several envs per
+/// thread (`num_envs` = 2–4 × threads) therefore keep every core busy. Threads that wait
+/// spin briefly before they sleep, so a loop of steps needs no system call to hand off
+/// work. The semantics are those of [`SyncVectorEnv`](super::SyncVectorEnv) (same code): a
+/// sub-environment's trajectory depends only on its seed and actions, never on the thread
+/// that steps it, so both give identical trajectories. Steps go through [`Env::step_into`]
+/// into per-environment buffers; with environments whose `step_into` reuses them (the
+/// robosuite tasks and `FlatGymWrapper`) a step does not allocate.
 ///
 /// The default thread count is `min(num_envs, available_parallelism)`. A panic inside a
 /// sub-environment is caught on its thread and returned as [`Error::Simulation`] (that
-/// sub-environment then refuses further calls); a worker that disappears is an error, never
-/// a hang. [`VectorEnv::close`] (and `Drop`) closes the sub-environments and joins the
-/// threads.
+/// sub-environment then refuses further calls); no call can hang on a lost thread.
+/// [`VectorEnv::close`] (and `Drop`) closes the sub-environments and joins the threads.
 pub struct ThreadVectorEnv<E: Env>
 where
     E::ObsSpace: BatchSpace,
     E::ActSpace: BatchSpace,
 {
     core: VectorCore<E::ObsSpace, E::ActSpace>,
-    /// The block the calling thread steps.
-    local: Block<E>,
-    /// The other blocks' threads; block `b` (from 1) is `workers[b - 1]`.
-    workers: Vec<Worker<E>>,
-    /// For each sub-environment: its block and its index there.
-    placement: Vec<(usize, usize)>,
+    team: Team<Member<E>>,
     /// The process whose threads these are (checked against `fork()`).
     owner: OwnerProcess,
 }
@@ -115,8 +60,7 @@ where
     /// [`Error::InvalidArgument`] for no environments or differing spaces; an OS error
     /// spawning a thread as [`Error::Unsupported`].
     pub fn new(envs: Vec<E>) -> Result<Self> {
-        let cores = std::thread::available_parallelism().map_or(1, usize::from);
-        let threads = envs.len().min(cores).max(1);
+        let threads = envs.len().min(default_threads()).max(1);
         Self::with_threads(envs, threads)
     }
 
@@ -126,37 +70,19 @@ where
     /// As [`ThreadVectorEnv::new`].
     pub fn with_threads(envs: Vec<E>, num_threads: usize) -> Result<Self> {
         let core = VectorCore::new(&envs)?;
-        let n = envs.len();
-        let threads = num_threads.clamp(1, n);
-        let mut placement = Vec::with_capacity(n);
-        let mut blocks: Vec<Vec<(usize, E)>> = (0..threads).map(|_| Vec::new()).collect();
-        for (i, env) in envs.into_iter().enumerate() {
-            let w = i * threads / n;
-            placement.push((w, blocks[w].len()));
-            blocks[w].push((i, env));
-        }
-        let mut blocks = blocks.into_iter();
-        let local = Block::new(blocks.next().unwrap_or_default());
-        let mut workers = Vec::with_capacity(threads - 1);
-        for (w, block) in blocks.enumerate() {
-            let (cmd_tx, cmd_rx) = channel();
-            let (rep_tx, rep_rx) = channel();
-            let block = Block::new(block);
-            let handle = std::thread::Builder::new()
-                .name(format!("vector-env-{}", w + 1))
-                .spawn(move || worker_loop(block, cmd_rx, rep_tx))
-                .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;
-            workers.push(Worker {
-                tx: Some(cmd_tx),
-                rx: rep_rx,
-                handle: Some(handle),
-            });
-        }
+        let members = envs
+            .into_iter()
+            .enumerate()
+            .map(|(i, env)| Member {
+                slot: Slot::new(i, &env),
+                env,
+            })
+            .collect();
+        let team = Team::new(members, num_threads, "vector-env")
+            .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;
         Ok(Self {
             core,
-            local,
-            workers,
-            placement,
+            team,
             owner: OwnerProcess::current(),
         })
     }
@@ -178,67 +104,7 @@ where
 
     /// The number of threads stepping sub-environments, the calling thread included.
     pub fn num_threads(&self) -> usize {
-        self.workers.len() + 1
-    }
-
-    /// Sends each operation to its block's worker, runs the calling thread's block, and
-    /// gathers the outcomes in sub-environment order.
-    fn dispatch(&mut self, ops: Vec<Option<Op<E::Act>>>) -> Vec<Option<Result<Outcome<E::Obs>>>> {
-        let mut per_block: Vec<WorkerBatch<E::Act>> = (0..self.num_threads())
-            .map(|_| (Vec::new(), Vec::new()))
-            .collect();
-        for (i, op) in ops.into_iter().enumerate() {
-            if let Some(op) = op {
-                let (b, local) = self.placement[i];
-                per_block[b].0.push((local, op));
-                per_block[b].1.push(i);
-            }
-        }
-        let mut results: Vec<Option<Result<Outcome<E::Obs>>>> =
-            (0..self.core.n).map(|_| None).collect();
-        let mut per_block = per_block.into_iter();
-        let (own, _) = per_block.next().unwrap_or_default();
-        let mut waiting = Vec::new();
-        for (w, (batch, globals)) in per_block.enumerate() {
-            if batch.is_empty() {
-                continue;
-            }
-            let sent = self.workers[w]
-                .tx
-                .as_ref()
-                .is_some_and(|tx| tx.send(Command::Run(batch)).is_ok());
-            if sent {
-                waiting.push((w, globals));
-            } else {
-                for g in globals {
-                    results[g] = Some(Err(Error::simulation(format!(
-                        "the worker thread of sub-environment {g} has exited"
-                    ))));
-                }
-            }
-        }
-        if !own.is_empty() {
-            for (g, r) in self.local.run(own) {
-                results[g] = Some(r);
-            }
-        }
-        for (w, globals) in waiting {
-            match self.workers[w].rx.recv() {
-                Ok(reply) => {
-                    for (g, r) in reply {
-                        results[g] = Some(r);
-                    }
-                }
-                Err(_) => {
-                    for g in globals {
-                        results[g] = Some(Err(Error::simulation(format!(
-                            "the worker thread of sub-environment {g} has exited"
-                        ))));
-                    }
-                }
-            }
-        }
-        results
+        self.team.threads()
     }
 
     fn run_reset(
@@ -246,32 +112,40 @@ where
         seeds: Seeds,
         options: Option<&ResetOptions>,
         mask: Option<&[bool]>,
-    ) -> Result<VectorInfo> {
+    ) -> Result<()> {
         self.owner.check("ThreadVectorEnv")?;
-        let ops = self.core.plan_reset(seeds, options, mask)?;
-        let outcomes = self.dispatch(ops);
-        self.core.finish_reset(outcomes)
+        let tasks = self.core.plan_reset(seeds, options, mask)?;
+        for (i, task) in tasks.into_iter().enumerate() {
+            self.team.job(i).slot.task = task;
+        }
+        self.team.run();
+        self.core.begin();
+        let mut result = Ok(());
+        for i in 0..self.team.len() {
+            let r = self.core.finish_reset(&mut self.team.job(i).slot);
+            result = result.and(r);
+        }
+        result
     }
 
     fn shutdown(&mut self) {
         if self.owner.forked() {
-            // A forked child: the workers are not running here, and their channels' locks
-            // may have been held at the fork. Leak them; never send, join or wait.
-            std::mem::forget(std::mem::take(&mut self.workers));
+            // A forked child: the workers are not running here, and the jobs' locks may
+            // have been held at the fork. Leak them; never lock, join or wait.
+            self.team.abandon();
             return;
         }
-        self.local.close();
-        for w in &mut self.workers {
-            if let Some(tx) = w.tx.take() {
-                let _ = tx.send(Command::Close);
-            }
-        }
-        for w in &mut self.workers {
-            if let Some(h) = w.handle.take() {
-                let _ = h.join();
-            }
+        self.team.stop();
+        for i in 0..self.team.len() {
+            let member = &mut *self.team.job(i);
+            member.slot.close(&mut member.env);
         }
     }
+}
+
+/// The threads a vector env uses by default: the machine's available parallelism.
+fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
 }
 
 impl<E: Env> VectorEnv for ThreadVectorEnv<E>
@@ -289,14 +163,19 @@ where
         actions: &BatchOf<E::ActSpace>,
     ) -> Result<VectorStep<'_, BatchOf<E::ObsSpace>>> {
         self.owner.check("ThreadVectorEnv")?;
-        let ops = self.core.plan_step(actions)?;
-        let outcomes = self.dispatch(ops.into_iter().map(Some).collect());
-        let outcomes = outcomes
-            .into_iter()
-            .map(|o| o.unwrap_or_else(|| Err(Error::simulation("a worker did not answer"))))
-            .collect();
-        let infos = self.core.finish_step(outcomes)?;
-        Ok(self.core.view(infos))
+        self.core.check_step(actions)?;
+        for i in 0..self.team.len() {
+            self.core.plan_step(&mut self.team.job(i).slot, actions)?;
+        }
+        self.team.run();
+        self.core.begin();
+        let mut result = Ok(());
+        for i in 0..self.team.len() {
+            let r = self.core.finish_step(&mut self.team.job(i).slot);
+            result = result.and(r);
+        }
+        result?;
+        Ok(self.core.view())
     }
 
     fn close(&mut self) {

@@ -1,0 +1,97 @@
+//! A vector step does not touch the heap once its buffers exist: `SyncVectorEnv` and
+//! `ThreadVectorEnv` (worker threads included) over robosuite's Lift behind the flat
+//! GymWrapper, typed and boxed (`DynEnv::step_into`). Allocations are counted on every
+//! thread, so this file holds one test.
+
+use adapters::{BatchSpace, SyncVectorEnv, ThreadVectorEnv, VectorEnv, WrapperExt};
+use gym_core::{Env, IntoBoxedEnv, Space, Value, rng_from_seed};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+fn count() {
+    if COUNTING.load(Ordering::Relaxed) {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+// SAFETY: forwards to the system allocator, only counting calls.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// How many allocations (on any thread) `f` makes.
+fn allocations(f: impl FnOnce()) -> usize {
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    COUNTING.store(true, Ordering::SeqCst);
+    f();
+    COUNTING.store(false, Ordering::SeqCst);
+    ALLOCATIONS.load(Ordering::SeqCst) - before
+}
+
+/// Steps `v` with `batches` (after a reset and two warm-up steps that size the buffers) and
+/// returns the allocations of the remaining steps; no episode ends within them.
+fn step_allocations<V: VectorEnv>(mut v: V, batches: &[adapters::BatchOf<V::ActSpace>]) -> usize {
+    v.reset(3u64, None).unwrap();
+    for b in &batches[..2] {
+        let _ = v.step(b).unwrap();
+    }
+    allocations(|| {
+        for b in &batches[2..] {
+            let s = v.step(b).unwrap();
+            assert!(!s.terminations.iter().chain(s.truncations).any(|&d| d));
+        }
+    })
+}
+
+#[test]
+fn vector_steps_do_not_allocate() {
+    let make = || {
+        robosuite_env::make("Lift")
+            .unwrap()
+            .flat_gym_wrapper(None)
+            .unwrap()
+    };
+    let n = 4;
+    let single = make().action_space().clone();
+    let batched = single.batch_space(n).unwrap();
+    let mut rng = rng_from_seed(2);
+    let batches: Vec<_> = (0..12).map(|_| batched.sample(&mut rng)).collect();
+    let sync = SyncVectorEnv::new((0..n).map(|_| make()).collect()).unwrap();
+    assert_eq!(step_allocations(sync, &batches), 0, "SyncVectorEnv");
+    for threads in [1, 2, 3, 4] {
+        let v = ThreadVectorEnv::with_threads((0..n).map(|_| make()).collect(), threads).unwrap();
+        assert_eq!(
+            step_allocations(v, &batches),
+            0,
+            "ThreadVectorEnv, {threads} threads"
+        );
+    }
+    let boxed_batches: Vec<Value> = batches.iter().map(|b| Value::from(b.clone())).collect();
+    let boxed = ThreadVectorEnv::with_threads((0..n).map(|_| make().boxed()).collect(), 2).unwrap();
+    assert_eq!(
+        step_allocations(boxed, &boxed_batches),
+        0,
+        "boxed ThreadVectorEnv"
+    );
+}
