@@ -1,0 +1,120 @@
+"""SB3 PPO training throughput: robosuite_rs's Rust-threaded VecEnv against SubprocVecEnv.
+
+    python python/scripts/bench_sb3.py --num-envs 2 4 --timesteps 16384 --json bench-sb3.json
+
+For each ``n`` in ``--num-envs`` and each VecEnv (``RustVecEnv``: ``make_sb3_vec_env``,
+one process, Rust threads; ``SubprocVecEnv``: one Python process per env, started by
+``--start-method``, each making ``"robosuite_rs:robosuite_rs/Lift-v0"``; optionally
+``DummyVecEnv``) it runs the same PPO (``MlpPolicy`` on CPU, ``VecMonitor``) for
+``--timesteps`` env steps and reports env steps per second of ``model.learn`` (rollouts
+and gradient updates: the training throughput), plus the rate of stepping the VecEnv alone
+with random actions. One warm-up PPO iteration per VecEnv is not counted. Lift: Panda,
+OSC_POSE, horizon ``--horizon``, no renderer. Needs stable-baselines3.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import json
+import os
+import platform
+import time
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+ENV_KWARGS: dict[str, Any] = {"has_offscreen_renderer": False, "use_camera_obs": False}
+MODULE_ID = "robosuite_rs:robosuite_rs/Lift-v0"
+
+
+def make_venv(kind: str, n: int, horizon: int, start_method: str) -> Any:
+    """A fresh SB3 VecEnv of ``kind`` with ``n`` Lift envs."""
+    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
+
+    from robosuite_rs.sb3 import make_sb3_vec_env
+
+    kwargs = dict(ENV_KWARGS, horizon=horizon)
+    if kind == "rust":
+        return make_sb3_vec_env("Lift", n, **kwargs)
+    fns = [functools.partial(gym.make, MODULE_ID, **kwargs)] * n
+    if kind == "subproc":
+        return SubprocVecEnv(fns, start_method=start_method)
+    if kind == "dummy":
+        return DummyVecEnv(fns)
+    raise ValueError(f"unknown VecEnv kind {kind!r}")
+
+
+def stepping_rate(venv: Any, steps: int) -> float:
+    """Env steps per second of ``venv.step`` with random actions (no learning)."""
+    venv.seed(0)
+    venv.reset()
+    rng = np.random.default_rng(0)
+    actions = rng.uniform(-1, 1, size=(steps, venv.num_envs) + venv.action_space.shape).astype(np.float32)
+    start = time.perf_counter()
+    for a in actions:
+        venv.step(a)
+    return steps * venv.num_envs / (time.perf_counter() - start)
+
+
+def training_rate(venv: Any, timesteps: int, args: argparse.Namespace) -> float:
+    """Env steps per second of ``PPO.learn`` (after one uncounted warm-up iteration)."""
+    from stable_baselines3 import PPO
+    from stable_baselines3.common.vec_env import VecMonitor
+
+    venv = VecMonitor(venv)
+    model = PPO(
+        "MlpPolicy", venv, n_steps=args.n_steps, batch_size=args.batch_size, n_epochs=args.n_epochs,
+        seed=0, device="cpu", verbose=0,
+    )
+    per_iteration = args.n_steps * venv.num_envs
+    model.learn(total_timesteps=per_iteration)  # warm-up
+    start = time.perf_counter()
+    model.learn(total_timesteps=max(per_iteration, timesteps), reset_num_timesteps=False)
+    elapsed = time.perf_counter() - start
+    return (model.num_timesteps - per_iteration) / elapsed
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--num-envs", type=int, nargs="+", default=[os.cpu_count() or 2])
+    p.add_argument("--timesteps", type=int, default=16_384)
+    p.add_argument("--horizon", type=int, default=500)
+    p.add_argument("--n-steps", type=int, default=256, help="PPO rollout length per env")
+    p.add_argument("--batch-size", type=int, default=256)
+    p.add_argument("--n-epochs", type=int, default=4)
+    p.add_argument("--step-only", type=int, default=500, help="vector steps of the stepping-only rate")
+    p.add_argument("--kinds", nargs="+", default=["rust", "subproc"], choices=["rust", "subproc", "dummy"])
+    p.add_argument("--start-method", default="forkserver", choices=["fork", "forkserver", "spawn"])
+    p.add_argument("--json", help="also write the results to this file")
+    args = p.parse_args()
+
+    import stable_baselines3
+    import torch
+
+    results = []
+    print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs; torch threads {torch.get_num_threads()}; SB3 {stable_baselines3.__version__}")
+    print(f"PPO MlpPolicy n_steps={args.n_steps} batch_size={args.batch_size} n_epochs={args.n_epochs}; Lift horizon {args.horizon}")
+    for n in args.num_envs:
+        for kind in args.kinds:
+            venv = make_venv(kind, n, args.horizon, args.start_method)
+            step_rate = stepping_rate(venv, args.step_only)
+            venv.close()
+            venv = make_venv(kind, n, args.horizon, args.start_method)
+            train_rate = training_rate(venv, args.timesteps, args)
+            venv.close()
+            row = {"vec_env": kind, "num_envs": n, "train_steps_per_s": round(train_rate, 1), "step_only_steps_per_s": round(step_rate, 1)}
+            results.append(row)
+            print(f"{kind:>8} n={n:<3} PPO training {train_rate:8.0f} env steps/s   stepping only {step_rate:8.0f} env steps/s", flush=True)
+        by_kind = {r["vec_env"]: r for r in results if r["num_envs"] == n}
+        if "rust" in by_kind and "subproc" in by_kind:
+            ratio = by_kind["rust"]["train_steps_per_s"] / by_kind["subproc"]["train_steps_per_s"]
+            print(f"n={n}: RustVecEnv / SubprocVecEnv training throughput = {ratio:.2f}x")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"config": vars(args), "cpus": os.cpu_count(), "results": results}, f, indent=2)
+
+
+if __name__ == "__main__":
+    main()
