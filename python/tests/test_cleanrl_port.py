@@ -27,7 +27,7 @@ def _example():
 
 def test_cleanrl_wrappers_on_robosuite_rs() -> None:
     ex = _example()
-    kwargs = dict(QUIET, horizon=HORIZON)
+    kwargs = dict(QUIET, horizon=HORIZON, reward_shaping=True)
     envs = ex.make_envs(num_envs=2, env_kwargs=kwargs)
     assert isinstance(envs, gym.vector.SyncVectorEnv)
     wrappers = []
