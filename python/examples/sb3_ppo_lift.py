@@ -86,6 +86,9 @@ def main(argv: list[str] | None = None) -> list[tuple[int, float, bool]]:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--out", type=Path, default=Path("sb3_ppo_lift.png"))
     args = p.parse_args(argv)
+    import torch
+
+    torch.set_num_threads(1)  # a small MLP trains fastest on one thread; the cores step envs
 
     venv = make_sb3_vec_env(
         "Lift", args.num_envs, seed=args.seed, horizon=args.horizon, reward_shaping=True,

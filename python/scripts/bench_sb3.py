@@ -87,14 +87,19 @@ def main() -> None:
     p.add_argument("--step-only", type=int, default=500, help="vector steps of the stepping-only rate")
     p.add_argument("--kinds", nargs="+", default=["rust", "subproc"], choices=["rust", "subproc", "dummy"])
     p.add_argument("--start-method", default="forkserver", choices=["fork", "forkserver", "spawn"])
+    p.add_argument("--torch-threads", type=int, default=1, help="torch.set_num_threads (small MLPs: 1 is fastest)")
     p.add_argument("--json", help="also write the results to this file")
     args = p.parse_args()
 
     import stable_baselines3
     import torch
 
+    torch.set_num_threads(args.torch_threads)
     results = []
-    print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs; torch threads {torch.get_num_threads()}; SB3 {stable_baselines3.__version__}")
+    print(
+        f"machine: {platform.machine()}, {os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.1f}; "
+        f"torch threads {torch.get_num_threads()}; SB3 {stable_baselines3.__version__}"
+    )
     print(f"PPO MlpPolicy n_steps={args.n_steps} batch_size={args.batch_size} n_epochs={args.n_epochs}; Lift horizon {args.horizon}")
     for n in args.num_envs:
         for kind in args.kinds:
@@ -106,7 +111,11 @@ def main() -> None:
             venv.close()
             row = {"vec_env": kind, "num_envs": n, "train_steps_per_s": round(train_rate, 1), "step_only_steps_per_s": round(step_rate, 1)}
             results.append(row)
-            print(f"{kind:>8} n={n:<3} PPO training {train_rate:8.0f} env steps/s   stepping only {step_rate:8.0f} env steps/s", flush=True)
+            print(
+                f"{kind:>8} n={n:<3} PPO training {train_rate:8.0f} env steps/s   stepping only {step_rate:8.0f} env steps/s"
+                f"   (load average {os.getloadavg()[0]:.1f})",
+                flush=True,
+            )
         by_kind = {r["vec_env"]: r for r in results if r["num_envs"] == n}
         if "rust" in by_kind and "subproc" in by_kind:
             ratio = by_kind["rust"]["train_steps_per_s"] / by_kind["subproc"]["train_steps_per_s"]
