@@ -8,7 +8,9 @@ one process, Rust threads; ``SubprocVecEnv``: one Python process per env, starte
 ``DummyVecEnv``) it runs the same PPO (``MlpPolicy`` on CPU, ``VecMonitor``) for
 ``--timesteps`` env steps and reports env steps per second of ``model.learn`` (rollouts
 and gradient updates: the training throughput), plus the rate of stepping the VecEnv alone
-with random actions. One warm-up PPO iteration per VecEnv is not counted. Lift: Panda,
+with random actions. One warm-up PPO iteration per VecEnv is not counted; ``--repeats`` runs
+alternate between the VecEnvs and the medians are reported (on a shared machine the load
+moves: compare only runs made together). Lift: Panda,
 OSC_POSE, horizon ``--horizon``, no renderer. Needs stable-baselines3.
 """
 
@@ -29,7 +31,7 @@ ENV_KWARGS: dict[str, Any] = {"has_offscreen_renderer": False, "use_camera_obs":
 MODULE_ID = "robosuite_rs:robosuite_rs/Lift-v0"
 
 
-def make_venv(kind: str, n: int, horizon: int, start_method: str) -> Any:
+def make_venv(kind: str, n: int, horizon: int, start_method: str, rust_threads: int | None = None) -> Any:
     """A fresh SB3 VecEnv of ``kind`` with ``n`` Lift envs."""
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
@@ -37,7 +39,7 @@ def make_venv(kind: str, n: int, horizon: int, start_method: str) -> Any:
 
     kwargs = dict(ENV_KWARGS, horizon=horizon)
     if kind == "rust":
-        return make_sb3_vec_env("Lift", n, **kwargs)
+        return make_sb3_vec_env("Lift", n, threads=rust_threads, **kwargs)
     fns = [functools.partial(gym.make, MODULE_ID, **kwargs)] * n
     if kind == "subproc":
         return SubprocVecEnv(fns, start_method=start_method)
@@ -87,6 +89,8 @@ def main() -> None:
     p.add_argument("--step-only", type=int, default=500, help="vector steps of the stepping-only rate")
     p.add_argument("--kinds", nargs="+", default=["rust", "subproc"], choices=["rust", "subproc", "dummy"])
     p.add_argument("--start-method", default="forkserver", choices=["fork", "forkserver", "spawn"])
+    p.add_argument("--repeats", type=int, default=3, help="interleaved runs per VecEnv; medians reported")
+    p.add_argument("--rust-threads", type=int, help="Rust worker threads (default: CPUs, at most num_envs)")
     p.add_argument("--torch-threads", type=int, default=1, help="torch.set_num_threads (small MLPs: 1 is fastest)")
     p.add_argument("--json", help="also write the results to this file")
     args = p.parse_args()
@@ -102,24 +106,40 @@ def main() -> None:
     )
     print(f"PPO MlpPolicy n_steps={args.n_steps} batch_size={args.batch_size} n_epochs={args.n_epochs}; Lift horizon {args.horizon}")
     for n in args.num_envs:
+        runs: dict[str, list[tuple[float, float]]] = {kind: [] for kind in args.kinds}
+        for r in range(args.repeats):
+            for kind in args.kinds:  # interleaved, so load changes hit every kind alike
+                venv = make_venv(kind, n, args.horizon, args.start_method, args.rust_threads)
+                step_rate = stepping_rate(venv, args.step_only)
+                venv.close()
+                venv = make_venv(kind, n, args.horizon, args.start_method, args.rust_threads)
+                train_rate = training_rate(venv, args.timesteps, args)
+                venv.close()
+                runs[kind].append((train_rate, step_rate))
+                print(
+                    f"run {r + 1}: {kind:>8} n={n:<3} PPO training {train_rate:8.0f} env steps/s   "
+                    f"stepping only {step_rate:8.0f} env steps/s   (load average {os.getloadavg()[0]:.1f})",
+                    flush=True,
+                )
         for kind in args.kinds:
-            venv = make_venv(kind, n, args.horizon, args.start_method)
-            step_rate = stepping_rate(venv, args.step_only)
-            venv.close()
-            venv = make_venv(kind, n, args.horizon, args.start_method)
-            train_rate = training_rate(venv, args.timesteps, args)
-            venv.close()
-            row = {"vec_env": kind, "num_envs": n, "train_steps_per_s": round(train_rate, 1), "step_only_steps_per_s": round(step_rate, 1)}
+            train = [t for t, _ in runs[kind]]
+            step = [s for _, s in runs[kind]]
+            row = {
+                "vec_env": kind,
+                "num_envs": n,
+                "train_steps_per_s_median": round(float(np.median(train)), 1),
+                "train_steps_per_s_runs": [round(t, 1) for t in train],
+                "step_only_steps_per_s_median": round(float(np.median(step)), 1),
+            }
             results.append(row)
             print(
-                f"{kind:>8} n={n:<3} PPO training {train_rate:8.0f} env steps/s   stepping only {step_rate:8.0f} env steps/s"
-                f"   (load average {os.getloadavg()[0]:.1f})",
-                flush=True,
+                f"median: {kind:>8} n={n:<3} PPO training {row['train_steps_per_s_median']:8.0f} env steps/s   "
+                f"stepping only {row['step_only_steps_per_s_median']:8.0f} env steps/s"
             )
         by_kind = {r["vec_env"]: r for r in results if r["num_envs"] == n}
         if "rust" in by_kind and "subproc" in by_kind:
-            ratio = by_kind["rust"]["train_steps_per_s"] / by_kind["subproc"]["train_steps_per_s"]
-            print(f"n={n}: RustVecEnv / SubprocVecEnv training throughput = {ratio:.2f}x")
+            ratio = by_kind["rust"]["train_steps_per_s_median"] / by_kind["subproc"]["train_steps_per_s_median"]
+            print(f"n={n}: RustVecEnv / SubprocVecEnv training throughput (medians) = {ratio:.2f}x", flush=True)
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"config": vars(args), "cpus": os.cpu_count(), "results": results}, f, indent=2)
