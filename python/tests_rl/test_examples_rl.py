@@ -34,7 +34,9 @@ def test_cleanrl_example_trains() -> None:
     stdout = _run(str(EXAMPLES / "cleanrl_ppo_continuous.py"), "--total-timesteps", "512", "--num-steps", "128", "--update-epochs", "2")
     lines = [line for line in stdout.splitlines() if line.startswith("global_step=")]
     assert [line.split()[0] for line in lines] == ["global_step=256", "global_step=512"]
-    assert "episodes=2" in lines[-1]  # horizon 100: each of the 2 envs ended one episode
+    # Horizon 100 and Gymnasium's NEXT_STEP autoreset: each env ends episodes at its steps 100 and 201.
+    assert "episodes=4" in lines[-1]
+    assert float(lines[-1].split("mean_return(last 10)=")[1].split()[0]) > 0  # shaped rewards
 
 
 def test_rllib_example_runs_two_env_runners() -> None:
