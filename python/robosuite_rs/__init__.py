@@ -27,6 +27,7 @@ from os import PathLike
 from typing import Any
 
 import numpy as np
+from gymnasium import error as gymnasium_error
 
 from . import _native
 
@@ -34,6 +35,7 @@ __all__ = [
     "make",
     "make_vec",
     "make_pool",
+    "VectorizeError",
     "scene_xml",
     "load_composite_controller_config",
     "load_part_controller_config",
@@ -511,32 +513,116 @@ def _count(name: str, value: Any) -> int:
         raise TypeError(f"{name} must be an integer, got {value!r}") from None
 
 
+def _max_steps(value: Any) -> int | None:
+    """Gymnasium's ``max_episode_steps`` (``None``: no limit beyond the horizon)."""
+    if value is None:
+        return None
+    steps = _count("max_episode_steps", value)
+    if steps < 1:
+        raise ValueError(f"max_episode_steps must be at least 1, got {steps}")
+    return steps
+
+
+class VectorizeError(gymnasium_error.Error, ValueError):
+    """A vectorization argument that the chosen mode cannot honour (e.g. ``wrappers`` for
+    the Rust-threaded vector env). A ``gymnasium.error.Error`` (as Gymnasium's own
+    ``make_vec`` raises for these) and a ``ValueError``."""
+
+
+def _make_single_env(env_id: str, wrappers: tuple[Any, ...], kwargs: dict[str, Any]) -> Any:
+    """One env of a ``"sync"`` / ``"async"`` vector: ``gymnasium.make`` then ``wrappers``
+    (module level, so ``AsyncVectorEnv`` can pickle it into spawn/forkserver workers)."""
+    import gymnasium
+
+    from . import registration as _registration  # noqa: F401  (registers the ids in a fresh process)
+
+    env = gymnasium.make(env_id, **kwargs)
+    for wrapper in wrappers:
+        env = wrapper(env)
+    return env
+
+
 def make_vec(
     env_name: str,
-    num_envs: int,
+    num_envs: int = 1,
     robots: str | list[str] | None = None,
     *,
     keys: list[str] | None = None,
     flatten_obs: bool = True,
     model_xml: str | PathLike[str] | None = None,
     threads: int | None = None,
+    max_episode_steps: int | None = None,
+    vectorization_mode: str | None = None,
+    vector_kwargs: dict[str, Any] | None = None,
+    wrappers: Any = None,
     **kwargs: Any,
-) -> "RustVectorEnv":
-    """``num_envs`` GymWrapper'd envs as one ``gymnasium.vector.VectorEnv`` stepped in
-    Rust threads with the GIL released; ``reset(seed=s)`` seeds env ``i`` with ``s + i``.
+) -> Any:
+    """``num_envs`` GymWrapper'd envs as one ``gymnasium.vector.VectorEnv``; the vector
+    entry point of the ``robosuite_rs/<Task>-v0`` ids (``gymnasium.make_vec``).
 
-    Takes :func:`make`'s keyword arguments plus GymWrapper's ``keys`` / ``flatten_obs``
-    and ``threads`` (default: the number of CPUs, at most ``num_envs``).
+    Takes :func:`make`'s keyword arguments (``render_mode=None`` included) plus
+    GymWrapper's ``keys`` / ``flatten_obs`` and Gymnasium's ``make_vec`` arguments:
+
+    * ``vectorization_mode``: ``None`` or ``"vector_entry_point"`` (default) steps the envs
+      in Rust threads with the GIL released (a :class:`~robosuite_rs.vector.RustVectorEnv`;
+      ``threads``: default the number of CPUs, at most ``num_envs``; ``reset(seed=s)``
+      seeds env ``i`` with ``s + i``). ``"sync"`` / ``"async"`` build Gymnasium's
+      ``SyncVectorEnv`` / ``AsyncVectorEnv`` over ``gymnasium.make`` of the same id, as
+      ``gymnasium.make_vec`` does.
+    * ``max_episode_steps``: Gymnasium's ``TimeLimit`` (``truncated`` after that many
+      steps); in the Rust mode the limit runs in Rust, inside each env.
+    * ``vector_kwargs``: keyword arguments of ``SyncVectorEnv`` / ``AsyncVectorEnv``
+      (``"sync"`` / ``"async"`` only).
+    * ``wrappers``: callables applied to each sub-env (``"sync"`` / ``"async"`` only: the
+      Rust envs have no Python sub-env to wrap).
 
     Raises:
-        ValueError: as :func:`make`, and for ``num_envs < 1``.
-        TypeError: for a ``num_envs`` that is not an integer.
+        ValueError: as :func:`make`, for ``num_envs < 1`` or ``max_episode_steps < 1``, or
+            an unknown ``vectorization_mode``.
+        VectorizeError: for ``wrappers``, ``vector_kwargs`` or a render mode with the Rust
+            mode, or ``threads`` with ``"sync"`` / ``"async"`` (nothing is built).
+        TypeError: for a ``num_envs`` or ``max_episode_steps`` that is not an integer.
     """
-    from .vector import RustVectorEnv
-
     num_envs = _count("num_envs", num_envs)
     if num_envs < 1:
         raise ValueError(f"num_envs must be at least 1, got {num_envs}")
+    steps = _max_steps(max_episode_steps)
+    mode = getattr(vectorization_mode, "value", vectorization_mode)
+    wrappers = tuple(wrappers or ())
+    vector_kwargs = dict(vector_kwargs or {})
+    if mode in ("sync", "async"):
+        if threads is not None:
+            raise VectorizeError(f"threads is for the Rust vector env, not vectorization_mode={mode!r}")
+        import gymnasium
+        from functools import partial
+
+        single_kwargs = dict(kwargs, keys=keys, flatten_obs=flatten_obs, max_episode_steps=steps)
+        if robots is not None:
+            single_kwargs["robots"] = robots
+        if model_xml is not None:
+            single_kwargs["model_xml"] = model_xml
+        env_id = f"robosuite_rs/{env_name}-v0"
+        make_one = partial(_make_single_env, env_id, wrappers, single_kwargs)
+        vector_cls = gymnasium.vector.SyncVectorEnv if mode == "sync" else gymnasium.vector.AsyncVectorEnv
+        return vector_cls([make_one] * num_envs, **vector_kwargs)
+    if mode not in (None, "vector_entry_point"):
+        raise ValueError(
+            f"vectorization_mode must be None, 'vector_entry_point', 'sync' or 'async', got {vectorization_mode!r}"
+        )
+    if wrappers:
+        raise VectorizeError(
+            "wrappers apply to Python sub-envs; the Rust vector env has none: use "
+            "vectorization_mode='sync' or 'async', or wrap the vector env with gymnasium.wrappers.vector"
+        )
+    if vector_kwargs:
+        raise VectorizeError(f"vector_kwargs are for vectorization_mode='sync' or 'async', got {vector_kwargs}")
+    if kwargs.get("render_mode") is not None:
+        raise VectorizeError(
+            f"render_mode={kwargs['render_mode']!r}: the Rust vector env does not render; "
+            "use vectorization_mode='sync' (or render_mode=None)"
+        )
+    from .vector import RustVectorEnv
+
     config = _config_kwargs(env_name, robots, kwargs)
     native = _native.make_robosuite_vec(
         env_name,
@@ -546,6 +632,7 @@ def make_vec(
         bool(flatten_obs),
         None if model_xml is None else str(model_xml),
         threads,
+        steps,
     )
     return RustVectorEnv(native)
 
@@ -560,12 +647,13 @@ def make_pool(
     flatten_obs: bool = True,
     model_xml: str | PathLike[str] | None = None,
     threads: int | None = None,
+    max_episode_steps: int | None = None,
     **kwargs: Any,
 ) -> "EnvPool":
     """``num_envs`` GymWrapper'd envs in an asynchronous :class:`~robosuite_rs.pool.EnvPool`
     (EnvPool's ``send`` / ``recv`` mode) whose ``recv`` returns ``batch_size`` of them.
 
-    Takes :func:`make_vec`'s arguments; ``batch_size`` must be in ``1..num_envs``
+    Takes :func:`make_vec`'s arguments of its Rust mode (``max_episode_steps`` included); ``batch_size`` must be in ``1..num_envs``
     (EnvPool's advice: ``num_envs`` about 2-3 x ``batch_size``).
 
     Raises:
@@ -580,6 +668,7 @@ def make_pool(
         raise ValueError(f"num_envs must be at least 1, got {num_envs}")
     if not 1 <= batch_size <= num_envs:
         raise ValueError(f"batch_size must be in 1..{num_envs}, got {batch_size}")
+    steps = _max_steps(max_episode_steps)
     config = _config_kwargs(env_name, robots, kwargs)
     native = _native.make_robosuite_pool(
         env_name,
@@ -590,6 +679,7 @@ def make_pool(
         bool(flatten_obs),
         None if model_xml is None else str(model_xml),
         threads,
+        steps,
     )
     return EnvPool(native)
 
@@ -599,3 +689,13 @@ from .pool import EnvPool  # noqa: E402
 from .registration import register_envs as _register_envs  # noqa: E402
 
 _register_envs()
+
+
+def __getattr__(name: str) -> Any:
+    """``robosuite_rs.sb3`` on first use (it imports Stable-Baselines3, which this package
+    does not require)."""
+    if name == "sb3":
+        import importlib
+
+        return importlib.import_module(".sb3", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

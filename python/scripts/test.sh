@@ -8,7 +8,9 @@
 # `maturin develop` (the same build `pip install .` runs), builds the example of a user's
 # own module (python/examples/own_module) and runs pytest on python/tests.
 # Environment: PYTHON (default python3) picks the interpreter the virtualenv is made from;
-# CARGO_TARGET_DIR is honoured (default: <repo>/target, shared with cargo).
+# CARGO_TARGET_DIR is honoured (default: <repo>/target, shared with cargo);
+# ROBOSUITE_RS_BUILD_ONLY=1 builds the extension (into python/robosuite_rs/) and stops
+# (test_rl.sh and test_gym_versions.sh reuse that build from their own virtualenvs).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 ROOT="$(pwd)"
@@ -27,11 +29,14 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 PY="$VENV/bin/python"
 # Quiet, idempotent: pip skips what is already installed.
-"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.0" numpy "mujoco==3.17.0" hypothesis moviepy
+"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy
 
 start=$(date +%s)
 "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/Cargo.toml"
 echo "test.sh: extension built in $(( $(date +%s) - start )) s"
+if [ "${ROBOSUITE_RS_BUILD_ONLY:-0}" = "1" ]; then
+    exit 0
+fi
 
 # The example of a user's own pyo3 module (python/examples/own_module), tested by
 # tests/test_own_module.py. ROBOSUITE_RS_SKIP_OWN_MODULE=1 skips building it.

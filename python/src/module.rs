@@ -49,9 +49,10 @@ fn make_robosuite(
     Ok(PyRobosuiteEnv::new(env, env_name))
 }
 
-/// `num_envs` GymWrapper'd robosuite envs stepped in parallel Rust threads.
+/// `num_envs` GymWrapper'd robosuite envs stepped in parallel Rust threads;
+/// `max_episode_steps` wraps each in a `TimeLimit`.
 #[pyfunction]
-#[pyo3(signature = (env_name, num_envs, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None))]
+#[pyo3(signature = (env_name, num_envs, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None, max_episode_steps=None))]
 #[allow(clippy::too_many_arguments)]
 fn make_robosuite_vec(
     py: Python<'_>,
@@ -62,15 +63,27 @@ fn make_robosuite_vec(
     flatten_obs: bool,
     model_xml: Option<PathBuf>,
     threads: Option<usize>,
+    max_episode_steps: Option<u64>,
 ) -> PyResult<PyVecEnv> {
-    let envs = gym_wrapped(py, env_name, num_envs, kwargs, keys, flatten_obs, model_xml)?;
+    let envs = gym_wrapped(
+        py,
+        env_name,
+        num_envs,
+        kwargs,
+        GymOptions {
+            keys,
+            flatten_obs,
+            model_xml,
+            max_episode_steps,
+        },
+    )?;
     PyVecEnv::new(envs, threads)
 }
 
 /// `num_envs` GymWrapper'd robosuite envs in an asynchronous pool whose `recv` returns
-/// `batch_size` of them.
+/// `batch_size` of them; `max_episode_steps` wraps each in a `TimeLimit`.
 #[pyfunction]
-#[pyo3(signature = (env_name, num_envs, batch_size, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None))]
+#[pyo3(signature = (env_name, num_envs, batch_size, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None, max_episode_steps=None))]
 #[allow(clippy::too_many_arguments)]
 fn make_robosuite_pool(
     py: Python<'_>,
@@ -82,32 +95,61 @@ fn make_robosuite_pool(
     flatten_obs: bool,
     model_xml: Option<PathBuf>,
     threads: Option<usize>,
+    max_episode_steps: Option<u64>,
 ) -> PyResult<PyEnvPool> {
-    let envs = gym_wrapped(py, env_name, num_envs, kwargs, keys, flatten_obs, model_xml)?;
+    let envs = gym_wrapped(
+        py,
+        env_name,
+        num_envs,
+        kwargs,
+        GymOptions {
+            keys,
+            flatten_obs,
+            model_xml,
+            max_episode_steps,
+        },
+    )?;
     PyEnvPool::new(envs, batch_size, threads)
 }
 
-/// `num_envs` robosuite envs behind a GymWrapper (the flat one with `flatten_obs`), boxed.
+/// How each env of a vector or pool is wrapped: GymWrapper's `keys` / `flatten_obs`, the
+/// scene file, and Gymnasium's `max_episode_steps` (a `TimeLimit` around the GymWrapper).
+struct GymOptions {
+    keys: Option<Vec<String>>,
+    flatten_obs: bool,
+    model_xml: Option<PathBuf>,
+    max_episode_steps: Option<u64>,
+}
+
+/// `num_envs` robosuite envs behind a GymWrapper (and a `TimeLimit`), boxed.
 fn gym_wrapped(
     py: Python<'_>,
     env_name: &str,
     num_envs: usize,
     kwargs: Option<&Bound<'_, PyDict>>,
-    keys: Option<Vec<String>>,
-    flatten_obs: bool,
-    model_xml: Option<PathBuf>,
+    options: GymOptions,
 ) -> PyResult<Vec<BoxedEnv>> {
     let config = config(kwargs)?;
+    let GymOptions {
+        keys,
+        flatten_obs,
+        model_xml,
+        max_episode_steps,
+    } = options;
     py.detach(|| {
         (0..num_envs)
             .map(|_| {
                 let env = build(env_name, config.clone(), model_xml.as_ref())?;
                 // The flat wrapper's `step_into` writes the flat observation in place (the
                 // same observations as GymWrapper's with `flatten_obs`).
-                Ok(if flatten_obs {
+                let gym = if flatten_obs {
                     adapters::FlatGymWrapper::new(env, keys.clone())?.boxed()
                 } else {
                     adapters::GymWrapper::new(env, keys.clone(), false)?.boxed()
+                };
+                Ok(match max_episode_steps {
+                    None => gym,
+                    Some(steps) => adapters::TimeLimit::new(gym, steps)?.boxed(),
                 })
             })
             .collect::<gym_core::Result<Vec<BoxedEnv>>>()
