@@ -1,6 +1,6 @@
 //! [`TimeLimit`]: truncates episodes after a number of steps (Gymnasium's `TimeLimit`).
 
-use gym_core::{Env, Error, Info, ResetOptions, Result, Step};
+use gym_core::{Env, Error, Info, ResetOptions, Result, Step, Transition};
 
 /// Sets `truncated = true` once `max_episode_steps` steps have been taken since the last
 /// reset.
@@ -65,6 +65,22 @@ impl<E: Env> gym_core::StepWrapper for TimeLimit<E> {
             step.truncated = true;
         }
         Ok(step)
+    }
+
+    fn step_into(
+        this: &mut Self,
+        action: &E::Act,
+        observation: &mut E::Obs,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let elapsed = this.elapsed_steps.ok_or(Error::ResetNeeded)?;
+        let mut transition = this.env.step_into(action, observation, info)?;
+        let elapsed = elapsed + 1;
+        this.elapsed_steps = Some(elapsed);
+        if elapsed >= this.max_episode_steps {
+            transition.truncated = true;
+        }
+        Ok(transition)
     }
 }
 
