@@ -266,6 +266,26 @@ impl KeyPlan {
         Ok(())
     }
 
+    /// The selected entries of `obs` copied into `out`, in key order: in place when `out`
+    /// already holds such a dict (the previous step's), else as a new dict.
+    fn select_into(&self, obs: &DictValue, out: &mut Value) -> Result<()> {
+        let same_keys = matches!(out, Value::Dict(d) if d.keys().eq(self.keys.iter()));
+        if !same_keys {
+            let mut dict = DictValue::with_capacity(self.keys.len());
+            for j in 0..self.keys.len() {
+                dict.insert(self.keys[j].clone(), self.value(obs, j)?.clone());
+            }
+            *out = Value::Dict(dict);
+            return Ok(());
+        }
+        if let Value::Dict(dict) = out {
+            for (j, dst) in dict.values_mut().enumerate() {
+                assign_value(dst, self.value(obs, j)?);
+            }
+        }
+        Ok(())
+    }
+
     /// The selected entries moved out of `obs`, in key order.
     fn select(&self, mut obs: DictValue) -> Result<DictValue> {
         let mut out = DictValue::with_capacity(self.keys.len());
@@ -320,17 +340,110 @@ fn convert_action<S: NumericSpace>(inner: &S, action: &ArrayD<f32>) -> Result<S:
         .map_err(Error::into_invalid_action)
 }
 
+/// The inner environment's last action and observation, kept between `step_into` calls so
+/// that a loop of them converts the action and receives the observation in place.
+#[derive(Debug, Clone)]
+struct InnerBuffers<E: Env> {
+    action: Option<E::Act>,
+    obs: Option<E::Obs>,
+}
+
+impl<E> InnerBuffers<E>
+where
+    E: Env,
+    E::ActSpace: NumericSpace,
+{
+    fn new() -> Self {
+        Self {
+            action: None,
+            obs: None,
+        }
+    }
+
+    /// Converts `action` into the kept inner action, steps `env` into the kept inner
+    /// observation (allocating only on the first call) and returns the transition with that
+    /// observation.
+    fn step_into(
+        &mut self,
+        env: &mut E,
+        action: &ArrayD<f32>,
+        info: &mut Info,
+    ) -> Result<(Transition, &E::Obs)> {
+        let space = env.action_space();
+        let inner_action = match &mut self.action {
+            Some(a) => {
+                space
+                    .element_from_array_into(action, a)
+                    .map_err(Error::into_invalid_action)?;
+                a
+            }
+            None => self.action.insert(convert_action(space, action)?),
+        };
+        match &mut self.obs {
+            Some(obs) => {
+                let transition = env.step_into(inner_action, obs, info)?;
+                Ok((transition, obs))
+            }
+            None => {
+                let step = env.step(inner_action)?;
+                *info = step.info;
+                let transition = Transition {
+                    reward: step.reward,
+                    terminated: step.terminated,
+                    truncated: step.truncated,
+                };
+                Ok((transition, self.obs.insert(step.observation)))
+            }
+        }
+    }
+}
+
+/// Copies `src` into `dst`, reusing `dst`'s arrays where the two have the same structure,
+/// dtypes and shapes (a kept observation buffer), else replacing `dst` by a copy.
+fn assign_value(dst: &mut Value, src: &Value) {
+    use gym_core::ArrayValue as A;
+    match (dst, src) {
+        (Value::Array(d), Value::Array(s)) => match (d, s) {
+            (A::F32(d), A::F32(s)) => d.clone_from(s),
+            (A::F64(d), A::F64(s)) => d.clone_from(s),
+            (A::I8(d), A::I8(s)) => d.clone_from(s),
+            (A::I16(d), A::I16(s)) => d.clone_from(s),
+            (A::I32(d), A::I32(s)) => d.clone_from(s),
+            (A::I64(d), A::I64(s)) => d.clone_from(s),
+            (A::U8(d), A::U8(s)) => d.clone_from(s),
+            (A::Bool(d), A::Bool(s)) => d.clone_from(s),
+            (d, s) => *d = s.clone(),
+        },
+        (Value::Dict(d), Value::Dict(s)) if d.keys().eq(s.keys()) => {
+            for (dv, sv) in d.values_mut().zip(s.values()) {
+                assign_value(dv, sv);
+            }
+        }
+        (Value::Tuple(d), Value::Tuple(s)) if d.len() == s.len() => {
+            for (dv, sv) in d.iter_mut().zip(s) {
+                assign_value(dv, sv);
+            }
+        }
+        (d, s) => *d = s.clone(),
+    }
+}
+
 /// robosuite's `GymWrapper(env, keys=None, flatten_obs=True)`, corrected (see the
 /// [module documentation](self)). Observations are dynamic [`Value`]s: with `flatten_obs`
 /// a `float32` array in `Box(-inf, inf, (n,), float32)`, else a Dict of the selected keys
 /// (in the order given) whose subspaces are the environment's, dtypes included.
+///
+/// [`Env::step_into`] keeps the inner environment's action and observation between steps
+/// and writes into the caller's observation in place (the flat array, or each array of the
+/// Dict), so a loop of `step_into` allocates nothing after its first step.
 #[derive(Debug, Clone)]
-pub struct GymWrapper<E> {
+pub struct GymWrapper<E: Env> {
     env: E,
     plan: KeyPlan,
     flatten_obs: bool,
     observation_space: AnySpace,
     action_space: BoxSpace<f32>,
+    buffers: InnerBuffers<E>,
 }
 
 impl<E> GymWrapper<E>
@@ -361,6 +474,7 @@ where
             flatten_obs,
             observation_space,
             action_space,
+            buffers: InnerBuffers::new(),
         })
     }
 
@@ -417,6 +531,26 @@ where
         let step = this.env.step(&action)?;
         step.try_map_observation(|o| this.observation(o))
     }
+
+    fn step_into(
+        this: &mut Self,
+        action: &ArrayD<f32>,
+        observation: &mut Value,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let (transition, inner_obs) = this.buffers.step_into(&mut this.env, action, info)?;
+        let dict = E::ObsSpace::as_dict(inner_obs)?;
+        if !this.flatten_obs {
+            this.plan.select_into(dict, observation)?;
+        } else if let Value::Array(gym_core::ArrayValue::F32(out)) = observation
+            && out.shape() == [this.plan.total]
+        {
+            this.plan.flatten_into(dict, out)?;
+        } else {
+            *observation = Value::from(this.plan.flatten(dict)?);
+        }
+        Ok(transition)
+    }
 }
 
 impl<E> gym_core::Wrapper for GymWrapper<E>
@@ -450,9 +584,7 @@ pub struct FlatGymWrapper<E: Env> {
     plan: KeyPlan,
     observation_space: BoxSpace<f32>,
     action_space: BoxSpace<f32>,
-    /// The inner environment's last observation and action, reused by `step_into`.
-    inner_obs: Option<E::Obs>,
-    inner_action: Option<E::Act>,
+    buffers: InnerBuffers<E>,
 }
 
 impl<E> FlatGymWrapper<E>
@@ -474,8 +606,7 @@ where
             plan,
             observation_space,
             action_space,
-            inner_obs: None,
-            inner_action: None,
+            buffers: InnerBuffers::new(),
         })
     }
 
@@ -547,29 +678,7 @@ where
         observation: &mut ArrayD<f32>,
         info: &mut Info,
     ) -> Result<Transition> {
-        let space = this.env.action_space();
-        match &mut this.inner_action {
-            Some(a) => space.element_from_array_into(action, a),
-            None => space
-                .element_from_array(action)
-                .map(|a| this.inner_action = Some(a)),
-        }
-        .map_err(Error::into_invalid_action)?;
-        let inner_action = this.inner_action.as_ref().expect("set above");
-        let transition = match &mut this.inner_obs {
-            Some(obs) => this.env.step_into(inner_action, obs, info)?,
-            None => {
-                let step = this.env.step(inner_action)?;
-                *info = step.info;
-                this.inner_obs = Some(step.observation);
-                Transition {
-                    reward: step.reward,
-                    terminated: step.terminated,
-                    truncated: step.truncated,
-                }
-            }
-        };
-        let inner_obs = this.inner_obs.as_ref().expect("set above");
+        let (transition, inner_obs) = this.buffers.step_into(&mut this.env, action, info)?;
         this.plan
             .flatten_into(E::ObsSpace::as_dict(inner_obs)?, observation)?;
         Ok(transition)
@@ -657,6 +766,38 @@ mod tests {
         assert!(env.observation_space().contains(&obs));
         let step = env.step(&a32(&[0.0, 0.0, 0.0])).unwrap();
         assert!(env.observation_space().contains(&step.observation));
+    }
+
+    #[test]
+    fn step_into_equals_step_in_both_modes() {
+        let keys = vec![
+            "robot0_eef_quat_site".to_owned(),
+            "frontview_image".to_owned(),
+        ];
+        for (keys, flatten) in [(None, true), (Some(keys), false)] {
+            let mut by_step = GymWrapper::new(DictEnv::new(5, !flatten), keys.clone(), flatten)
+                .unwrap();
+            let mut by_into = GymWrapper::new(DictEnv::new(5, !flatten), keys, flatten).unwrap();
+            let (first, _) = by_step.reset(Some(3), None).unwrap();
+            let (mut obs, mut info) = by_into.reset(Some(3), None).unwrap();
+            assert_eq!(first, obs);
+            for k in 0..6 {
+                let a = a32(&[0.1 * k as f32, -0.05, 0.02]);
+                let step = by_step.step(&a).unwrap();
+                let t = by_into.step_into(&a, &mut obs, &mut info).unwrap();
+                assert_eq!(step.observation, obs, "step {k}, flatten_obs {flatten}");
+                assert_eq!(step.info, info);
+                assert_eq!(
+                    (step.reward, step.terminated, step.truncated),
+                    (t.reward, t.terminated, t.truncated)
+                );
+            }
+            // A bad action is rejected by both and leaves the kept observation alone.
+            let before = obs.clone();
+            assert!(by_into.step_into(&a32(&[0.0]), &mut obs, &mut info).is_err());
+            assert!(by_step.step(&a32(&[0.0])).is_err());
+            assert_eq!(obs, before);
+        }
     }
 
     #[test]
