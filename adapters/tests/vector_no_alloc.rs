@@ -1,7 +1,8 @@
 //! A vector step does not touch the heap once its buffers exist: `SyncVectorEnv` and
 //! `ThreadVectorEnv` (worker threads included) over robosuite's Lift behind the flat
-//! GymWrapper, typed and boxed (`DynEnv::step_into`). Allocations are counted on every
-//! thread, so this file holds one test.
+//! GymWrapper, typed and boxed (`DynEnv::step_into`), and a single GymWrapper's
+//! `step_into` in both modes (flat, and Dict). Allocations are counted on every thread, so
+//! this file holds one test.
 
 use adapters::{BatchSpace, SyncVectorEnv, ThreadVectorEnv, VectorEnv, WrapperExt};
 use gym_core::{Env, IntoBoxedEnv, Space, Value, rng_from_seed};
@@ -94,4 +95,25 @@ fn vector_steps_do_not_allocate() {
         0,
         "boxed ThreadVectorEnv"
     );
+
+    for flatten_obs in [true, false] {
+        let mut env = robosuite_env::make("Lift")
+            .unwrap()
+            .gym_wrapper(None, flatten_obs)
+            .unwrap();
+        let actions: Vec<_> = (0..12)
+            .map(|_| env.action_space().sample(&mut rng))
+            .collect();
+        let (mut obs, mut info) = env.reset(Some(3), None).unwrap();
+        for a in &actions[..2] {
+            let _ = env.step_into(a, &mut obs, &mut info).unwrap();
+        }
+        let n = allocations(|| {
+            for a in &actions[2..] {
+                let t = env.step_into(a, &mut obs, &mut info).unwrap();
+                assert!(!t.done());
+            }
+        });
+        assert_eq!(n, 0, "GymWrapper::step_into, flatten_obs = {flatten_obs}");
+    }
 }
