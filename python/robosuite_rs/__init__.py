@@ -601,7 +601,9 @@ def make_vec(
             single_kwargs["robots"] = robots
         if model_xml is not None:
             single_kwargs["model_xml"] = model_xml
-        env_id = f"robosuite_rs/{env_name}-v0"
+        from .registration import gym_id
+
+        env_id = gym_id(env_name)
         make_one = partial(_make_single_env, env_id, wrappers, single_kwargs)
         vector_cls = gymnasium.vector.SyncVectorEnv if mode == "sync" else gymnasium.vector.AsyncVectorEnv
         return vector_cls([make_one] * num_envs, **vector_kwargs)

@@ -8,9 +8,14 @@ import gymnasium
 
 from . import _native
 
-__all__ = ["register_envs", "make_gym_env", "make_registered_env", "NAMESPACE"]
+__all__ = ["register_envs", "make_gym_env", "make_registered_env", "gym_id", "NAMESPACE"]
 
 NAMESPACE = "robosuite_rs"
+
+
+def gym_id(name: str) -> str:
+    """The Gymnasium id of the Rust env ``name`` (``robosuite_rs/<name>-v0``)."""
+    return f"{NAMESPACE}/{name}-v0"
 
 
 def make_gym_env(env_name: str, keys: list[str] | None = None, flatten_obs: bool = True, **kwargs: Any) -> gymnasium.Env:  # type: ignore[type-arg]
@@ -46,7 +51,7 @@ def register_envs() -> list[str]:
     ids = []
     robosuite_names = set(_native.robosuite_env_names())
     for name in _native.registered_ids():
-        env_id = f"{NAMESPACE}/{name}-v0"
+        env_id = gym_id(name)
         ids.append(env_id)
         if env_id in gymnasium.registry:
             continue
