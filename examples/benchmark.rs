@@ -9,7 +9,7 @@
 //! ```text
 //! cargo run --release -p examples --example benchmark -- [--task Lift] [--robot Sawyer]
 //!     [--controller OSC_POSITION] [--robots] [--controllers] [--cpu-time] [--seconds 3]
-//!     [--max-envs 4] [--rounds 5] [--only steps|cost|vector|model] [--json bench.json]
+//!     [--max-envs 4] [--rounds 5] [--pin] [--only steps|cost|vector|model] [--json bench.json]
 //! ```
 //!
 //! The vector table has one row per env count (1, 2, 4, ... up to `--max-envs`, by default
@@ -21,6 +21,9 @@
 //! env's autoreset is) and prints the barrier model's predicted efficiency (see
 //! `examples::barrier_model`) for 2, 8 and 16 threads beside the vector table measured
 //! here.
+//!
+//! `--pin` pins the vector envs' and the pool's worker threads to CPUs
+//! ([`ThreadOptions::pin`](adapters::ThreadOptions)); the ceiling's threads stay unpinned.
 //!
 //! `--robot` and `--controller` put every task on that robot (default: the Panda) and that
 //! arm controller (robosuite's part config file for it; default: the robot's own config).
@@ -34,7 +37,7 @@
 //! `--rounds` rounds (medians; ratios are medians of per-round ratios), because a shared VM's
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
-use adapters::{BatchSpace, ThreadEnvPool, ThreadVectorEnv, VectorEnv, WrapperExt};
+use adapters::{BatchSpace, ThreadEnvPool, ThreadOptions, ThreadVectorEnv, VectorEnv, WrapperExt};
 use examples::barrier_model::{Assignment, expected_max, predicted_efficiency, summarize};
 use examples::case::Case;
 use examples::physics_only::PhysicsOnly;
@@ -61,6 +64,8 @@ struct Args {
     cases: Vec<Case>,
     /// One env's rates per CPU-second of its thread rather than per second.
     cpu_time: bool,
+    /// The vector envs' and the pool's threads.
+    threads: ThreadOptions,
     seconds: f64,
     max_envs: usize,
     rounds: usize,
@@ -78,6 +83,7 @@ fn parse_args() -> Args {
     let mut args = Args {
         cases: Vec::new(),
         cpu_time: false,
+        threads: ThreadOptions::default(),
         seconds: 3.0,
         max_envs: std::thread::available_parallelism()
             .map_or(2, |n| n.get())
@@ -100,6 +106,10 @@ fn parse_args() -> Args {
             }
             "--cpu-time" => {
                 args.cpu_time = true;
+                continue;
+            }
+            "--pin" => {
+                args.threads = args.threads.pinned();
                 continue;
             }
             _ => {}
@@ -262,7 +272,7 @@ fn vector_scaling(
             let envs = (0..n)
                 .map(|_| task.make()?.flat_gym_wrapper(None))
                 .collect::<Result<Vec<_>>>()?;
-            let mut venv = ThreadVectorEnv::new(envs)?;
+            let mut venv = ThreadVectorEnv::with_options(envs, args.threads)?;
             venv.reset(0u64, None)?;
             Ok(venv)
         })
@@ -272,7 +282,7 @@ fn vector_scaling(
     let pool_envs = (0..2 * threads)
         .map(|_| task.make()?.flat_gym_wrapper(None))
         .collect::<Result<Vec<_>>>()?;
-    let mut pool = ThreadEnvPool::new(pool_envs, threads)?;
+    let mut pool = ThreadEnvPool::with_options(pool_envs, threads, args.threads)?;
     let pool_actions = pool.single_action_space().batch_space(threads)?;
     pool.reset(0u64)?;
     let mut ids = pool.recv()?.env_ids.to_vec();
@@ -290,8 +300,8 @@ fn vector_scaling(
         pool_rates.push(
             rate(window, || {
                 let actions = pool_actions.sample(rng);
-                let next = pool.step(&actions, &ids)?.env_ids.to_vec();
-                ids = next;
+                let batch = pool.step(&actions, &ids)?;
+                ids.copy_from_slice(batch.env_ids);
                 Ok(())
             })? * threads as f64,
         );
@@ -657,7 +667,7 @@ fn main() -> Result<()> {
         results.push(r);
     }
     if let Some(path) = &args.json {
-        let doc = json!({"cpus": cpus, "seconds": args.seconds, "tasks": results});
+        let doc = json!({"cpus": cpus, "seconds": args.seconds, "pinned": args.threads.pin, "tasks": results});
         std::fs::write(path, serde_json::to_string_pretty(&doc).unwrap_or_default())
             .map_err(|e| gym_core::Error::invalid_argument("--json", e.to_string()))?;
         println!("\nwrote {path}");

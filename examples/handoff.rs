@@ -1,7 +1,8 @@
-//! The hand-off cost of `ThreadVectorEnv`, measured with envs whose step is a fixed amount
-//! of CPU work (no MuJoCo): vector steps per second for 2 and 4 envs on the default threads
-//! and per-env step costs of 0, 20, 100 and 400 µs, beside the same envs stepped in turn on
-//! one thread (`SyncVectorEnv`). With little work per step the figure is dominated by the
+//! The hand-off cost of `ThreadVectorEnv` and `ThreadEnvPool`, measured with envs whose
+//! step is a fixed amount of CPU work (no MuJoCo): env steps per second for 2 and 4 envs on
+//! the default threads and per-env step costs of 0, 20, 100 and 400 µs, beside the same envs
+//! stepped in turn on one thread (`SyncVectorEnv`); the pool returns batches of half its
+//! envs. With little work per step the figure is dominated by the
 //! hand-off (waking the workers, collecting the results); the ratio to the sync figure
 //! shows what the threads gain. Figures are medians over `--rounds` interleaved rounds.
 //!
@@ -9,7 +10,7 @@
 //! cargo run --release -p examples --example handoff -- [--seconds 4] [--rounds 4] [--json handoff.json]
 //! ```
 
-use adapters::{SyncVectorEnv, ThreadVectorEnv, VectorEnv};
+use adapters::{SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv};
 use gym_core::spaces::BoxSpace;
 use gym_core::{Env, Info, ResetOptions, Result, Step};
 use ndarray::{ArrayD, IxDyn};
@@ -84,6 +85,19 @@ where
     n as f64 * v.num_envs() as f64 / start.elapsed().as_secs_f64()
 }
 
+/// Env steps per second of `pool` (reset, `ids` its last batch) sending zero actions.
+fn pool_rate(pool: &mut ThreadEnvPool<Work>, ids: &mut [usize], budget: Duration) -> f64 {
+    let actions = ArrayD::zeros(IxDyn(&[ids.len(), 2]));
+    let start = Instant::now();
+    let mut n = 0u64;
+    while start.elapsed() < budget {
+        let batch = pool.step(&actions, ids).expect("a pool step");
+        ids.copy_from_slice(batch.env_ids);
+        n += 1;
+    }
+    n as f64 * ids.len() as f64 / start.elapsed().as_secs_f64()
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -113,23 +127,30 @@ fn main() -> Result<()> {
             };
             let mut threaded = ThreadVectorEnv::new((0..envs).map(|_| make()).collect())?;
             let mut sync = SyncVectorEnv::new((0..envs).map(|_| make()).collect())?;
+            let mut pool = ThreadEnvPool::new((0..envs).map(|_| make()).collect(), envs / 2)?;
             threaded.reset(0u64, None)?;
             sync.reset(0u64, None)?;
-            let (mut t, mut s) = (Vec::new(), Vec::new());
+            pool.reset(0u64)?;
+            let mut ids = pool.recv()?.env_ids.to_vec();
+            let (mut t, mut s, mut p) = (Vec::new(), Vec::new(), Vec::new());
             for _ in 0..rounds {
                 t.push(rate(&mut threaded, window));
                 s.push(rate(&mut sync, window));
+                p.push(pool_rate(&mut pool, &mut ids, window));
             }
             let ratio = median(t.iter().zip(&s).map(|(a, b)| a / b).collect());
+            let pool_ratio = median(p.iter().zip(&s).map(|(a, b)| a / b).collect());
             println!(
                 "{envs} envs, {work_us:>5.0} us/step: ThreadVectorEnv {:>9.0} env steps/s, \
-                 SyncVectorEnv {:>9.0}, ratio {ratio:.2}",
+                 ThreadEnvPool {:>9.0}, SyncVectorEnv {:>9.0}, ratios {ratio:.2} / {pool_ratio:.2}",
                 median(t.clone()),
+                median(p.clone()),
                 median(s.clone())
             );
             rows.push(
                 json!({"envs": envs, "work_us": work_us, "threads": threaded.num_threads(),
-                "thread_steps_per_s": median(t), "sync_steps_per_s": median(s), "ratio": ratio}),
+                "thread_steps_per_s": median(t), "sync_steps_per_s": median(s), "ratio": ratio,
+                "pool_steps_per_s": median(p), "pool_ratio": pool_ratio}),
             );
         }
     }

@@ -97,6 +97,6 @@ pub use transform_action::TransformAction;
 pub use transform_observation::TransformObservation;
 pub use transform_reward::TransformReward;
 pub use vector::{
-    AutoresetMode, PoolStep, Seeds, SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv,
-    VectorInfo, VectorStep,
+    AutoresetMode, PoolStep, Seeds, SyncVectorEnv, ThreadEnvPool, ThreadOptions, ThreadVectorEnv,
+    VectorEnv, VectorInfo, VectorStep,
 };

@@ -4,7 +4,7 @@
 
 mod common;
 
-use adapters::ThreadEnvPool;
+use adapters::{ThreadEnvPool, ThreadOptions};
 use common::{WalkEnv, a32};
 use gym_core::{Env, Error, Info};
 use ndarray::{ArrayD, Axis, IxDyn};
@@ -39,11 +39,12 @@ fn action_for(id: usize, count: usize) -> [f32; 2] {
     [x, y]
 }
 
-fn check_trajectories(num_envs: usize, batch_size: usize, threads: usize, rounds: usize) {
-    let mut pool = ThreadEnvPool::with_threads(
+fn check_trajectories(num_envs: usize, batch_size: usize, options: ThreadOptions, rounds: usize) {
+    let threads = options.num_threads.unwrap_or(1);
+    let mut pool = ThreadEnvPool::with_options(
         (0..num_envs).map(|_| WalkEnv::new(6)).collect(),
         batch_size,
-        threads,
+        options,
     )
     .unwrap();
     assert_eq!(pool.num_threads(), threads.clamp(1, num_envs));
@@ -118,9 +119,12 @@ fn check_trajectories(num_envs: usize, batch_size: usize, threads: usize, rounds
 
 #[test]
 fn every_environment_follows_its_own_trajectory() {
-    check_trajectories(5, 2, 3, 60);
-    check_trajectories(4, 4, 2, 30);
-    check_trajectories(3, 1, 1, 40);
+    let threads = |n| ThreadOptions::default().num_threads(n);
+    check_trajectories(5, 2, threads(3), 60);
+    check_trajectories(4, 4, threads(2), 30);
+    check_trajectories(3, 1, threads(1), 40);
+    // Pinned workers, more than this machine's CPUs (they wrap around).
+    check_trajectories(8, 3, threads(5).pinned(), 80);
 }
 
 #[test]

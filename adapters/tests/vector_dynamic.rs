@@ -5,7 +5,9 @@
 
 mod common;
 
-use adapters::{AutoresetMode, BatchSpace, SyncVectorEnv, ThreadVectorEnv, VectorEnv, WrapperExt};
+use adapters::{
+    AutoresetMode, BatchSpace, SyncVectorEnv, ThreadOptions, ThreadVectorEnv, VectorEnv, WrapperExt,
+};
 use common::WalkEnv;
 use gym_core::{Env, EnvRng, IntoBoxedEnv, Space, Value, rng_from_seed};
 use ndarray::{ArrayD, Axis};
@@ -100,24 +102,34 @@ fn row(batch: &ArrayD<f32>, i: usize) -> ArrayD<f32> {
 
 #[test]
 fn trajectories_equal_single_envs_for_any_env_and_thread_count() {
-    for (n, threads) in [
-        (1, 1),
-        (2, 2),
-        (3, 2),
-        (5, 2),
-        (8, 3),
-        (9, 4),
-        (16, 4),
-        (6, 6),
-        (12, 5),
+    for (n, threads, pin) in [
+        (1, 1, false),
+        (2, 2, false),
+        (3, 2, false),
+        (5, 2, false),
+        (8, 3, false),
+        (9, 4, false),
+        (16, 4, false),
+        (6, 6, false),
+        (12, 5, false),
+        // Pinned workers, more threads than this machine's CPUs included (they wrap).
+        (4, 2, true),
+        (10, 6, true),
     ] {
-        let mut v = ThreadVectorEnv::with_threads(uneven_walks(n), threads).unwrap();
+        let options = ThreadOptions {
+            num_threads: Some(threads),
+            pin,
+        };
+        let mut v = ThreadVectorEnv::with_options(uneven_walks(n), options).unwrap();
         assert_eq!(v.num_threads(), threads);
         let batches = action_batches(v.single_action_space(), n, 40, n as u64);
         let got = in_vector(&mut v, 100, &batches, row);
         for (i, (env, records)) in uneven_walks(n).into_iter().zip(&got).enumerate() {
             let want = alone(env, 100 + i as u64, i, &batches);
-            assert_eq!(records, &want, "{n} envs on {threads} threads: env {i}");
+            assert_eq!(
+                records, &want,
+                "{n} envs on {threads} threads (pinned: {pin}): env {i}"
+            );
         }
     }
 }

@@ -1,10 +1,11 @@
-//! A vector step does not touch the heap once its buffers exist: `SyncVectorEnv` and
-//! `ThreadVectorEnv` (worker threads included) over robosuite's Lift behind the flat
-//! GymWrapper, typed and boxed (`DynEnv::step_into`), and a single GymWrapper's
+//! A vector step does not touch the heap once its buffers exist: `SyncVectorEnv`,
+//! `ThreadVectorEnv` (worker threads included) and `ThreadEnvPool`'s `send` / `recv` over
+//! robosuite's Lift behind the flat GymWrapper, typed and boxed (`DynEnv::step_into`),
+//! and a single GymWrapper's
 //! `step_into` in both modes (flat, and Dict). Allocations are counted on every thread, so
 //! this file holds one test.
 
-use adapters::{BatchSpace, SyncVectorEnv, ThreadVectorEnv, VectorEnv, WrapperExt};
+use adapters::{BatchSpace, SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv, WrapperExt};
 use gym_core::{Env, IntoBoxedEnv, Space, Value, rng_from_seed};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -95,6 +96,39 @@ fn vector_steps_do_not_allocate() {
         0,
         "boxed ThreadVectorEnv"
     );
+
+    // The pool: 4 envs, batches of 2, on 1 and 2 worker threads; the ids of each batch are
+    // copied into a kept buffer, as a caller that sends them back would.
+    let pool_batches: Vec<_> = {
+        let batched = single.batch_space(2).unwrap();
+        (0..10).map(|_| batched.sample(&mut rng)).collect()
+    };
+    for threads in [1, 2] {
+        let mut pool =
+            ThreadEnvPool::with_threads((0..n).map(|_| make()).collect(), 2, threads).unwrap();
+        pool.reset(3u64).unwrap();
+        let mut ids = pool.recv().unwrap().env_ids.to_vec();
+        let mut returned = [0usize; 4];
+        let mut round = |pool: &mut ThreadEnvPool<_>, b| {
+            let s = pool.step(b, &ids).unwrap();
+            assert!(!s.terminations.iter().chain(s.truncations).any(|&d| d));
+            ids.copy_from_slice(s.env_ids);
+            for &id in s.env_ids {
+                returned[id] += 1;
+            }
+        };
+        // Warm-up until every environment has stepped twice (recording its info keys).
+        for b in pool_batches.iter().cycle().take(40) {
+            round(&mut pool, b);
+        }
+        let count = allocations(|| {
+            for b in &pool_batches {
+                round(&mut pool, b);
+            }
+        });
+        assert!(returned.iter().all(|&r| r >= 2), "{returned:?}");
+        assert_eq!(count, 0, "ThreadEnvPool, {threads} threads");
+    }
 
     for flatten_obs in [true, false] {
         let mut env = robosuite_env::make("Lift")

@@ -551,6 +551,7 @@ def make_vec(
     flatten_obs: bool = True,
     model_xml: str | PathLike[str] | None = None,
     threads: int | None = None,
+    pin_threads: bool = False,
     max_episode_steps: int | None = None,
     vectorization_mode: str | None = None,
     vector_kwargs: dict[str, Any] | None = None,
@@ -565,8 +566,9 @@ def make_vec(
 
     * ``vectorization_mode``: ``None`` or ``"vector_entry_point"`` (default) steps the envs
       in Rust threads with the GIL released (a :class:`~robosuite_rs.vector.RustVectorEnv`;
-      ``threads``: default the number of CPUs, at most ``num_envs``; ``reset(seed=s)``
-      seeds env ``i`` with ``s + i``). ``"sync"`` / ``"async"`` build Gymnasium's
+      ``threads``: default the number of CPUs, at most ``num_envs``; ``pin_threads=True``
+      pins each worker thread to its own CPU; ``reset(seed=s)`` seeds env ``i`` with
+      ``s + i``). ``"sync"`` / ``"async"`` build Gymnasium's
       ``SyncVectorEnv`` / ``AsyncVectorEnv`` over ``gymnasium.make`` of the same id, as
       ``gymnasium.make_vec`` does.
     * ``max_episode_steps``: Gymnasium's ``TimeLimit`` (``truncated`` after that many
@@ -580,7 +582,8 @@ def make_vec(
         ValueError: as :func:`make`, for ``num_envs < 1`` or ``max_episode_steps < 1``, or
             an unknown ``vectorization_mode``.
         VectorizeError: for ``wrappers``, ``vector_kwargs`` or a render mode with the Rust
-            mode, or ``threads`` with ``"sync"`` / ``"async"`` (nothing is built).
+            mode, or ``threads`` / ``pin_threads`` with ``"sync"`` / ``"async"`` (nothing
+            is built).
         TypeError: for a ``num_envs`` or ``max_episode_steps`` that is not an integer.
     """
     num_envs = _count("num_envs", num_envs)
@@ -591,8 +594,9 @@ def make_vec(
     wrappers = tuple(wrappers or ())
     vector_kwargs = dict(vector_kwargs or {})
     if mode in ("sync", "async"):
-        if threads is not None:
-            raise VectorizeError(f"threads is for the Rust vector env, not vectorization_mode={mode!r}")
+        if threads is not None or pin_threads:
+            name = "threads" if threads is not None else "pin_threads"
+            raise VectorizeError(f"{name} is for the Rust vector env, not vectorization_mode={mode!r}")
         import gymnasium
         from functools import partial
 
@@ -635,6 +639,7 @@ def make_vec(
         None if model_xml is None else str(model_xml),
         threads,
         steps,
+        bool(pin_threads),
     )
     return RustVectorEnv(native)
 
@@ -649,13 +654,15 @@ def make_pool(
     flatten_obs: bool = True,
     model_xml: str | PathLike[str] | None = None,
     threads: int | None = None,
+    pin_threads: bool = False,
     max_episode_steps: int | None = None,
     **kwargs: Any,
 ) -> "EnvPool":
     """``num_envs`` GymWrapper'd envs in an asynchronous :class:`~robosuite_rs.pool.EnvPool`
     (EnvPool's ``send`` / ``recv`` mode) whose ``recv`` returns ``batch_size`` of them.
 
-    Takes :func:`make_vec`'s arguments of its Rust mode (``max_episode_steps`` included); ``batch_size`` must be in ``1..num_envs``
+    Takes :func:`make_vec`'s arguments of its Rust mode (``threads``, ``pin_threads`` and
+    ``max_episode_steps`` included); ``batch_size`` must be in ``1..num_envs``
     (EnvPool's advice: ``num_envs`` about 2-3 x ``batch_size``).
 
     Raises:
@@ -682,6 +689,7 @@ def make_pool(
         None if model_xml is None else str(model_xml),
         threads,
         steps,
+        bool(pin_threads),
     )
     return EnvPool(native)
 

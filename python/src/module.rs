@@ -5,6 +5,7 @@ use crate::errors::to_pyerr;
 use crate::pool::PyEnvPool;
 use crate::pyenv::{PyEnv, PyVecEnv};
 use crate::robosuite::PyRobosuiteEnv;
+use adapters::ThreadOptions;
 use gym_core::{BoxedEnv, IntoBoxedEnv};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -52,7 +53,7 @@ fn make_robosuite(
 /// `num_envs` GymWrapper'd robosuite envs stepped in parallel Rust threads;
 /// `max_episode_steps` wraps each in a `TimeLimit`.
 #[pyfunction]
-#[pyo3(signature = (env_name, num_envs, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None, max_episode_steps=None))]
+#[pyo3(signature = (env_name, num_envs, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None, max_episode_steps=None, pin_threads=false))]
 #[allow(clippy::too_many_arguments)]
 fn make_robosuite_vec(
     py: Python<'_>,
@@ -64,6 +65,7 @@ fn make_robosuite_vec(
     model_xml: Option<PathBuf>,
     threads: Option<usize>,
     max_episode_steps: Option<u64>,
+    pin_threads: bool,
 ) -> PyResult<PyVecEnv> {
     let envs = gym_wrapped(
         py,
@@ -77,13 +79,13 @@ fn make_robosuite_vec(
             max_episode_steps,
         },
     )?;
-    PyVecEnv::new(envs, threads)
+    PyVecEnv::new(envs, thread_options(threads, pin_threads))
 }
 
 /// `num_envs` GymWrapper'd robosuite envs in an asynchronous pool whose `recv` returns
 /// `batch_size` of them; `max_episode_steps` wraps each in a `TimeLimit`.
 #[pyfunction]
-#[pyo3(signature = (env_name, num_envs, batch_size, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None, max_episode_steps=None))]
+#[pyo3(signature = (env_name, num_envs, batch_size, kwargs=None, keys=None, flatten_obs=true, model_xml=None, threads=None, max_episode_steps=None, pin_threads=false))]
 #[allow(clippy::too_many_arguments)]
 fn make_robosuite_pool(
     py: Python<'_>,
@@ -96,6 +98,7 @@ fn make_robosuite_pool(
     model_xml: Option<PathBuf>,
     threads: Option<usize>,
     max_episode_steps: Option<u64>,
+    pin_threads: bool,
 ) -> PyResult<PyEnvPool> {
     let envs = gym_wrapped(
         py,
@@ -109,7 +112,15 @@ fn make_robosuite_pool(
             max_episode_steps,
         },
     )?;
-    PyEnvPool::new(envs, batch_size, threads)
+    PyEnvPool::new(envs, batch_size, thread_options(threads, pin_threads))
+}
+
+/// Python's `threads` / `pin_threads` as [`ThreadOptions`].
+fn thread_options(threads: Option<usize>, pin_threads: bool) -> ThreadOptions {
+    ThreadOptions {
+        num_threads: threads,
+        pin: pin_threads,
+    }
 }
 
 /// How each env of a vector or pool is wrapped: GymWrapper's `keys` / `flatten_obs`, the

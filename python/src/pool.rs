@@ -5,7 +5,7 @@ use crate::convert::{py_into_value, space_spec, value_to_py};
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
 use crate::pyenv::{extract_seeds, lock_with_gil, metadata_into_py, vector_info_into_py};
-use adapters::{BatchSpace, ThreadEnvPool};
+use adapters::{BatchSpace, ThreadEnvPool, ThreadOptions};
 use gym_core::{AnySpace, BoxedEnv, Metadata, Value};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -33,22 +33,17 @@ pub struct PyEnvPool {
 }
 
 impl PyEnvPool {
-    /// Pools `envs`, returning `batch_size` per `recv`, on up to `threads` threads
-    /// (`None`: the available parallelism).
+    /// Pools `envs`, returning `batch_size` per `recv`, on the threads `options` asks for.
     ///
     /// # Errors
     /// `ValueError` for an empty list, differing spaces or a batch size outside
     /// `1..=len(envs)`.
-    pub fn new(envs: Vec<BoxedEnv>, batch_size: usize, threads: Option<usize>) -> PyResult<Self> {
+    pub fn new(envs: Vec<BoxedEnv>, batch_size: usize, options: ThreadOptions) -> PyResult<Self> {
         let metadata = envs
             .first()
             .map(|e| e.metadata().clone())
             .unwrap_or_default();
-        let pool = match threads {
-            Some(t) => ThreadEnvPool::with_threads(envs, batch_size, t),
-            None => ThreadEnvPool::new(envs, batch_size),
-        }
-        .map_err(to_pyerr)?;
+        let pool = ThreadEnvPool::with_options(envs, batch_size, options).map_err(to_pyerr)?;
         let observation_space = pool.single_observation_space().clone();
         let action_space = pool.single_action_space().clone();
         let batched_action_space = action_space.batch_space(batch_size).map_err(to_pyerr)?;

@@ -8,7 +8,9 @@ use crate::convert::{
 use crate::errors::to_pyerr;
 use crate::fork::ForkAwareMutex;
 use adapters::BatchSpace;
-use adapters::vector::{Seeds, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue};
+use adapters::vector::{
+    Seeds, ThreadOptions, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue,
+};
 use gym_core::{AnySpace, BoxedEnv, Frame, Info, Metadata, Value};
 use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
@@ -279,16 +281,12 @@ pub struct PyVecEnv {
 }
 
 impl PyVecEnv {
-    /// Vectorises `envs` over up to `threads` threads (`None`: the available parallelism).
+    /// Vectorises `envs` on the threads `options` asks for.
     ///
     /// # Errors
     /// `ValueError` for an empty list or differing spaces.
-    pub fn new(envs: Vec<BoxedEnv>, threads: Option<usize>) -> PyResult<Self> {
-        let vec = match threads {
-            Some(t) => ThreadVectorEnv::with_threads(envs, t),
-            None => ThreadVectorEnv::new(envs),
-        }
-        .map_err(to_pyerr)?;
+    pub fn new(envs: Vec<BoxedEnv>, options: ThreadOptions) -> PyResult<Self> {
+        let vec = ThreadVectorEnv::with_options(envs, options).map_err(to_pyerr)?;
         let actions = vec.single_action_space().create_empty_batch(vec.num_envs());
         Ok(Self {
             observation_space: vec.single_observation_space().clone(),

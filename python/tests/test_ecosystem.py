@@ -114,6 +114,8 @@ def test_make_vec_refuses_what_the_rust_vector_cannot_honour() -> None:
         suite.make_vec("Lift", 2, vector_kwargs={"copy": False}, **QUIET)
     with pytest.raises(suite.VectorizeError, match="threads"):
         suite.make_vec("Lift", 2, vectorization_mode="sync", threads=2, **QUIET)
+    with pytest.raises(suite.VectorizeError, match="pin_threads"):
+        suite.make_vec("Lift", 2, vectorization_mode="async", pin_threads=True, **QUIET)
     with pytest.raises(ValueError, match="vectorization_mode"):
         suite.make_vec("Lift", 2, vectorization_mode="processes", **QUIET)
     with pytest.raises(ValueError, match="max_episode_steps"):

@@ -12,9 +12,10 @@ from robosuite_rs.wrappers import GymWrapper
 from .conftest import QUIET
 
 
-def test_pool_envs_follow_their_own_trajectories() -> None:
+@pytest.mark.parametrize("pin_threads", [False, True])
+def test_pool_envs_follow_their_own_trajectories(pin_threads: bool) -> None:
     n, batch, horizon, seed = 4, 2, 3, 50
-    with suite.make_pool("Lift", n, batch, horizon=horizon, **QUIET) as pool:
+    with suite.make_pool("Lift", n, batch, horizon=horizon, pin_threads=pin_threads, **QUIET) as pool:
         assert (pool.num_envs, pool.batch_size) == (n, batch)
         assert pool.observation_space.shape == (batch, 60)
         assert pool.action_space.shape == (batch, 7)

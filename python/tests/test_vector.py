@@ -12,9 +12,10 @@ from robosuite_rs.wrappers import GymWrapper
 from .conftest import QUIET
 
 
-def test_vector_env_matches_single_envs() -> None:
+@pytest.mark.parametrize("pin_threads", [False, True])
+def test_vector_env_matches_single_envs(pin_threads: bool) -> None:
     n, horizon, seed = 3, 4, 100
-    vec = suite.make_vec("Lift", n, horizon=horizon, **QUIET)
+    vec = suite.make_vec("Lift", n, horizon=horizon, pin_threads=pin_threads, **QUIET)
     assert isinstance(vec, gym.vector.VectorEnv)
     assert vec.num_envs == n
     assert vec.observation_space.shape == (n, 60) and vec.observation_space.dtype == np.float32

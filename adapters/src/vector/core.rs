@@ -2,75 +2,14 @@
 //! [`Slot`] must do for a `step` or `reset`, and how the results are written into the batch
 //! buffers and infos. [`SyncVectorEnv`](super::SyncVectorEnv) runs the slots in turn,
 //! [`ThreadVectorEnv`](super::ThreadVectorEnv) on its threads; the semantics are
-//! identical. The pool's operations ([`Op`], [`Outcome`]) are here too.
+//! identical.
 
 use super::info::VectorInfo;
 use super::slot::{Done, Slot, Task};
 use super::{AutoresetMode, Seeds, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
-use gym_core::{Env, Error, Info, InfoValue, Metadata, ResetOptions, Result, Step, Transition};
+use gym_core::{Env, Error, InfoValue, Metadata, ResetOptions, Result, Transition};
 use std::any::Any;
-use std::panic::{AssertUnwindSafe, catch_unwind};
-
-/// What one environment of a pool does.
-#[derive(Debug)]
-pub(crate) enum Op<A> {
-    /// An explicit reset.
-    Reset {
-        seed: Option<u64>,
-        options: Option<ResetOptions>,
-    },
-    /// `NEXT_STEP`'s autoreset: `reset()` without seed or options, action ignored.
-    AutoReset,
-    /// A step.
-    Step(A),
-}
-
-/// What one environment of a pool returned.
-#[derive(Debug)]
-pub(crate) enum Outcome<O> {
-    /// From `Reset` or `AutoReset`.
-    Reset(O, Info),
-    /// From `Step`.
-    Step(Step<O>),
-}
-
-/// Runs one operation on one environment.
-pub(crate) fn run_op<E: Env>(env: &mut E, op: Op<E::Act>) -> Result<Outcome<E::Obs>> {
-    match op {
-        Op::Reset { seed, options } => {
-            let (o, i) = env.reset(seed, options.as_ref())?;
-            Ok(Outcome::Reset(o, i))
-        }
-        Op::AutoReset => {
-            let (o, i) = env.reset(None, None)?;
-            Ok(Outcome::Reset(o, i))
-        }
-        Op::Step(a) => Ok(Outcome::Step(env.step(&a)?)),
-    }
-}
-
-/// [`run_op`] for sub-environment `id`, refusing it when `poisoned` (it panicked before);
-/// a panic sets `poisoned` and becomes an [`Error::Simulation`].
-pub(crate) fn run_op_guarded<E: Env>(
-    env: &mut E,
-    op: Op<E::Act>,
-    id: usize,
-    poisoned: &mut bool,
-) -> Result<Outcome<E::Obs>> {
-    if *poisoned {
-        return Err(Error::simulation(format!(
-            "sub-environment {id} panicked earlier and is unusable"
-        )));
-    }
-    catch_unwind(AssertUnwindSafe(|| run_op(env, op))).unwrap_or_else(|payload| {
-        *poisoned = true;
-        Err(Error::simulation(format!(
-            "panicked: {}",
-            panic_message(payload.as_ref())
-        )))
-    })
-}
 
 pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
     payload

@@ -9,6 +9,8 @@
 //! * [`ThreadEnvPool`] is EnvPool's asynchronous mode: `recv` returns the first
 //!   `batch_size` environments to finish and `send` steps exactly those, so threads do not
 //!   wait for the slowest environment (not a [`VectorEnv`]: batches hold changing ids).
+//! * [`ThreadOptions`] sets the thread count of either and can pin the worker threads to
+//!   CPUs.
 //!
 //! The two vector envs implement [`VectorEnv`] with the same semantics:
 //!
@@ -32,7 +34,7 @@
 //!   never a hang, and that sub-environment refuses further calls.
 //! * Steps go through [`Env::step_into`](gym_core::Env::step_into) into per-environment
 //!   buffers and the infos are refilled in place, so over environments whose `step_into`
-//!   reuses its buffers a vector step does not allocate.
+//!   reuses its buffers a vector step (and a pool's `send` / `recv`) does not allocate.
 //! * After `fork()`, a [`ThreadVectorEnv`] or [`ThreadEnvPool`] used in the child returns
 //!   [`Error::Unsupported`](gym_core::Error) (its threads exist only in the parent); closing
 //!   or dropping it there neither joins nor waits.
@@ -40,15 +42,18 @@
 mod core;
 pub mod info;
 mod pool;
+mod queue;
 mod slot;
 mod sync;
 mod team;
 mod thread;
+mod threads;
 
 pub use info::{VectorInfo, VectorInfoValue};
 pub use pool::{PoolStep, ThreadEnvPool};
 pub use sync::SyncVectorEnv;
 pub use thread::ThreadVectorEnv;
+pub use threads::ThreadOptions;
 
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Error, Metadata, ResetOptions, Result};

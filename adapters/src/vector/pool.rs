@@ -1,25 +1,45 @@
 //! [`ThreadEnvPool`]: EnvPool's asynchronous mode on threads. `recv` returns the first
 //! `batch_size` environments to finish, `send` gives exactly those their next actions, so
 //! no thread waits for the slowest environment of a batch.
+//!
+//! Each environment has a [`Member`] (its buffers, as in the vector envs): `send` writes
+//! the action into it and queues its id; a worker takes the id, runs the step in place
+//! ([`Env::step_into`]) and queues the id as finished; `recv` copies the finished rows into
+//! the batch. The two queues ([`IdQueue`]) are lock-free and allocated once, and waiting
+//! threads spin before they sleep, so over environments whose `step_into` reuses its
+//! buffers a `send` / `recv` round allocates nothing.
 
-use super::core::{Op, Outcome, OwnerProcess, VectorCore, in_env, run_op_guarded};
-use super::{Seeds, VectorInfo};
+use super::core::{OwnerProcess, VectorCore, in_env};
+use super::queue::IdQueue;
+use super::slot::{Done, Member, Task};
+use super::threads::pin_current;
+use super::{Seeds, ThreadOptions, VectorInfo};
 use crate::batch::{BatchOf, BatchSpace};
+use crossbeam_utils::CachePadded;
 use gym_core::{Env, Error, Result};
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{Receiver, Sender, channel};
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
 
-/// One environment and whether it panicked (it then refuses every operation).
-struct Slot<E> {
-    env: Mutex<E>,
-    poisoned: AtomicBool,
+/// What the pool's threads share: the environments and the two queues of ids.
+struct Shared<E: Env> {
+    members: Box<[CachePadded<Mutex<Member<E>>>]>,
+    /// Ids whose task is set, waiting for a worker.
+    todo: IdQueue,
+    /// Ids whose task has run, waiting for `recv`.
+    finished: IdQueue,
+    /// Set by `close`: the workers exit once `todo` is empty.
+    stop: AtomicBool,
 }
 
-type Job<A> = (usize, Op<A>);
-type Done<O> = (usize, Result<Outcome<O>>);
+impl<E: Env> Shared<E> {
+    /// Environment `id` with its buffers (a worker holds it only while running its task).
+    fn member(&self, id: usize) -> MutexGuard<'_, Member<E>> {
+        self.members[id]
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+}
 
 /// Where an environment is between `send` and `recv`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,7 +67,7 @@ pub struct PoolStep<'a, O> {
     /// One `truncated` flag per row.
     pub truncations: &'a [bool],
     /// The batched infos, one row per returned environment.
-    pub infos: VectorInfo,
+    pub infos: &'a VectorInfo,
 }
 
 /// EnvPool's asynchronous mode with threads: `num_envs` environments stepped by
@@ -69,7 +89,10 @@ pub struct PoolStep<'a, O> {
 /// it is reproducible; which environments share a batch depends on timing. A panic in an
 /// environment is returned as [`Error::Simulation`] and that environment refuses further
 /// operations; a sent id that is unknown, repeated or still pending is an
-/// [`Error::InvalidArgument`], and nothing is queued.
+/// [`Error::InvalidArgument`], and nothing is queued. Steps go through [`Env::step_into`]
+/// into per-environment buffers and the batch buffers and infos are reused, so over
+/// environments whose `step_into` reuses its buffers (the robosuite tasks,
+/// `FlatGymWrapper`) `send` and `recv` allocate nothing.
 ///
 /// ```
 /// use adapters::{BatchSpace, ThreadEnvPool, WrapperExt};
@@ -99,41 +122,29 @@ where
     single_obs: E::ObsSpace,
     single_act: E::ActSpace,
     batch_size: usize,
-    slots: Arc<Vec<Slot<E>>>,
-    jobs: Option<Sender<Job<E::Act>>>,
-    done: Receiver<Done<E::Obs>>,
+    shared: Arc<Shared<E>>,
     workers: Vec<JoinHandle<()>>,
     turns: Vec<Turn>,
+    /// `send`'s record of the ids it was given (kept, so `send` does not allocate).
+    seen: Vec<bool>,
     was_reset: bool,
     observations: BatchOf<E::ObsSpace>,
     env_ids: Vec<usize>,
     rewards: Vec<f64>,
     terminations: Vec<bool>,
     truncations: Vec<bool>,
+    infos: VectorInfo,
     closed: bool,
     owner: OwnerProcess,
 }
 
-/// A worker: takes the next job, runs it on its environment, reports the outcome; exits
-/// when the pool drops its job sender.
-fn worker_loop<E: Env>(
-    slots: Arc<Vec<Slot<E>>>,
-    jobs: Arc<Mutex<Receiver<Job<E::Act>>>>,
-    done: Sender<Done<E::Obs>>,
-) {
-    loop {
-        let job = jobs.lock().unwrap_or_else(PoisonError::into_inner).recv();
-        let Ok((id, op)) = job else { break };
-        let slot = &slots[id];
-        let mut poisoned = slot.poisoned.load(Ordering::Acquire);
-        let result = {
-            let mut env = slot.env.lock().unwrap_or_else(PoisonError::into_inner);
-            run_op_guarded(&mut *env, op, id, &mut poisoned)
-        };
-        slot.poisoned.store(poisoned, Ordering::Release);
-        if done.send((id, result)).is_err() {
-            break;
-        }
+/// A worker: takes the next queued id, runs that environment's task, queues the id as
+/// finished; exits when the pool stops.
+fn worker_loop<E: Env>(shared: Arc<Shared<E>>) {
+    while let Some(id) = shared.todo.pop(&shared.stop) {
+        shared.member(id).run();
+        // Cannot fail: an id is in at most one queue, and each holds every id.
+        let _ = shared.finished.push(id);
     }
 }
 
@@ -149,9 +160,7 @@ where
     /// [`Error::InvalidArgument`] for no environments, differing spaces, or a batch size
     /// outside `1..=num_envs`; an OS error spawning a thread as [`Error::Unsupported`].
     pub fn new(envs: Vec<E>, batch_size: usize) -> Result<Self> {
-        let cores = std::thread::available_parallelism().map_or(1, usize::from);
-        let threads = envs.len().min(cores).max(1);
-        Self::with_threads(envs, batch_size, threads)
+        Self::with_options(envs, batch_size, ThreadOptions::default())
     }
 
     /// [`ThreadEnvPool::new`] with `num_threads` worker threads (clamped to `1..=n`).
@@ -159,7 +168,22 @@ where
     /// # Errors
     /// As [`ThreadEnvPool::new`].
     pub fn with_threads(envs: Vec<E>, batch_size: usize, num_threads: usize) -> Result<Self> {
+        Self::with_options(
+            envs,
+            batch_size,
+            ThreadOptions::default().num_threads(num_threads),
+        )
+    }
+
+    /// [`ThreadEnvPool::new`] on the worker threads `options` asks for (their number, and
+    /// pinning: worker `k` on the `k`-th CPU).
+    ///
+    /// # Errors
+    /// As [`ThreadEnvPool::new`].
+    pub fn with_options(envs: Vec<E>, batch_size: usize, options: ThreadOptions) -> Result<Self> {
         let core = VectorCore::new(&envs)?;
+        let num_threads = options.threads_for(envs.len());
+        let cpus = options.cpus();
         let n = envs.len();
         if batch_size == 0 || batch_size > n {
             return Err(Error::invalid_argument(
@@ -167,40 +191,43 @@ where
                 format!("must be in 1..={n} (the number of environments), got {batch_size}"),
             ));
         }
-        let slots: Arc<Vec<Slot<E>>> = Arc::new(
-            envs.into_iter()
-                .map(|env| Slot {
-                    env: Mutex::new(env),
-                    poisoned: AtomicBool::new(false),
-                })
+        let shared = Arc::new(Shared {
+            members: envs
+                .into_iter()
+                .enumerate()
+                .map(|(i, env)| CachePadded::new(Mutex::new(Member::new(i, env))))
                 .collect(),
-        );
-        let (job_tx, job_rx) = channel();
-        let job_rx = Arc::new(Mutex::new(job_rx));
-        let (done_tx, done_rx) = channel();
+            todo: IdQueue::new(n),
+            finished: IdQueue::new(n),
+            stop: AtomicBool::new(false),
+        });
         let mut pool = Self {
             observations: core.single_obs.create_empty_batch(batch_size),
             single_obs: core.single_obs,
             single_act: core.single_act,
             batch_size,
-            slots,
-            jobs: Some(job_tx),
-            done: done_rx,
+            shared,
             workers: Vec::new(),
             turns: vec![Turn::Held { ended: false }; n],
+            seen: vec![false; n],
             was_reset: false,
             env_ids: vec![0; batch_size],
             rewards: vec![0.0; batch_size],
             terminations: vec![false; batch_size],
             truncations: vec![false; batch_size],
+            infos: VectorInfo::new(batch_size),
             closed: false,
             owner: OwnerProcess::current(),
         };
-        for w in 0..num_threads.clamp(1, n) {
-            let (slots, jobs, done) = (pool.slots.clone(), job_rx.clone(), done_tx.clone());
+        for w in 0..num_threads {
+            let shared = Arc::clone(&pool.shared);
+            let cpus = cpus.clone();
             let handle = std::thread::Builder::new()
                 .name(format!("env-pool-{w}"))
-                .spawn(move || worker_loop(slots, jobs, done))
+                .spawn(move || {
+                    pin_current(cpus.as_deref(), w);
+                    worker_loop(shared);
+                })
                 .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;
             pool.workers.push(handle);
         }
@@ -241,18 +268,13 @@ where
     pub fn reset(&mut self, seeds: impl Into<Seeds>) -> Result<()> {
         self.check_open()?;
         let seeds = seeds.into().resolve(self.num_envs())?;
-        while self.turns.contains(&Turn::Pending) {
-            let (id, _) = self.next_done()?;
-            self.turns[id] = Turn::Held { ended: false };
-        }
+        self.drain_pending();
         for (id, seed) in seeds.into_iter().enumerate() {
-            self.queue(
-                id,
-                Op::Reset {
-                    seed,
-                    options: None,
-                },
-            )?;
+            self.shared.member(id).slot.task = Task::Reset {
+                seed,
+                options: None,
+            };
+            self.queue(id);
         }
         self.was_reset = true;
         Ok(())
@@ -271,10 +293,10 @@ where
         if !self.was_reset {
             return Err(Error::ResetNeeded);
         }
-        let mut seen = vec![false; self.num_envs()];
+        self.seen.fill(false);
         for &id in env_ids {
             let held = self.turns.get(id).is_some_and(|t| *t != Turn::Pending);
-            if !held || std::mem::replace(&mut seen[id], true) {
+            if !held || std::mem::replace(&mut self.seen[id], true) {
                 return Err(Error::invalid_argument(
                     "env_ids",
                     format!(
@@ -288,17 +310,26 @@ where
         if !env_ids.is_empty() {
             self.single_act.check_batch(actions, env_ids.len())?;
         }
-        let rows = env_ids
-            .iter()
-            .enumerate()
-            .map(|(k, _)| self.single_act.read_item(actions, k))
-            .collect::<Result<Vec<_>>>()?;
-        for (&id, action) in env_ids.iter().zip(rows) {
-            let op = match self.turns[id] {
-                Turn::Held { ended: true } => Op::AutoReset,
-                _ => Op::Step(action),
+        // Write every task first, so that a row that cannot be read queues nothing.
+        for (k, &id) in env_ids.iter().enumerate() {
+            let mut member = self.shared.member(id);
+            let slot = &mut member.slot;
+            slot.task = match self.turns[id] {
+                Turn::Held { ended: true } => Task::AutoReset,
+                _ => Task::Step,
             };
-            self.queue(id, op)?;
+            if matches!(slot.task, Task::Step)
+                && let Err(e) = self.single_act.read_item_into(actions, k, &mut slot.action)
+            {
+                drop(member);
+                for &earlier in &env_ids[..=k] {
+                    self.shared.member(earlier).slot.task = Task::Idle;
+                }
+                return Err(Error::invalid_action(format!("actions[{k}]: {e}")));
+            }
+        }
+        for &id in env_ids {
+            self.queue(id);
         }
         Ok(())
     }
@@ -322,30 +353,35 @@ where
                 ),
             ));
         }
-        let mut infos = VectorInfo::new(self.batch_size);
+        self.infos.clear();
         let mut first_err = None;
         for k in 0..self.batch_size {
-            let (id, result) = self.next_done()?;
+            let id = self.next_finished();
             self.env_ids[k] = id;
-            let written = result.and_then(|outcome| match outcome {
-                Outcome::Reset(obs, info) => {
-                    self.rewards[k] = 0.0;
-                    self.terminations[k] = false;
-                    self.truncations[k] = false;
-                    infos.add(&info, k);
-                    self.single_obs.write_item(&mut self.observations, k, &obs)
-                }
-                Outcome::Step(step) => {
-                    self.rewards[k] = step.reward;
-                    self.terminations[k] = step.terminated;
-                    self.truncations[k] = step.truncated;
-                    infos.add(&step.info, k);
-                    self.single_obs
-                        .write_item(&mut self.observations, k, &step.observation)
-                }
+            let mut member = self.shared.member(id);
+            let slot = &mut member.slot;
+            let outcome = match std::mem::replace(&mut slot.done, Ok(Done::Idle)) {
+                Ok(Done::Reset) => Ok((0.0, false, false)),
+                Ok(Done::Stepped(t)) => Ok((t.reward, t.terminated, t.truncated)),
+                Ok(_) => Err(Error::Contract {
+                    check: "ThreadEnvPool".into(),
+                    message: "an environment finished without a step or reset".into(),
+                }),
+                Err(e) => Err(e),
+            };
+            let written = outcome.and_then(|(reward, terminated, truncated)| {
+                self.rewards[k] = reward;
+                self.terminations[k] = terminated;
+                self.truncations[k] = truncated;
+                self.infos.add(&slot.info, k);
+                self.single_obs
+                    .write_item(&mut self.observations, k, &slot.observation)?;
+                Ok(terminated || truncated)
             });
-            let ended = written.is_ok() && (self.terminations[k] || self.truncations[k]);
-            self.turns[id] = Turn::Held { ended };
+            drop(member);
+            self.turns[id] = Turn::Held {
+                ended: *written.as_ref().unwrap_or(&false),
+            };
             if let Err(e) = written {
                 first_err.get_or_insert(in_env(e, id));
             }
@@ -359,7 +395,7 @@ where
             rewards: &self.rewards,
             terminations: &self.terminations,
             truncations: &self.truncations,
-            infos,
+            infos: &self.infos,
         })
     }
 
@@ -384,23 +420,19 @@ where
         }
         self.closed = true;
         if self.owner.forked() {
-            // A forked child: no worker runs here and the channels' and environments' locks
-            // may have been held at the fork. Leak them; never send, join or lock.
-            std::mem::forget(self.jobs.take());
+            // A forked child: no worker runs here and the environments' locks may have
+            // been held at the fork. Leak the threads' handles; never join, wait or lock.
             std::mem::forget(std::mem::take(&mut self.workers));
-            let (_, done) = channel();
-            std::mem::forget(std::mem::replace(&mut self.done, done));
             return;
         }
-        self.jobs = None;
+        self.drain_pending();
+        self.shared.stop.store(true, Ordering::Release);
+        self.shared.todo.wake_all();
         for handle in self.workers.drain(..) {
             let _ = handle.join();
         }
-        for slot in self.slots.iter() {
-            if !slot.poisoned.load(Ordering::Acquire) {
-                let mut env = slot.env.lock().unwrap_or_else(PoisonError::into_inner);
-                let _ = catch_unwind(AssertUnwindSafe(|| env.close()));
-            }
+        for id in 0..self.num_envs() {
+            self.shared.member(id).close();
         }
     }
 
@@ -416,22 +448,29 @@ where
         self.owner.check("ThreadEnvPool")
     }
 
-    fn queue(&mut self, id: usize, op: Op<E::Act>) -> Result<()> {
-        let sent = self
-            .jobs
-            .as_ref()
-            .is_some_and(|tx| tx.send((id, op)).is_ok());
-        if !sent {
-            return Err(Error::simulation("the pool's worker threads have exited"));
-        }
+    /// Queues `id`, whose task is set.
+    fn queue(&mut self, id: usize) {
+        // Cannot fail: `id` is held (in no queue), and the queue holds every id.
+        let _ = self.shared.todo.push(id);
         self.turns[id] = Turn::Pending;
-        Ok(())
     }
 
-    fn next_done(&mut self) -> Result<Done<E::Obs>> {
-        self.done
-            .recv()
-            .map_err(|_| Error::simulation("the pool's worker threads have exited"))
+    /// The next finished id (one is pending: every queued id finishes, panics included).
+    fn next_finished(&self) -> usize {
+        loop {
+            if let Some(id) = self.shared.finished.pop(&self.shared.stop) {
+                return id;
+            }
+        }
+    }
+
+    /// Waits for every pending environment and drops its result.
+    fn drain_pending(&mut self) {
+        while self.turns.contains(&Turn::Pending) {
+            let id = self.next_finished();
+            self.shared.member(id).slot.done = Ok(Done::Idle);
+            self.turns[id] = Turn::Held { ended: false };
+        }
     }
 }
 

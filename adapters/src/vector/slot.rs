@@ -2,7 +2,8 @@
 //! to run, its action, its observation and info (reused by [`Env::step_into`], so a step
 //! allocates nothing) and what happened. Both vector environments run the same
 //! [`Slot::run`]: `SyncVectorEnv` in turn, `ThreadVectorEnv` on whichever thread claims the
-//! sub-environment.
+//! sub-environment, and [`ThreadEnvPool`](super::ThreadEnvPool) on whichever worker takes
+//! it from its queue.
 
 use super::core::panic_message;
 use crate::batch::BatchSpace;
@@ -44,6 +45,39 @@ pub(crate) enum Done<O> {
         final_observation: O,
         final_info: Info,
     },
+}
+
+/// A sub-environment with its buffers: what a worker thread locks and runs.
+#[derive(Debug)]
+pub(crate) struct Member<E: Env> {
+    pub(crate) env: E,
+    pub(crate) slot: Slot<E>,
+}
+
+impl<E: Env> Member<E>
+where
+    E::ObsSpace: BatchSpace,
+    E::ActSpace: BatchSpace,
+{
+    /// Sub-environment `id`, `env`, with zeroed buffers.
+    pub(crate) fn new(id: usize, env: E) -> Self {
+        Self {
+            slot: Slot::new(id, &env),
+            env,
+        }
+    }
+}
+
+impl<E: Env> Member<E> {
+    /// Runs the slot's task on the environment ([`Slot::run`]).
+    pub(crate) fn run(&mut self) {
+        self.slot.run(&mut self.env);
+    }
+
+    /// Closes the environment unless it panicked.
+    pub(crate) fn close(&mut self) {
+        self.slot.close(&mut self.env);
+    }
 }
 
 /// The buffers of one sub-environment.

@@ -15,6 +15,8 @@
 //! * The cursors, counters and jobs each sit on their own cache lines (`CachePadded`), so
 //!   threads claiming and finishing jobs do not invalidate each other's lines.
 
+use super::threads::pin_current;
+use core_affinity::CoreId;
 use crossbeam_utils::{Backoff, CachePadded};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
@@ -77,22 +79,31 @@ impl<J: Job> Shared<J> {
     }
 }
 
-/// Waits until `ready()`: spins, then yields for [`SPIN`], then parks (the thread that
-/// makes `ready()` true must unpark this one).
-fn wait_until(ready: impl Fn() -> bool) {
+/// Spins (crossbeam's [`Backoff`]), then yields for [`SPIN`], until `ready()`; whether it
+/// became ready (`false`: the caller should sleep until woken).
+pub(crate) fn spin_until(mut ready: impl FnMut() -> bool) -> bool {
     let backoff = Backoff::new();
     while !backoff.is_completed() {
         if ready() {
-            return;
+            return true;
         }
         backoff.snooze();
     }
     let deadline = Instant::now() + SPIN;
     while Instant::now() < deadline {
         if ready() {
-            return;
+            return true;
         }
         std::thread::yield_now();
+    }
+    ready()
+}
+
+/// Waits until `ready()`: [`spin_until`], then parks (the thread that makes `ready()` true
+/// must unpark this one).
+fn wait_until(ready: impl Fn() -> bool) {
+    if spin_until(&ready) {
+        return;
     }
     while !ready() {
         std::thread::park();
@@ -123,11 +134,17 @@ pub(crate) struct Team<J: Job> {
 
 impl<J: Job> Team<J> {
     /// `jobs` on `threads` threads (clamped to `1..=jobs.len()`), the calling thread
-    /// included; threads are named `name-1`, `name-2`, ...
+    /// included; threads are named `name-1`, `name-2`, ... and, with `cpus`, worker `k`
+    /// is pinned to `cpus[k % len]` (the calling thread is not pinned).
     ///
     /// # Errors
     /// The OS error of a thread that cannot be spawned.
-    pub(crate) fn new(jobs: Vec<J>, threads: usize, name: &str) -> std::io::Result<Self> {
+    pub(crate) fn new(
+        jobs: Vec<J>,
+        threads: usize,
+        name: &str,
+        cpus: Option<Vec<CoreId>>,
+    ) -> std::io::Result<Self> {
         let n = jobs.len();
         let threads = threads.clamp(1, n.max(1));
         let blocks = (0..threads)
@@ -159,9 +176,13 @@ impl<J: Job> Team<J> {
         };
         for t in 1..threads {
             let shared = Arc::clone(&team.shared);
+            let cpus = cpus.clone();
             let handle = std::thread::Builder::new()
                 .name(format!("{name}-{t}"))
-                .spawn(move || worker(shared, t))?;
+                .spawn(move || {
+                    pin_current(cpus.as_deref(), t);
+                    worker(shared, t);
+                })?;
             team.workers.push(handle);
         }
         Ok(team)
@@ -198,14 +219,10 @@ impl<J: Job> Team<J> {
             return;
         }
         let done = || s.remaining.load(Ordering::Acquire) == 0;
-        let backoff = Backoff::new();
-        let deadline = Instant::now() + SPIN;
-        while !backoff.is_completed() || Instant::now() < deadline {
-            if done() {
-                return;
-            }
-            backoff.snooze();
+        if spin_until(done) {
+            return;
         }
+        // Register as the waiter (the thread finishing the last job unparks it), then wait.
         *s.waiter.lock().unwrap_or_else(PoisonError::into_inner) = Some(std::thread::current());
         while !done() {
             std::thread::park();

@@ -2,21 +2,16 @@
 
 use super::core::{OwnerProcess, VectorCore};
 use super::delegate_to_core;
-use super::slot::Slot;
+use super::slot::Member;
 use super::team::{Job, Team};
-use super::{AutoresetMode, Seeds, VectorEnv, VectorInfo, VectorStep};
+use super::{AutoresetMode, Seeds, ThreadOptions, VectorEnv, VectorInfo, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
 use gym_core::{Env, Error, Metadata, ResetOptions, Result};
 
-/// A sub-environment with its buffers: one job of the team.
-struct Member<E: Env> {
-    env: E,
-    slot: Slot<E>,
-}
-
+/// A sub-environment with its buffers is one job of the team.
 impl<E: Env> Job for Member<E> {
     fn run(&mut self) {
-        self.slot.run(&mut self.env);
+        Member::run(self);
     }
 }
 
@@ -33,7 +28,8 @@ impl<E: Env> Job for Member<E> {
 /// into per-environment buffers; with environments whose `step_into` reuses them (the
 /// robosuite tasks and `FlatGymWrapper`) a step does not allocate.
 ///
-/// The default thread count is `min(num_envs, available_parallelism)`. A panic inside a
+/// The default thread count is `min(num_envs, available_parallelism)`; [`ThreadOptions`]
+/// sets another and can pin the worker threads to CPUs. A panic inside a
 /// sub-environment is caught on its thread and returned as [`Error::Simulation`] (that
 /// sub-environment then refuses further calls); no call can hang on a lost thread.
 /// [`VectorEnv::close`] (and `Drop`) closes the sub-environments and joins the threads.
@@ -60,8 +56,7 @@ where
     /// [`Error::InvalidArgument`] for no environments or differing spaces; an OS error
     /// spawning a thread as [`Error::Unsupported`].
     pub fn new(envs: Vec<E>) -> Result<Self> {
-        let threads = envs.len().min(default_threads()).max(1);
-        Self::with_threads(envs, threads)
+        Self::with_options(envs, ThreadOptions::default())
     }
 
     /// A vector of `envs` on `num_threads` threads (clamped to `1..=n`).
@@ -69,16 +64,22 @@ where
     /// # Errors
     /// As [`ThreadVectorEnv::new`].
     pub fn with_threads(envs: Vec<E>, num_threads: usize) -> Result<Self> {
+        Self::with_options(envs, ThreadOptions::default().num_threads(num_threads))
+    }
+
+    /// A vector of `envs` on the threads `options` asks for (their number, and pinning).
+    ///
+    /// # Errors
+    /// As [`ThreadVectorEnv::new`].
+    pub fn with_options(envs: Vec<E>, options: ThreadOptions) -> Result<Self> {
         let core = VectorCore::new(&envs)?;
+        let num_threads = options.threads_for(envs.len());
         let members = envs
             .into_iter()
             .enumerate()
-            .map(|(i, env)| Member {
-                slot: Slot::new(i, &env),
-                env,
-            })
+            .map(|(i, env)| Member::new(i, env))
             .collect();
-        let team = Team::new(members, num_threads, "vector-env")
+        let team = Team::new(members, num_threads, "vector-env", options.cpus())
             .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;
         Ok(Self {
             core,
@@ -137,15 +138,9 @@ where
         }
         self.team.stop();
         for i in 0..self.team.len() {
-            let member = &mut *self.team.job(i);
-            member.slot.close(&mut member.env);
+            self.team.job(i).close();
         }
     }
-}
-
-/// The threads a vector env uses by default: the machine's available parallelism.
-fn default_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, usize::from)
 }
 
 impl<E: Env> VectorEnv for ThreadVectorEnv<E>
