@@ -20,7 +20,8 @@
 //! (`step_into` with random actions, an episode's reset counted as a step, as a vector
 //! env's autoreset is) and prints the barrier model's predicted efficiency (see
 //! `examples::barrier_model`) for 2, 8 and 16 threads beside the vector table measured
-//! here.
+//! here; it also splits the spread of step times into the env's own and the machine's
+//! noise (each step timed again from a snapshot) and gives the model for a quiet core.
 //!
 //! `--pin` pins the vector envs' and the pool's worker threads to CPUs
 //! ([`ThreadOptions::pin`](adapters::ThreadOptions)); the ceiling's threads stay unpinned.
@@ -463,6 +464,67 @@ fn step_time_model(
     figures["step_cpu_times_us"] = summary_json(&cpu);
     figures["barrier_model"] = json!(model_rows(&cpu, rng));
     figures["barrier_model_wall"] = json!(model_rows(&wall, rng));
+    step_time_split(task, args, rng, figures)
+}
+
+/// How many times [`step_time_split`] steps each state.
+const REPEATS: usize = 5;
+
+/// Splits the spread of one env's step CPU times into the env's own (different states and
+/// actions take different times: contacts, solver iterations) and the machine's (the same
+/// step timed again). Random actions as in [`step_time_model`]; before each step a
+/// snapshot is taken and the same step, from the same state with the same action, is
+/// stepped [`REPEATS`] times (restored in between, untimed; bit-identical by
+/// [`RobosuiteEnv::snapshot`](robosuite_env::RobosuiteEnv::snapshot)). The first run is
+/// timed as a normal step; the repeats after it find warm caches, so their spread (pooled
+/// within each state) is the machine's noise, and their median per state is the step's
+/// time on a quiet core. The barrier model from those medians is what a machine without
+/// noise would see.
+fn step_time_split(
+    task: &Case,
+    args: &Args,
+    rng: &mut gym_core::EnvRng,
+    figures: &mut serde_json::Value,
+) -> Result<()> {
+    let mut env = task.make()?;
+    let (mut obs, mut info) = env.reset(Some(1), None)?;
+    let (mut first, mut quiet) = (Vec::new(), Vec::new());
+    let (mut within_ss, mut within_df) = (0.0, 0usize);
+    let budget = Duration::from_secs_f64(args.seconds);
+    let start = Instant::now();
+    while start.elapsed() < budget || first.len() < 100 {
+        let a = env.action_space().sample(rng);
+        let snapshot = env.snapshot();
+        let mut times = [0.0; REPEATS];
+        let mut done = false;
+        for (r, time) in times.iter_mut().enumerate() {
+            if r > 0 {
+                env.restore(&snapshot)?;
+            }
+            let c = thread_cpu_now();
+            done = env.step_into(&a, &mut obs, &mut info)?.done();
+            *time = (thread_cpu_now() - c) * 1e6;
+        }
+        if done {
+            (obs, info) = env.reset(None, None)?;
+        }
+        first.push(times[0]);
+        let repeats = &mut times[1..];
+        let mean = repeats.iter().sum::<f64>() / repeats.len() as f64;
+        within_ss += repeats.iter().map(|t| (t - mean).powi(2)).sum::<f64>();
+        within_df += repeats.len() - 1;
+        repeats.sort_by(f64::total_cmp);
+        quiet.push(repeats[repeats.len() / 2]);
+    }
+    let noise_sd = (within_ss / within_df.max(1) as f64).sqrt();
+    figures["step_time_split"] = json!({
+        "states": first.len(),
+        "repeats": REPEATS - 1,
+        "first_run_cpu_us": summary_json(&first),
+        "quiet_cpu_us": summary_json(&quiet),
+        "noise_sd_us": noise_sd,
+    });
+    figures["barrier_model_quiet"] = json!(model_rows(&quiet, rng));
     Ok(())
 }
 
@@ -637,6 +699,38 @@ fn main() -> Result<()> {
                 m["expected_max_over_mean"].as_f64().unwrap_or(0.0),
                 wall,
                 measured.map_or(String::new(), |e| format!("; measured here {e:.3}"))
+            );
+        }
+        if let Some(split) = r.get("step_time_split") {
+            let sd = |k: &str| split[k]["sd"].as_f64().unwrap_or(0.0);
+            let mean = |k: &str| split[k]["mean"].as_f64().unwrap_or(0.0);
+            println!(
+                "  step time split ({} states, each stepped again {} times from a snapshot): \
+                 first run mean {:.1} sd {:.1}; repeated (quiet core) median per state: mean \
+                 {:.1} sd {:.1}; machine noise sd {:.1} (us)",
+                split["states"],
+                split["repeats"],
+                mean("first_run_cpu_us"),
+                sd("first_run_cpu_us"),
+                mean("quiet_cpu_us"),
+                sd("quiet_cpu_us"),
+                split["noise_sd_us"].as_f64().unwrap_or(0.0)
+            );
+        }
+        for m in r["barrier_model_quiet"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter(|m| m["assignment"] == "dynamic")
+        {
+            println!(
+                "  model from the quiet-core times: {:>2} threads, {:>2} envs, predicted \
+                 efficiency {:.3} (E[max of {}] / mean {:.2})",
+                m["threads"],
+                m["envs"],
+                m["predicted_efficiency"].as_f64().unwrap_or(0.0),
+                m["threads"],
+                m["expected_max_over_mean"].as_f64().unwrap_or(0.0),
             );
         }
         for v in r["vector"].as_array().into_iter().flatten() {

@@ -31,24 +31,26 @@ PY="$VENV/bin/python"
 # Quiet, idempotent: pip skips what is already installed.
 "$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy
 
-# The example of a user's own pyo3 module (python/examples/own_module), tested by
-# tests/test_own_module.py; ROBOSUITE_RS_SKIP_OWN_MODULE=1 skips building it. It is built
-# first: it compiles robosuite-py (feature `python`, no `PyInit__native`) into the shared
-# target folder, and cargo names a cdylib without a hash, so that build overwrites the
-# extension's library while cargo still counts the extension's own build as fresh. Removing
-# the library makes the extension's build below link it again.
-if [ "${ROBOSUITE_RS_BUILD_ONLY:-0}" != "1" ] && [ "${ROBOSUITE_RS_SKIP_OWN_MODULE:-0}" != "1" ]; then
-    start=$(date +%s)
-    "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/examples/own_module/Cargo.toml"
-    rm -f "$CARGO_TARGET_DIR/release/deps/librobosuite_py.so" "$CARGO_TARGET_DIR/release/librobosuite_py.so"
-    echo "test.sh: example module built in $(( $(date +%s) - start )) s"
-fi
-
 start=$(date +%s)
 "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/Cargo.toml"
 echo "test.sh: extension built in $(( $(date +%s) - start )) s"
 if [ "${ROBOSUITE_RS_BUILD_ONLY:-0}" = "1" ]; then
     exit 0
+fi
+
+# The example of a user's own pyo3 module (python/examples/own_module, which depends on the
+# robosuite-rs package installed above), tested by tests/test_own_module.py;
+# ROBOSUITE_RS_SKIP_OWN_MODULE=1 skips building it. It compiles robosuite-py (feature
+# `python`, no `PyInit__native`) into the shared target folder, and cargo names a cdylib
+# without a hash: that build overwrites the extension's library while cargo still counts
+# the extension's own build as fresh, so a later `maturin develop` (test_gym_versions.sh)
+# or `maturin build` (wheel.sh) would take the wrong library. Removing it makes the next
+# extension build link it again. (The extension installed above is a copy: unaffected.)
+if [ "${ROBOSUITE_RS_SKIP_OWN_MODULE:-0}" != "1" ]; then
+    start=$(date +%s)
+    "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/examples/own_module/Cargo.toml"
+    rm -f "$CARGO_TARGET_DIR/release/deps/librobosuite_py.so" "$CARGO_TARGET_DIR/release/librobosuite_py.so"
+    echo "test.sh: example module built in $(( $(date +%s) - start )) s"
 fi
 
 start=$(date +%s)
