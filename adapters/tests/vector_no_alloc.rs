@@ -108,25 +108,27 @@ fn vector_steps_do_not_allocate() {
             ThreadEnvPool::with_threads((0..n).map(|_| make()).collect(), 2, threads).unwrap();
         pool.reset(3u64).unwrap();
         let mut ids = pool.recv().unwrap().env_ids.to_vec();
-        let mut returned = [0usize; 4];
-        let mut round = |pool: &mut ThreadEnvPool<_>, b| {
-            let s = pool.step(b, &ids).unwrap();
-            assert!(!s.terminations.iter().chain(s.truncations).any(|&d| d));
-            ids.copy_from_slice(s.env_ids);
-            for &id in s.env_ids {
-                returned[id] += 1;
-            }
-        };
+        // One send/recv round; counts how often each environment came back.
+        let round =
+            |pool: &mut ThreadEnvPool<_>, ids: &mut Vec<usize>, b, returned: &mut [usize]| {
+                let s = pool.step(b, ids).unwrap();
+                assert!(!s.terminations.iter().chain(s.truncations).any(|&d| d));
+                ids.copy_from_slice(s.env_ids);
+                for &id in s.env_ids {
+                    returned[id] += 1;
+                }
+            };
         // Warm-up until every environment has stepped twice (recording its info keys).
+        let mut returned = [0usize; 4];
         for b in pool_batches.iter().cycle().take(40) {
-            round(&mut pool, b);
+            round(&mut pool, &mut ids, b, &mut returned);
         }
+        assert!(returned.iter().all(|&r| r >= 2), "warm-up: {returned:?}");
         let count = allocations(|| {
             for b in &pool_batches {
-                round(&mut pool, b);
+                round(&mut pool, &mut ids, b, &mut returned);
             }
         });
-        assert!(returned.iter().all(|&r| r >= 2), "{returned:?}");
         assert_eq!(count, 0, "ThreadEnvPool, {threads} threads");
     }
 
