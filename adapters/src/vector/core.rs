@@ -21,9 +21,9 @@ pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
 
 /// The process that made a threaded vector env or pool. Its worker threads exist only in
 /// that process: after `fork()` (Stable-Baselines3's `SubprocVecEnv` forks on Linux) the
-/// child has the queues and slots but no threads, so a step would wait forever and a join would
-/// fail. Every call compares the process id (one `getpid`, no allocation) and refuses in a
-/// child.
+/// child has the queues and slots but no threads, so a step would wait forever and a join
+/// would fail. Every call compares the process id (one `getpid`, no allocation) and
+/// refuses in a child.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct OwnerProcess(u32);
 
