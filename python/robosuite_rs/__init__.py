@@ -43,6 +43,7 @@ __all__ = [
     "RobosuiteEnv",
     "ALL_ENVIRONMENTS",
     "SUPPORTED_KWARGS",
+    "install_as_robosuite",
     "__version__",
 ]
 
@@ -309,6 +310,162 @@ class RobosuiteEnv:
         """Wraps ``native`` (a ``_native.RobosuiteEnv``); use :func:`make` instead."""
         self._native = native
         self._make_args: tuple[str, dict[str, Any], str | None] | None = None
+        self._sim: Any = None
+        self._robots: Any = None
+        self._ep_meta: dict[str, Any] = {}
+        self._xml_processors: list[Any] = [self.edit_model_xml]
+        self._controller_configs: list[dict[str, Any] | None] = []
+
+    # --- robosuite's env object: env.sim, env.robots, the XML round trip ----------------
+    @property
+    def sim(self) -> Any:
+        """robosuite's ``MjSim`` over this env's own memory: ``sim.model._model`` and
+        ``sim.data._data`` are a ``mujoco.MjModel`` and ``mujoco.MjData`` shared with the
+        Rust env (see :mod:`robosuite_rs.binding_utils`)."""
+        from .binding_utils import MjSim
+
+        model, data = self._native.sim_objects()
+        if self._sim is None or self._sim.model._model is not model or self._sim.data._data is not data:
+            self._sim = MjSim(self._native)
+        return self._sim
+
+    @property
+    def robots(self) -> list[Any]:
+        """The robots (robosuite's ``env.robots``), see :mod:`robosuite_rs.robots`."""
+        if self._robots is None:
+            from .robots import Robot
+
+            model = self.sim.model
+            infos = self._native.robots_info()
+            configs = self._controller_configs or [None] * len(infos)
+            self._robots = [
+                Robot(self, info, model, configs[i] if i < len(configs) else None) for i, info in enumerate(infos)
+            ]
+        return self._robots
+
+    def edit_model_xml(self, xml_str: str) -> str:
+        """robosuite's ``edit_model_xml``: points the mesh and texture files of a scene
+        saved anywhere (paths through a ``robosuite/`` folder) at this machine's copy of
+        robosuite's model files."""
+        import xml.etree.ElementTree as ET
+
+        try:
+            root = ET.fromstring(xml_str)
+        except ET.ParseError as e:
+            raise ValueError(f"not an MJCF scene: {e}") from None
+        asset = root.find("asset")
+        if asset is None:
+            return xml_str
+        local = _native.robosuite_package_dir()
+        for elem in asset.findall("mesh") + asset.findall("texture"):
+            old = elem.get("file")
+            if old is None:
+                continue
+            parts = old.split("/")
+            hits = [i for i, p in enumerate(parts) if p == "robosuite"]
+            if hits:
+                elem.set("file", "/".join([local.rstrip("/")] + parts[max(hits) + 1 :]))
+        return ET.tostring(root, encoding="utf8").decode("utf8")
+
+    def set_xml_processor(self, processor: Any) -> None:
+        """robosuite's ``set_xml_processor``: ``processor(xml) -> xml`` is applied (after
+        :meth:`edit_model_xml`) to every scene :meth:`reset_from_xml_string` loads."""
+        if not callable(processor):
+            raise TypeError(f"processor must be callable, got {processor!r}")
+        self._xml_processors.append(processor)
+
+    def reset_from_xml_string(self, xml_string: str) -> None:
+        """robosuite's ``reset_from_xml_string``: reloads the env from a scene's MJCF (such
+        as ``env.sim.model.get_xml()`` saved by robosuite or by this package, on any
+        machine), then resets deterministically (robots at ``init_qpos``, objects as the
+        scene places them).
+
+        Raises:
+            ValueError / RuntimeError: for text that is not a scene of this task (the
+                message names what is missing); the env is then unchanged.
+        """
+        if not isinstance(xml_string, str):
+            raise TypeError(f"xml_string must be a str, got {type(xml_string).__name__}")
+        xml = xml_string
+        for processor in self._xml_processors:
+            xml = processor(xml)
+            if not isinstance(xml, str):
+                raise TypeError(f"an xml processor returned {type(xml).__name__}, not str")
+        self._native.reset_from_xml_string(xml)
+        self._sim = None
+        self._robots = None
+
+    def get_ep_meta(self) -> dict[str, Any]:
+        """Episode metadata (a copy), ``{}`` unless set."""
+        import copy
+
+        return copy.deepcopy(self._ep_meta)
+
+    def set_ep_meta(self, meta: dict[str, Any]) -> None:
+        """Sets the episode metadata."""
+        self._ep_meta = meta
+
+    def unset_ep_meta(self) -> None:
+        """Clears the episode metadata."""
+        self._ep_meta = {}
+
+    def update_state(self) -> None:
+        """robosuite's hook after setting a state: nothing to update here."""
+
+    # --- observables --------------------------------------------------------------------
+    def _observables(self) -> list[tuple[Any, ...]]:
+        return list(self._native.observables())
+
+    @property
+    def observation_names(self) -> set[str]:
+        """Every observable's name."""
+        return {o[0] for o in self._observables()}
+
+    @property
+    def observation_modalities(self) -> set[str]:
+        """Every observable's modality."""
+        return {o[1] for o in self._observables()}
+
+    @property
+    def enabled_observables(self) -> set[str]:
+        """The enabled observables."""
+        return {o[0] for o in self._observables() if o[4]}
+
+    @property
+    def active_observables(self) -> set[str]:
+        """The active observables (returned in observations when enabled)."""
+        return {o[0] for o in self._observables() if o[5]}
+
+    def modify_observable(self, observable_name: str, attribute: str, modifier: Any) -> None:
+        """robosuite's ``modify_observable`` for ``"enabled"`` and ``"active"`` (an
+        observable that is not both is left out of the observations).
+
+        Raises:
+            ValueError: for an unknown observable (the message lists them) or a value
+                that is not a bool.
+            NotImplementedError: for ``"sensor"``, ``"corrupter"``, ``"filter"``,
+                ``"delayer"`` and ``"sampling_rate"``, not served yet.
+        """
+        if attribute in ("enabled", "active"):
+            if not isinstance(modifier, (bool, np.bool_)):
+                raise ValueError(f"modify_observable: {attribute} takes a bool, got {modifier!r}")
+            self._native.modify_observable(observable_name, attribute, bool(modifier))
+            return
+        if attribute in ("sensor", "corrupter", "filter", "delayer", "sampling_rate"):
+            if observable_name not in self.observation_names:
+                raise ValueError(
+                    f"No valid observable with name {observable_name} found. Options are: {sorted(self.observation_names)}"
+                )
+            raise NotImplementedError(f"modify_observable: {attribute!r} is not supported by robosuite_rs yet")
+        raise ValueError(f"modify_observable: unknown attribute {attribute!r}")
+
+    def _get_observations(self, force_update: bool = False) -> OrderedDict[str, np.ndarray]:
+        """robosuite's ``_get_observations``: with ``force_update`` every observable is
+        read again from the simulator as it is now (after ``sim.set_state_from_flattened``
+        and ``sim.forward()``); otherwise the last observations."""
+        if force_update:
+            return self._native.update_observations()
+        return self._native.observation_spec()
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickling and ``copy.deepcopy``: the configuration plus the whole run-time state
@@ -433,7 +590,8 @@ class RobosuiteEnv:
         self._native.set_state(state)
 
     def close(self) -> None:
-        """Closes the env; calling it again does nothing."""
+        """Closes the env; calling it again does nothing. ``env.sim``'s arrays stay
+        readable (they belong to Python)."""
         self._native.close()
 
     def __repr__(self) -> str:
@@ -480,7 +638,24 @@ def make(
     native = _native.make_robosuite(env_name, config, model)
     env = RobosuiteEnv(native)
     env._make_args = (env_name, config, model)
+    env._controller_configs = _controller_config_dicts(kwargs.get("controller_configs"), robots, env)
     return env
+
+
+def _controller_config_dicts(given: Any, robots: Any, env: RobosuiteEnv) -> list[dict[str, Any] | None]:
+    """Each robot's composite controller config as robosuite hands it out (the one given,
+    else the robot's default), for ``env.robots[i].part_controllers``."""
+    names = [i["name"] for i in env._native.robots_info()]
+    if given is None:
+        out: list[dict[str, Any] | None] = []
+        for name in names:
+            try:
+                out.append(load_composite_controller_config(robot=name))
+            except (ValueError, RuntimeError):
+                out.append(None)
+        return out
+    items = list(given) if isinstance(given, (list, tuple)) else [given] * len(names)
+    return [c if isinstance(c, dict) else None for c in items]
 
 
 def _restore_env(make_args: tuple[str, dict[str, Any], str | None], state: str) -> "RobosuiteEnv":
@@ -697,6 +872,7 @@ def make_pool(
 from .vector import RustVectorEnv  # noqa: E402
 from .pool import EnvPool  # noqa: E402
 from .registration import register_envs as _register_envs  # noqa: E402
+from .compat import install_as_robosuite  # noqa: E402
 
 _register_envs()
 

@@ -139,3 +139,11 @@ class GymWrapper(RustEnv):
     def check_success(self) -> bool:
         """Whether the task is solved in the current state."""
         return self.env.check_success()
+
+    def __getattr__(self, name: str) -> Any:
+        """robosuite's ``Wrapper`` forwarding: attributes this wrapper lacks are the wrapped
+        env's (``gym_env.sim``, ``gym_env.robots``, ``gym_env.reward()``, ...)."""
+        env = self.__dict__.get("env")
+        if env is None or name.startswith("__"):
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        return getattr(env, name)

@@ -197,6 +197,14 @@ fn scene_xml(
         .map_err(to_pyerr)
 }
 
+/// The folder of robosuite's package whose model files the envs are built from (what
+/// robosuite's `edit_model_xml` points scene asset paths at).
+#[pyfunction]
+fn robosuite_package_dir() -> PyResult<String> {
+    let assets = robosuite_env::assets::Assets::locate().map_err(to_pyerr)?;
+    Ok(assets.package().to_string_lossy().into_owned())
+}
+
 /// Every id registered in `gym_core::registry`.
 #[pyfunction]
 fn registered_ids() -> Vec<String> {
@@ -285,6 +293,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyEnvPool>()?;
     m.add_class::<PyRobosuiteEnv>()?;
     m.add_function(wrap_pyfunction!(make_robosuite, m)?)?;
+    m.add_function(wrap_pyfunction!(robosuite_package_dir, m)?)?;
     m.add_function(wrap_pyfunction!(make_robosuite_vec, m)?)?;
     m.add_function(wrap_pyfunction!(make_robosuite_pool, m)?)?;
     m.add_function(wrap_pyfunction!(make_registered, m)?)?;

@@ -7,13 +7,32 @@ use crate::errors::to_pyerr;
 use crate::pyenv::{PyEnv, extract_seed};
 use crate::shared::SharedEnv;
 use gym_core::{AnySpace, DictSpace, Env, IntoBoxedEnv, Value};
-use numpy::PyArray1;
-use pyo3::exceptions::PyValueError;
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-use robosuite_env::RobosuiteEnv;
+use pyo3::types::{PyDict, PyList};
 use robosuite_env::saved::SavedEnv;
+use robosuite_env::sim::KeepAlive;
+use robosuite_env::{ObservableFlag, RobosuiteEnv};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+/// The `mujoco.MjModel` / `mujoco.MjData` sharing an env's memory, with the addresses they
+/// were made for (a replaced model or data makes new ones).
+struct SharedSim {
+    model_addr: usize,
+    data_addr: usize,
+    model: Py<PyAny>,
+    data: Py<PyAny>,
+}
+
+/// A Python error raised while handing memory to MuJoCo's Python objects.
+struct HandOverError(PyErr);
+
+impl From<String> for HandOverError {
+    fn from(message: String) -> Self {
+        Self(PyRuntimeError::new_err(message))
+    }
+}
 
 /// A robosuite environment as robosuite's Python API sees it. The Python class
 /// `robosuite_rs.RobosuiteEnv` delegates to it; `gym_env` builds the GymWrapper over the
@@ -25,6 +44,7 @@ pub struct PyRobosuiteEnv {
     observation_space: DictSpace,
     action_low: Vec<f64>,
     action_high: Vec<f64>,
+    shared: Mutex<Option<SharedSim>>,
 }
 
 impl PyRobosuiteEnv {
@@ -42,6 +62,7 @@ impl PyRobosuiteEnv {
             observation_space,
             action_low,
             action_high,
+            shared: Mutex::new(None),
         }
     }
 
@@ -112,9 +133,10 @@ impl PyRobosuiteEnv {
         value_into_py(py, Value::Dict(obs), true)
     }
 
-    /// The observation keys, in order.
+    /// The observation keys, in order (the active observables, then the modality
+    /// concatenations).
     fn observation_keys(&self) -> Vec<String> {
-        self.observation_space.keys().map(str::to_owned).collect()
+        self.lock().observation_keys()
     }
 
     /// The observation space's description (a Dict).
@@ -187,7 +209,7 @@ impl PyRobosuiteEnv {
     /// The keys robosuite's `GymWrapper` selects by default (`object-state`, the camera
     /// images, each robot's `proprio-state`), as `adapters::gym_wrapper::default_keys`.
     fn default_gym_keys(&self) -> Vec<String> {
-        adapters::gym_wrapper::default_keys(&self.observation_space)
+        adapters::gym_wrapper::default_keys(gym_core::Env::observation_space(&*self.lock()))
     }
 
     /// Whether object observations are included.
@@ -267,6 +289,290 @@ impl PyRobosuiteEnv {
             adapters::GymWrapper::new(shared, keys, false).map(IntoBoxedEnv::boxed)
         };
         Ok(PyEnv::new(env.map_err(to_pyerr)?))
+    }
+
+    /// `(mujoco.MjModel, mujoco.MjData)` sharing this env's model and data (no copy): on
+    /// first use the model's memory is handed to a `mujoco.MjModel` and the data moved into
+    /// a `mujoco.MjData` made for it (state copied whole, so stepping continues
+    /// bit-identically); both then belong to Python, so a view kept after `close()` or a
+    /// model replacement stays valid. The same objects are returned until the model is
+    /// replaced.
+    fn sim_objects<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let mut shared = self.shared.lock().unwrap_or_else(PoisonError::into_inner);
+        let mut env = self.lock();
+        let (m, d) = {
+            let sim = env.sim();
+            (
+                std::ptr::from_ref(sim.model().ffi()) as usize,
+                std::ptr::from_ref(sim.data().ffi()) as usize,
+            )
+        };
+        if let Some(s) = shared.as_ref()
+            && s.model_addr == m
+            && s.data_addr == d
+        {
+            return Ok((s.model.bind(py).clone(), s.data.bind(py).clone()));
+        }
+        let mujoco = py.import("mujoco")?;
+        let model_class = mujoco.getattr("MjModel")?;
+        let data_class = mujoco.getattr("MjData")?;
+        let model = match shared.as_ref() {
+            Some(s) if s.model_addr == m => s.model.clone_ref(py),
+            _ => {
+                let mut made: Option<Py<PyAny>> = None;
+                // SAFETY: `_from_model_ptr` wraps the pointer in a `mujoco.MjModel` that owns
+                // it (mj_deleteModel when collected); the wrapper is kept by the Data until
+                // it is dropped, and it never changes sizes.
+                unsafe {
+                    env.sim_mut().hand_over_model(|ptr| {
+                        let obj = model_class.call_method1("_from_model_ptr", (ptr as usize,))?;
+                        made = Some(obj.clone().unbind());
+                        Ok::<KeepAlive, PyErr>(Box::new(obj.unbind()))
+                    })?;
+                }
+                made.ok_or_else(|| PyRuntimeError::new_err("the model was handed over already"))?
+            }
+        };
+        let mut made: Option<Py<PyAny>> = None;
+        // SAFETY: `mujoco.MjData(model)` allocates an mjData for this very model with
+        // `mj_makeData`; the Python object owns it and is kept by the Data until dropped.
+        unsafe {
+            env.sim_mut()
+                .adopt_data(|_m| {
+                    let obj = data_class.call1((model.bind(py),)).map_err(HandOverError)?;
+                    let addr: usize = obj
+                        .getattr("_address")
+                        .and_then(|a| a.extract())
+                        .map_err(HandOverError)?;
+                    made = Some(obj.clone().unbind());
+                    Ok::<_, HandOverError>((addr as *mut _, Box::new(obj.unbind()) as KeepAlive))
+                })
+                .map_err(|e| e.0)?;
+        }
+        let data = made.ok_or_else(|| PyRuntimeError::new_err("no mjData was made"))?;
+        let d = std::ptr::from_ref(env.sim().data().ffi()) as usize;
+        *shared = Some(SharedSim {
+            model_addr: m,
+            data_addr: d,
+            model: model.clone_ref(py),
+            data: data.clone_ref(py),
+        });
+        Ok((model.into_bound(py), data.into_bound(py)))
+    }
+
+    /// `mj_forward` on the env's simulator (robosuite's `sim.forward()`), through the env's
+    /// guard: a MuJoCo error is a `RuntimeError` and the env then needs a reset.
+    fn sim_forward(&self, py: Python<'_>) -> PyResult<()> {
+        py.detach(|| self.lock().sim_mut().forward())
+            .map_err(to_pyerr)
+    }
+
+    /// `mj_step` (robosuite's `sim.step()`), guarded as [`Self::sim_forward`].
+    fn sim_step(&self, py: Python<'_>) -> PyResult<()> {
+        py.detach(|| self.lock().sim_mut().step()).map_err(to_pyerr)
+    }
+
+    /// `mj_step1` (robosuite's `sim.step1()`).
+    fn sim_step1(&self, py: Python<'_>) -> PyResult<()> {
+        py.detach(|| self.lock().sim_mut().step1())
+            .map_err(to_pyerr)
+    }
+
+    /// `mj_step2` (robosuite's `sim.step2()`).
+    fn sim_step2(&self, py: Python<'_>) -> PyResult<()> {
+        py.detach(|| self.lock().sim_mut().step2())
+            .map_err(to_pyerr)
+    }
+
+    /// `mj_resetData` (robosuite's `sim.reset()`).
+    fn sim_reset(&self, py: Python<'_>) {
+        py.detach(|| self.lock().sim_mut().reset_data());
+    }
+
+    /// Checks a flat state `[time, qpos, qvel]` for this model (robosuite's
+    /// `set_state_from_flattened` input) without applying it.
+    fn check_flat_state(&self, state: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+        let array = array_from_py(state)?;
+        if array.shape().len() != 1 {
+            return Err(PyValueError::new_err(format!(
+                "invalid argument `state`: expected a flat (1-D) array [time, qpos, qvel], got shape {:?}",
+                array.shape()
+            )));
+        }
+        let flat = array.cast(gym_core::DType::F64).to_f64_vec();
+        self.lock().sim().check_state(&flat).map_err(to_pyerr)?;
+        Ok(flat)
+    }
+
+    /// robosuite's `_get_observations(force_update=True)`: every observable read from the
+    /// simulator as it is now (no forward pass).
+    fn update_observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let obs = py
+            .detach(|| self.lock().update_observations())
+            .map_err(to_pyerr)?;
+        value_into_py(py, Value::Dict(obs), true)
+    }
+
+    /// robosuite's `sim.model.get_xml()`: the scene MJCF with the model's current values.
+    fn get_xml(&self, py: Python<'_>) -> PyResult<String> {
+        py.detach(|| self.lock().scene_xml()).map_err(to_pyerr)
+    }
+
+    /// The MJCF text the current model was compiled from.
+    fn source_xml(&self) -> String {
+        self.lock().source_xml().to_owned()
+    }
+
+    /// robosuite's `reset_from_xml_string(xml)`: a new model from `xml` (a scene of this
+    /// task, such as one saved by robosuite; asset paths through a `robosuite/` folder are
+    /// redirected to the local model files), then a deterministic reset. Keeps the
+    /// configuration and the RNG stream; returns the first observation. On an error the
+    /// env is unchanged.
+    fn reset_from_xml_string<'py>(
+        &self,
+        py: Python<'py>,
+        xml: &str,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let name = self.name.clone();
+        let obs = py
+            .detach(|| -> gym_core::Result<gym_core::DictValue> {
+                let (config, (rng, seeded)) = {
+                    let env = self.lock();
+                    (env.config().clone(), env.rng_state())
+                };
+                let spec = robosuite_env::make_task(&name)?;
+                let mut fresh = RobosuiteEnv::from_scene_xml(spec.as_ref(), xml, config)?;
+                fresh.set_rng(rng, seeded);
+                let (obs, _) = fresh.reset_deterministic()?;
+                *self.lock() = fresh;
+                Ok(obs)
+            })
+            .map_err(to_pyerr)?;
+        value_into_py(py, Value::Dict(obs), true)
+    }
+
+    /// robosuite's deterministic reset: the robots at `init_qpos` without noise, objects as
+    /// the model places them, nothing drawn from the RNG.
+    fn reset_deterministic<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (obs, _) = py
+            .detach(|| self.lock().reset_deterministic())
+            .map_err(to_pyerr)?;
+        value_into_py(py, Value::Dict(obs), true)
+    }
+
+    /// Every observable: `[(name, modality, shape, dtype, enabled, active)]` in robosuite's
+    /// order.
+    fn observables<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let items = self.lock().observables();
+        let rows = items
+            .into_iter()
+            .map(|o| {
+                (
+                    o.spec.key,
+                    o.spec.modality,
+                    o.spec.shape,
+                    o.spec.dtype.name(),
+                    o.enabled,
+                    o.active,
+                )
+            })
+            .collect::<Vec<_>>();
+        PyList::new(py, rows)
+    }
+
+    /// robosuite's `modify_observable(name, attribute, value)` for `"enabled"` and
+    /// `"active"`.
+    fn modify_observable(&self, name: &str, attribute: &str, value: bool) -> PyResult<()> {
+        let flag = match attribute {
+            "enabled" => ObservableFlag::Enabled,
+            "active" => ObservableFlag::Active,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "modify_observable: attribute {other:?} is not a flag (expected 'enabled' or 'active')"
+                )));
+            }
+        };
+        self.lock()
+            .modify_observable(name, flag, value)
+            .map_err(to_pyerr)
+    }
+
+    /// robosuite's `sim.render(width, height, camera_name, depth, segmentation)` for fixed
+    /// camera `camera`: `rgb` (H×W×3 uint8, bottom row first), or `(rgb, depth)`; with
+    /// `segmentation` the image is H×W×2 int32 `(object type, object id)`.
+    #[pyo3(signature = (camera, width, height, depth=false, segmentation=false))]
+    fn render_camera<'py>(
+        &self,
+        py: Python<'py>,
+        camera: usize,
+        width: usize,
+        height: usize,
+        depth: bool,
+        segmentation: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let frame = py
+            .detach(|| {
+                self.lock()
+                    .render_camera(camera, width, height, depth, segmentation)
+            })
+            .map_err(to_pyerr)?;
+        let (h, w) = (frame.height, frame.width);
+        let image: Bound<'py, PyAny> = match frame.segmentation {
+            Some(seg) => PyArray1::from_vec(py, seg).reshape([h, w, 2])?.into_any(),
+            None => PyArray1::from_vec(py, frame.rgb)
+                .reshape([h, w, 3])?
+                .into_any(),
+        };
+        match frame.depth {
+            Some(d) => {
+                let depth = PyArray1::from_vec(py, d).reshape([h, w])?.into_any();
+                Ok((image, depth).into_pyobject(py)?.into_any())
+            }
+            None => Ok(image),
+        }
+    }
+
+    /// The robots as plain values: per robot its name, index, joint `qpos` / `qvel`
+    /// addresses, `init_qpos`, action dimension and limits, and per arm its side,
+    /// controller, actuators, end-effector site and body, and gripper (name, actuators,
+    /// joint addresses, action dimension).
+    fn robots_info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let env = self.lock();
+        let list = PyList::empty(py);
+        for r in env.robots() {
+            let d = PyDict::new(py);
+            d.set_item("name", r.name())?;
+            d.set_item("index", r.index())?;
+            d.set_item("joint_qpos", r.joint_qpos().to_vec())?;
+            d.set_item("joint_dofs", r.joint_dofs().to_vec())?;
+            d.set_item("init_qpos", r.init_qpos().to_vec())?;
+            d.set_item("action_dim", r.action_dim())?;
+            let (low, high) = r.action_limits();
+            d.set_item("action_low", low)?;
+            d.set_item("action_high", high)?;
+            let arms = PyList::empty(py);
+            for a in r.arms() {
+                let ad = PyDict::new(py);
+                ad.set_item("side", a.side())?;
+                ad.set_item("controller", a.controller().name())?;
+                ad.set_item("controller_dim", a.controller().action_dim())?;
+                ad.set_item("actuators", a.actuators().to_vec())?;
+                ad.set_item("eef_site", a.eef_site())?;
+                ad.set_item("eef_body", a.eef_body())?;
+                let g = a.gripper();
+                ad.set_item("gripper", g.has_gripper().then_some(g.info().name))?;
+                ad.set_item("gripper_actuators", g.actuators().to_vec())?;
+                ad.set_item("gripper_qpos", g.qpos().to_vec())?;
+                ad.set_item("gripper_dim", g.action_dim())?;
+                arms.append(ad)?;
+            }
+            d.set_item("arms", arms)?;
+            list.append(d)?;
+        }
+        Ok(list)
     }
 
     fn __repr__(&self) -> String {

@@ -7,7 +7,7 @@ use crate::config::EnvConfig;
 use crate::controllers::config::robot_default;
 use crate::controllers::{CompositeControllerConfig, Timing};
 use crate::models::robots::{RobotModel, robot_info};
-use crate::models::scene::{Scene, compile_cached};
+use crate::models::scene::{Scene, compile_cached_with_source};
 use crate::observables::{ObsLayout, ObsSpec, total_len};
 use crate::robots::{Robot, RobotState};
 use crate::sim::Sim;
@@ -20,6 +20,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use ndarray::ArrayD;
 use std::ops::Range;
 use std::path::Path;
+use std::sync::Arc;
 
 /// Where the compiled model came from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -100,6 +101,34 @@ pub struct RobosuiteEnv {
     timestep: u64,
     phase: Phase,
     cameras: Option<CameraRig>,
+    /// The MJCF text the model was compiled from (shared by envs of one scene).
+    source_xml: Arc<str>,
+    /// Every observable that exists (with `use_object_obs`'s choice applied), in order.
+    obs_specs: Vec<ObsSpec>,
+    /// Per observable of `obs_specs`: enabled, active (robosuite's two flags).
+    obs_flags: Vec<(bool, bool)>,
+    #[cfg(feature = "render")]
+    viewer_renderer: Option<crate::render::OffscreenRenderer>,
+}
+
+/// One observable as robosuite's observables API describes it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ObservableInfo {
+    /// Key, shape, dtype and modality.
+    pub spec: ObsSpec,
+    /// Whether it is computed (robosuite's `enabled`).
+    pub enabled: bool,
+    /// Whether it is returned in observations (robosuite's `active`).
+    pub active: bool,
+}
+
+/// robosuite's observable attributes that [`RobosuiteEnv::modify_observable`] sets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ObservableFlag {
+    /// `enabled`: computed at all.
+    Enabled,
+    /// `active`: returned in observations.
+    Active,
 }
 
 /// The robots and task scene composed for a configuration, before compiling.
@@ -216,8 +245,8 @@ impl RobosuiteEnv {
     pub fn new(spec: &dyn TaskSpec, config: EnvConfig) -> Result<Self> {
         let assets = Assets::locate()?;
         let composed = compose(spec, &config, &assets)?;
-        let model = composed.scene.compile(spec.memory())?;
-        Self::from_model(spec, composed, model, config, ModelSource::Composed)
+        let (model, source) = composed.scene.compile_with_source(spec.memory())?;
+        Self::from_model(spec, composed, model, source, config, ModelSource::Composed)
     }
 
     /// Builds the task `spec` on a caller-supplied scene MJCF that follows robosuite's names
@@ -237,8 +266,8 @@ impl RobosuiteEnv {
             return Err(Error::model("the scene XML contains a NUL byte"));
         }
         let xml = redirect_asset_paths(xml, &assets);
-        let model = compile_cached(&xml)?;
-        Self::from_model(spec, composed, model, config, ModelSource::Supplied)
+        let (model, source) = compile_cached_with_source(&xml)?;
+        Self::from_model(spec, composed, model, source, config, ModelSource::Supplied)
     }
 
     /// As [`RobosuiteEnv::from_scene_xml`], reading the MJCF from a file.
@@ -264,6 +293,7 @@ impl RobosuiteEnv {
         spec: &dyn TaskSpec,
         composed: Composed,
         model: MjModel,
+        source_xml: Arc<str>,
         config: EnvConfig,
         source: ModelSource,
     ) -> Result<Self> {
@@ -321,7 +351,9 @@ impl RobosuiteEnv {
         let task_range = task_start..task_start + total_len(&task_specs);
         obs_specs.extend(task_specs);
         let use_object_obs = config.use_object_obs;
-        let layout = ObsLayout::new(obs_specs, |s| use_object_obs || !s.needs_object_obs);
+        let exists = |s: &ObsSpec| use_object_obs || !s.needs_object_obs;
+        let obs_flags = obs_specs.iter().map(|s| (exists(s), exists(s))).collect();
+        let layout = ObsLayout::new(obs_specs.clone(), exists);
         let obs_space = layout.space()?;
 
         let mut action_splits = Vec::new();
@@ -372,6 +404,11 @@ impl RobosuiteEnv {
             timestep: 0,
             phase: Phase::NeedsReset,
             cameras,
+            source_xml,
+            obs_specs,
+            obs_flags,
+            #[cfg(feature = "render")]
+            viewer_renderer: None,
         })
     }
 }
@@ -719,6 +756,256 @@ impl RobosuiteEnv {
             self.sim.check_diverged()?;
         }
         Ok(())
+    }
+}
+
+/// A frame drawn by [`RobosuiteEnv::render_camera`], rows bottom first (OpenGL's order, as
+/// robosuite's `sim.render` returns them).
+#[cfg(feature = "render")]
+#[derive(Debug, Clone, PartialEq)]
+pub struct CameraFrame {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// RGB bytes, `height × width × 3`.
+    pub rgb: Vec<u8>,
+    /// Raw depth in `[0, 1]`, `height × width` (when asked for).
+    pub depth: Option<Vec<f32>>,
+    /// Per pixel `(object type, object id)`, `height × width × 2`, `-1` for the background
+    /// (when asked for).
+    pub segmentation: Option<Vec<i32>>,
+}
+
+/// robosuite's env object beyond the Gymnasium API: direct simulator access, observation
+/// refresh, deterministic reset, the scene as MJCF, observable flags and free rendering.
+impl RobosuiteEnv {
+    /// The simulator, mutably (robosuite's `env.sim`): what is written here (positions,
+    /// velocities, controls, model values that keep every size) is what the next step
+    /// starts from. Call [`Sim::forward`] after writing positions, as with robosuite.
+    pub fn sim_mut(&mut self) -> &mut Sim {
+        &mut self.sim
+    }
+
+    /// robosuite's `_get_observations(force_update=True)`: reads every observable from the
+    /// simulator as it is now (no forward pass) and returns the observations.
+    ///
+    /// # Errors
+    /// [`Error::Closed`] after `close`; [`Error::Render`] when a camera frame cannot be
+    /// drawn.
+    pub fn update_observations(&mut self) -> Result<DictValue> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        self.observe()?;
+        Ok(self.observation())
+    }
+
+    /// robosuite's deterministic reset (after `reset_from_xml_string`): the scene's object
+    /// sizes and poses as the model gives them (nothing re-drawn, no placement), the robots
+    /// at their `init_qpos` without noise; draws nothing from the RNG.
+    ///
+    /// # Errors
+    /// [`Error::Closed`] after `close`; [`Error::Simulation`] when MuJoCo raises an error.
+    pub fn reset_deterministic(&mut self) -> Result<(DictValue, Info)> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        self.phase = Phase::NeedsReset;
+        self.sim.reset_data();
+        for robot in &mut self.robots {
+            robot.reset_deterministic(&mut self.sim)?;
+        }
+        self.task.clear_observation_cache();
+        self.sim.forward()?;
+        self.begin_episode()
+    }
+
+    /// The MJCF text the model was compiled from.
+    pub fn source_xml(&self) -> &str {
+        &self.source_xml
+    }
+
+    /// The scene as MJCF with the model's current values (robosuite's
+    /// `env.sim.model.get_xml()`): the compiled text, parsed again and given every
+    /// real-valued model array as it is now (MuJoCo's `mj_copyBack`: object sizes re-drawn
+    /// at reset, masses, positions, edits through [`RobosuiteEnv::sim_mut`]), saved by
+    /// MuJoCo. Loading it with [`RobosuiteEnv::from_scene_xml`] gives this model back.
+    ///
+    /// # Errors
+    /// [`Error::Model`] when MuJoCo cannot parse, compile or save the scene.
+    pub fn scene_xml(&self) -> Result<String> {
+        use mujoco_rs::wrappers::mj_editing::MjSpec;
+        let mut spec = MjSpec::from_xml_string(&self.source_xml)
+            .map_err(|e| Error::model(format!("cannot parse the scene: {e}")))?;
+        spec.compile()
+            .map_err(|e| Error::model(format!("cannot compile the scene: {e}")))?;
+        // SAFETY: the spec was just compiled from the text this model was compiled from, so
+        // the two have the same sizes (model edits keep every size).
+        let copied =
+            unsafe { mujoco_rs::mujoco_c::mj_copyBack(spec.ffi_mut(), self.sim.model().ffi()) };
+        if copied == 0 {
+            return Err(Error::model(
+                "MuJoCo could not copy the model back into the scene",
+            ));
+        }
+        let mut size = 4 * self.source_xml.len() + (1 << 16);
+        loop {
+            match spec.save_xml_string(size) {
+                Ok(text) => return Ok(text),
+                Err(mujoco_rs::error::MjEditError::XmlBufferTooSmall { required_size })
+                    if required_size > size =>
+                {
+                    size = required_size + 1;
+                }
+                Err(e) => return Err(Error::model(format!("cannot save the scene: {e}"))),
+            }
+        }
+    }
+
+    /// Every observable of the env in robosuite's order with its flags (robosuite's
+    /// `observation_names`, `enabled_observables`, `active_observables`).
+    pub fn observables(&self) -> Vec<ObservableInfo> {
+        let use_object_obs = self.config.use_object_obs;
+        self.obs_specs
+            .iter()
+            .zip(&self.obs_flags)
+            .filter(|(s, _)| use_object_obs || !s.needs_object_obs)
+            .map(|(s, &(enabled, active))| ObservableInfo {
+                spec: s.clone(),
+                enabled,
+                active,
+            })
+            .collect()
+    }
+
+    /// robosuite's `modify_observable(name, "enabled" | "active", value)`: an observable
+    /// that is not enabled and active is left out of the observations (and of the
+    /// `{modality}-state` concatenations) from the next observation on; the observation
+    /// space changes with it.
+    ///
+    /// # Errors
+    /// [`Error::UnknownKey`] listing the observables for an unknown name (nothing changes).
+    pub fn modify_observable(
+        &mut self,
+        name: &str,
+        flag: ObservableFlag,
+        value: bool,
+    ) -> Result<()> {
+        let use_object_obs = self.config.use_object_obs;
+        let exists = |s: &ObsSpec| use_object_obs || !s.needs_object_obs;
+        let Some(i) = self
+            .obs_specs
+            .iter()
+            .position(|s| s.key == name && exists(s))
+        else {
+            return Err(Error::UnknownKey {
+                key: name.to_owned(),
+                available: self
+                    .obs_specs
+                    .iter()
+                    .filter(|s| exists(s))
+                    .map(|s| s.key.clone())
+                    .collect(),
+            });
+        };
+        let mut flags = self.obs_flags.clone();
+        match flag {
+            ObservableFlag::Enabled => flags[i].0 = value,
+            ObservableFlag::Active => flags[i].1 = value,
+        }
+        let shown: std::collections::HashSet<&str> = self
+            .obs_specs
+            .iter()
+            .zip(&flags)
+            .filter(|(s, (e, a))| exists(s) && *e && *a)
+            .map(|(s, _)| s.key.as_str())
+            .collect();
+        let layout = ObsLayout::new(self.obs_specs.clone(), |s| shown.contains(s.key.as_str()));
+        let space = layout.space()?;
+        self.layout = layout;
+        self.obs_space = space;
+        self.obs_flags = flags;
+        Ok(())
+    }
+
+    /// robosuite's `sim.render(width, height, camera_name=..., depth=..., segmentation=...)`:
+    /// a frame of camera `camera` (a fixed camera's id) at any size up to
+    /// [`crate::render::MAX_SIZE`], drawn with the env's own offscreen renderer for free
+    /// rendering (made on first use, grown when a larger frame is asked for), whether or not
+    /// the env has camera observations.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for an unknown camera id or a size out of range;
+    /// [`Error::Render`] when no rendering context can be opened; [`Error::Closed`] after
+    /// `close`.
+    #[cfg(feature = "render")]
+    pub fn render_camera(
+        &mut self,
+        camera: usize,
+        width: usize,
+        height: usize,
+        depth: bool,
+        segmentation: bool,
+    ) -> Result<CameraFrame> {
+        use crate::render::{OffscreenRenderer, Outputs, Request};
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        let ncam = self.sim.model().ffi().ncam.max(0) as usize;
+        if camera >= ncam {
+            return Err(Error::invalid_argument(
+                "camera",
+                format!("camera id {camera} out of range (the model has {ncam} cameras)"),
+            ));
+        }
+        let fits = self
+            .viewer_renderer
+            .as_ref()
+            .is_some_and(|r| r.max_size().0 >= width && r.max_size().1 >= height);
+        if !fits {
+            let (w0, h0) = self
+                .viewer_renderer
+                .as_ref()
+                .map_or((0, 0), OffscreenRenderer::max_size);
+            let renderer = OffscreenRenderer::new(self.sim.model(), width.max(w0), height.max(h0))?;
+            self.viewer_renderer = Some(renderer);
+        }
+        let n = width * height;
+        let mut rgb = vec![0u8; 3 * n];
+        let mut depth_buf = depth.then(|| vec![0f32; n]);
+        let (mut ids, mut types) = if segmentation {
+            (Some(vec![0i32; n]), Some(vec![0i32; n]))
+        } else {
+            (None, None)
+        };
+        let renderer = self
+            .viewer_renderer
+            .as_mut()
+            .ok_or_else(|| Error::Render("no renderer".into()))?;
+        let mut request = [Request {
+            camera,
+            width,
+            height,
+            out: Outputs {
+                rgb: Some(&mut rgb),
+                depth: depth_buf.as_deref_mut(),
+                segmentation: ids.as_deref_mut(),
+                segmentation_type: types.as_deref_mut(),
+            },
+        }];
+        renderer.render(self.sim.data_mut(), &mut request)?;
+        let segmentation = match (types, ids) {
+            (Some(t), Some(i)) => Some(t.iter().zip(&i).flat_map(|(&t, &i)| [t, i]).collect()),
+            _ => None,
+        };
+        Ok(CameraFrame {
+            width,
+            height,
+            rgb,
+            depth: depth_buf,
+            segmentation,
+        })
     }
 }
 

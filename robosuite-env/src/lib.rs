@@ -48,7 +48,9 @@ pub mod sim;
 pub mod tasks;
 
 pub use config::{EnvConfig, EnvConfiguration};
-pub use env::{EnvSnapshot, ModelSource, RobosuiteEnv};
+#[cfg(feature = "render")]
+pub use env::CameraFrame;
+pub use env::{EnvSnapshot, ModelSource, ObservableFlag, ObservableInfo, RobosuiteEnv};
 pub use registry::{
     ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,
 };

@@ -45,6 +45,7 @@ fn draw(
             rgb: Some(&mut f.rgb),
             depth: Some(&mut f.depth),
             segmentation: Some(&mut f.seg),
+            segmentation_type: None,
         },
     }];
     renderer.render(sim.data_mut(), &mut requests).unwrap();

@@ -137,6 +137,15 @@ impl Scene {
     pub fn compile(&self, memory: usize) -> Result<MjModel> {
         compile_cached(&self.to_mujoco_xml(memory))
     }
+
+    /// As [`Scene::compile`], also returning the MJCF text compiled (shared with every
+    /// compilation of the same text).
+    ///
+    /// # Errors
+    /// As [`Scene::compile`].
+    pub fn compile_with_source(&self, memory: usize) -> Result<(MjModel, Arc<str>)> {
+        compile_cached_with_source(&self.to_mujoco_xml(memory))
+    }
 }
 
 /// Turns off what MuJoCo enabled by default after robosuite 1.5.2's MuJoCo 3.3.7:
@@ -155,13 +164,23 @@ fn use_robosuites_collision_defaults(model: &mut MjModel) {
 /// [`Error::Model`] with MuJoCo's message when it rejects the text, or when the MuJoCo
 /// library is not 3.17.0.
 pub fn compile_cached(xml: &str) -> Result<MjModel> {
-    static CACHE: OnceLock<Mutex<HashMap<String, Arc<MjModel>>>> = OnceLock::new();
+    compile_cached_with_source(xml).map(|(model, _)| model)
+}
+
+/// As [`compile_cached`], also returning the text compiled, shared (one allocation) with
+/// every other compilation of the same text that is still cached.
+///
+/// # Errors
+/// As [`compile_cached`].
+pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
+    type Cache = HashMap<Arc<str>, Arc<MjModel>>;
+    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
     check_mujoco_version()?;
     let cache = CACHE.get_or_init(Default::default);
     // One compilation at a time: MuJoCo's XML loader keeps global state.
     let mut map = cache.lock().unwrap_or_else(PoisonError::into_inner);
-    if let Some(model) = map.get(xml) {
-        return Ok(MjModel::clone(model));
+    if let Some((key, model)) = map.get_key_value(xml) {
+        return Ok((MjModel::clone(model), Arc::clone(key)));
     }
     let mut model = MjModel::from_xml_string(xml)
         .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
@@ -170,6 +189,7 @@ pub fn compile_cached(xml: &str) -> Result<MjModel> {
         map.clear();
     }
     let model = Arc::new(model);
-    map.insert(xml.to_owned(), Arc::clone(&model));
-    Ok(MjModel::clone(&model))
+    let key: Arc<str> = Arc::from(xml);
+    map.insert(Arc::clone(&key), Arc::clone(&model));
+    Ok((MjModel::clone(&model), key))
 }

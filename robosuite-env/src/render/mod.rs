@@ -38,6 +38,10 @@ pub struct Outputs<'a> {
     /// Per-pixel id of the drawn object (robosuite's element segmentation: channel 1 of
     /// `sim.render(segmentation=True)`, the geom id for geoms), `-1` for the background.
     pub segmentation: Option<&'a mut [i32]>,
+    /// Per-pixel type (`mjtObj`) of the drawn object (channel 0 of robosuite's
+    /// `sim.render(segmentation=True)`: 5 for geoms, 6 for sites, ...), `-1` for the
+    /// background. Drawn in the same segmentation pass as `segmentation`.
+    pub segmentation_type: Option<&'a mut [i32]>,
 }
 
 /// MuJoCo's renderer on its own headless OpenGL context, drawing a model's fixed cameras.
@@ -144,6 +148,7 @@ impl OffscreenRenderer {
                     rgb: r.out.rgb.as_deref_mut(),
                     depth: r.out.depth.as_deref_mut(),
                     segmentation: r.out.segmentation.as_deref_mut(),
+                    segmentation_type: r.out.segmentation_type.as_deref_mut(),
                 },
             }),
         )
@@ -224,7 +229,11 @@ fn check(size: (usize, usize), data: &Data, r: &Request<'_>) -> Result<()> {
     let n = r.width * r.height;
     let bad = r.out.rgb.as_ref().is_some_and(|b| b.len() != 3 * n)
         || r.out.depth.as_ref().is_some_and(|b| b.len() != n)
-        || r.out.segmentation.as_ref().is_some_and(|b| b.len() != n);
+        || r.out.segmentation.as_ref().is_some_and(|b| b.len() != n)
+        || r.out
+            .segmentation_type
+            .as_ref()
+            .is_some_and(|b| b.len() != n);
     if bad {
         return Err(Error::invalid_argument(
             "outputs",
@@ -247,7 +256,22 @@ impl Pass<'_> {
         } = self;
         let context: &MjrContext = context;
         let mut camera = MjvCamera::new_fixed(r.camera);
-        scene.update(data, option, perturb, &mut camera);
+        let (m, d) = data.raw_mut();
+        let (opt, pert): (&MjvOption, &MjvPerturb) = (option, perturb);
+        // SAFETY: `check` put the fixed camera id in range; the scene was made for this
+        // model (`OffscreenRenderer::new`), `perturb.select` is 0 (the world body); MuJoCo
+        // writes only the scene and the data's visualisation fields.
+        unsafe {
+            mujoco_rs::mujoco_c::mjv_updateScene(
+                m,
+                d,
+                opt,
+                pert,
+                &mut camera,
+                mujoco_rs::mujoco_c::mjtCatBit::mjCAT_ALL as i32,
+                scene.ffi_mut(),
+            );
+        }
         let viewport = MjrRectangle::new(0, 0, r.width as i32, r.height as i32);
         if r.out.rgb.is_some() || r.out.depth.is_some() {
             scene.render(&viewport, context);
@@ -259,7 +283,7 @@ impl Pass<'_> {
                 )
                 .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
         }
-        if let Some(seg) = r.out.segmentation.as_deref_mut() {
+        if r.out.segmentation.is_some() || r.out.segmentation_type.is_some() {
             set_segmentation_flags(scene, true);
             scene.render(&viewport, context);
             set_segmentation_flags(scene, false);
@@ -267,7 +291,12 @@ impl Pass<'_> {
             context
                 .read_pixels(Some(seg_rgb), None, &viewport)
                 .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
-            decode_segmentation(scene, seg_rgb, seg_ids, seg);
+            if let Some(seg) = r.out.segmentation.as_deref_mut() {
+                decode_segmentation(scene, seg_rgb, seg_ids, seg, |g| g.objid);
+            }
+            if let Some(seg) = r.out.segmentation_type.as_deref_mut() {
+                decode_segmentation(scene, seg_rgb, seg_ids, seg, |g| g.objtype);
+            }
         }
         Ok(())
     }
@@ -315,10 +344,16 @@ fn set_segmentation_flags(scene: &mut MjvScene, on: bool) {
     ffi.flags[mjtRndFlag::mjRND_IDCOLOR as usize] = u8::from(on);
 }
 
-/// robosuite's `read_pixels(segmentation=True)[..., 1]`: the segment colour `r + 256 g +
+/// robosuite's `read_pixels(segmentation=True)[..., 1]` (or `[..., 0]`, by `field`): the segment colour `r + 256 g +
 /// 65536 b` is `segid + 1` of a scene geom (0: background), mapped to that geom's `objid`
 /// (`-1` where no geom was drawn).
-fn decode_segmentation(scene: &MjvScene, rgb: &[u8], ids: &mut Vec<i32>, out: &mut [i32]) {
+fn decode_segmentation(
+    scene: &MjvScene,
+    rgb: &[u8],
+    ids: &mut Vec<i32>,
+    out: &mut [i32],
+    field: impl Fn(&mujoco_rs::mujoco_c::mjvGeom) -> i32,
+) {
     let ffi = scene.ffi();
     let ngeom = ffi.ngeom.max(0) as usize;
     ids.clear();
@@ -327,7 +362,7 @@ fn decode_segmentation(scene: &MjvScene, rgb: &[u8], ids: &mut Vec<i32>, out: &m
     let geoms = unsafe { std::slice::from_raw_parts(ffi.geoms, ngeom) };
     for g in geoms {
         if g.segid >= 0 && (g.segid as usize) < ngeom {
-            ids[g.segid as usize + 1] = g.objid;
+            ids[g.segid as usize + 1] = field(g);
         }
     }
     for (px, o) in rgb.chunks_exact(3).zip(out.iter_mut()) {

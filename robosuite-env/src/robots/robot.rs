@@ -43,6 +43,16 @@ pub struct Gripper {
 }
 
 impl Gripper {
+    /// The gripper's actuators (ids), empty without a gripper.
+    pub fn actuators(&self) -> &[usize] {
+        &self.actuators
+    }
+
+    /// The `qpos` addresses of the gripper's joints, empty without a gripper.
+    pub fn qpos(&self) -> &[usize] {
+        &self.qpos
+    }
+
     /// The gripper's figures.
     pub fn info(&self) -> &GripperInfo {
         &self.info
@@ -532,8 +542,23 @@ impl Robot {
     /// # Errors
     /// [`gym_core::Error::Simulation`] when the forward pass raises a MuJoCo error.
     pub fn reset(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> gym_core::Result<()> {
+        self.reset_with(sim, Some(rng))
+    }
+
+    /// robosuite's deterministic reset (`robot.reset(deterministic=True)`): as
+    /// [`Robot::reset`] at `init_qpos` exactly, without noise and drawing nothing.
+    ///
+    /// # Errors
+    /// As [`Robot::reset`].
+    pub fn reset_deterministic(&mut self, sim: &mut Sim) -> gym_core::Result<()> {
+        self.reset_with(sim, None)
+    }
+
+    fn reset_with(&mut self, sim: &mut Sim, rng: Option<&mut EnvRng>) -> gym_core::Result<()> {
         self.qpos_buf.copy_from_slice(&self.init_qpos);
-        self.noise.perturb(rng, &mut self.qpos_buf);
+        if let Some(rng) = rng {
+            self.noise.perturb(rng, &mut self.qpos_buf);
+        }
         self.start_at_posture(sim)?;
         let qpos = sim.data_mut().qpos_mut();
         for arm in &mut self.arms {

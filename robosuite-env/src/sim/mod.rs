@@ -2,12 +2,14 @@
 //! run-time model edits and the MuJoCo version check.
 
 mod contacts;
+mod data;
 mod guard;
 mod names;
 mod resize;
 mod version;
 
 pub use contacts::{GeomSet, any_contact_between, any_contact_with};
+pub use data::{Data, KeepAlive};
 pub use names::{actuator_for_joint, actuator_id, body_id, geom_id, joint_id, sensor_adr, site_id};
 pub use resize::{BoxGeomUpdate, reshape_body_from, resize_box_body, resize_cylinder_body};
 pub use version::{MUJOCO_VERSION, check_mujoco_version};
@@ -15,11 +17,7 @@ pub use version::{MUJOCO_VERSION, check_mujoco_version};
 use guard::Call;
 use gym_core::{Error, Result};
 use mujoco_rs::mujoco_c::{mjData, mjModel, mjtWarning};
-use mujoco_rs::wrappers::mj_data::MjData;
 use mujoco_rs::wrappers::mj_model::{MjModel, MjtDisableBit};
-
-/// The simulator data of one environment, owning its (private, editable) copy of the model.
-pub type Data = MjData<Box<MjModel>>;
 
 /// The largest magnitude accepted for a position or velocity in [`Sim::set_state`]: far
 /// beyond any posture or speed of robosuite's scenes, and four orders of magnitude below
@@ -61,8 +59,8 @@ impl Sim {
         // SAFETY: a compiled model; the shim allocates and frees one mjData.
         unsafe { guard::trial_make_data(model.ffi()) }
             .map_err(|e| Error::model(format!("MuJoCo cannot allocate mjData: {e}")))?;
-        let data = MjData::try_new(Box::new(model))
-            .map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
+        let data =
+            Data::new(model).map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
         let mut sim = Self { data, failed: None };
         sim.forward()
             .and_then(|()| sim.step())
@@ -81,8 +79,7 @@ impl Sim {
         // SAFETY: the model and data are owned by `self.data` and made for each other; this
         // crate installs no MuJoCo callback.
         let result = unsafe {
-            let d = self.data.ffi_mut() as *mut mjData;
-            let m = self.data.model().ffi() as *const mjModel;
+            let (m, d) = self.data.raw_mut();
             guard::run(call, m, d)
         };
         result.map_err(|message| {
@@ -150,21 +147,12 @@ impl Sim {
     /// Raw pointers to the model and the data, for MuJoCo functions that the safe wrapper
     /// does not expose without allocating.
     pub(crate) fn raw(&self) -> (*const mjModel, *const mjData) {
-        (
-            self.data.model().ffi() as *const mjModel,
-            self.data.ffi() as *const mjData,
-        )
+        self.data.raw()
     }
 
     /// Mutable raw pointers to the model and the data (for `mj_setConst`).
     pub(crate) fn raw_mut(&mut self) -> (*mut mjModel, *mut mjData) {
-        // SAFETY: the pointers address the heap objects owned by `self.data`; the caller uses
-        // them only while `self` is mutably borrowed and keeps every size of the model.
-        unsafe {
-            let d = self.data.ffi_mut() as *mut mjData;
-            let m = self.data.model_mut().ffi_mut() as *mut mjModel;
-            (m, d)
-        }
+        self.data.raw_mut()
     }
 
     /// The model, mutably, for edits that keep every size and address unchanged.
@@ -305,7 +293,6 @@ impl Sim {
     pub fn integration_state(&self) -> Vec<f64> {
         self.data
             .state(mujoco_rs::mujoco_c::mjtState::mjSTATE_INTEGRATION as u32)
-            .into_vec()
     }
 
     /// Restores a state from [`Sim::integration_state`] and runs `mj_forward`.
@@ -322,8 +309,39 @@ impl Sim {
                 state,
                 mujoco_rs::mujoco_c::mjtState::mjSTATE_INTEGRATION as u32,
             )
-            .map_err(|e| Error::invalid_argument("state", format!("{e:?}")))?;
+            .map_err(|e| Error::invalid_argument("state", e))?;
         self.forward()
+    }
+
+    /// Hands the model's memory to another owner (see [`Data::hand_over_model`]).
+    ///
+    /// # Errors
+    /// `wrap`'s error; nothing changes then.
+    ///
+    /// # Safety
+    /// As [`Data::hand_over_model`].
+    pub unsafe fn hand_over_model<E>(
+        &mut self,
+        wrap: impl FnOnce(*mut mjModel) -> std::result::Result<KeepAlive, E>,
+    ) -> std::result::Result<(), E> {
+        // SAFETY: as the caller promises.
+        unsafe { self.data.hand_over_model(wrap) }
+    }
+
+    /// Moves the data into memory of another owner (see [`Data::adopt_data`]); the state is
+    /// copied whole, so stepping continues bit-identically.
+    ///
+    /// # Errors
+    /// `make`'s error; nothing changes then.
+    ///
+    /// # Safety
+    /// As [`Data::adopt_data`].
+    pub unsafe fn adopt_data<E: From<String>>(
+        &mut self,
+        make: impl FnOnce(*const mjModel) -> std::result::Result<(*mut mjData, KeepAlive), E>,
+    ) -> std::result::Result<(), E> {
+        // SAFETY: as the caller promises.
+        unsafe { self.data.adopt_data(make) }
     }
 
     /// Bytes MuJoCo reserved for this data's arena and stack.

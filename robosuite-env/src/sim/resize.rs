@@ -129,12 +129,7 @@ fn update_statistics(sim: &mut Sim, body: usize, main: usize, old_rbound: f64) {
     };
     // Diagonal of the mass matrix at qpos0.
     sim.reset_data();
-    {
-        let d = sim.data_mut();
-        d.kinematics();
-        d.com_pos();
-        d.make_m();
-    }
+    sim.data_mut().mass_matrix_stages();
     let mut full = vec![0.0; nv * nv];
     let meaninertia = if sim.data().full_m(&mut full).is_ok() && nv > 0 {
         (0..nv).map(|i| full[i * nv + i]).sum::<f64>() / nv as f64

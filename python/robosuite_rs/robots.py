@@ -1,0 +1,221 @@
+"""robosuite's robot objects (``env.robots``): read-only views of the Rust env's robots
+with robosuite's attribute names (``name``, ``dof``, ``action_dim``, ``action_limits``,
+``robot_model.naming_prefix``, ``gripper``, ``part_controllers``, ``composite_controller``,
+``init_qpos``, ...)."""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Robot", "RobotModel", "GripperModel", "PartController", "CompositeController", "ROBOT_CLASS_MAPPING"]
+
+#: robosuite's robot classes by robot name (the robots this build provides).
+ROBOT_CLASS_MAPPING: dict[str, str] = {
+    "Baxter": "FixedBaseRobot",
+    "IIWA": "FixedBaseRobot",
+    "Jaco": "FixedBaseRobot",
+    "Kinova3": "FixedBaseRobot",
+    "Panda": "FixedBaseRobot",
+    "Sawyer": "FixedBaseRobot",
+    "UR5e": "FixedBaseRobot",
+    "XArm7": "FixedBaseRobot",
+}
+
+# robosuite's part controller class names by type.
+_CONTROLLER_CLASSES = {
+    "OSC_POSE": "OperationalSpaceController",
+    "OSC_POSITION": "OperationalSpaceController",
+    "IK_POSE": "InverseKinematicsController",
+    "JOINT_POSITION": "JointPositionController",
+    "JOINT_VELOCITY": "JointVelocityController",
+    "JOINT_TORQUE": "JointTorqueController",
+}
+
+
+def _names(model: Any, kind: str, ids: list[int]) -> list[str]:
+    return [getattr(model, f"{kind}_id2name")(i) for i in ids]
+
+
+class RobotModel:
+    """robosuite's ``robot.robot_model``: the robot's names in the compiled scene."""
+
+    def __init__(self, name: str, index: int, joints: list[str], actuators: list[str]) -> None:
+        self.name = name
+        self.idn = index
+        self.naming_prefix = f"robot{index}_"
+        self.joints = joints
+        self.actuators = actuators
+
+    @property
+    def dof(self) -> int:
+        """The number of arm joints."""
+        return len(self.joints)
+
+    def __repr__(self) -> str:
+        return f"<RobotModel {self.name} prefix={self.naming_prefix!r}>"
+
+
+class GripperModel:
+    """robosuite's ``robot.gripper[arm]``: a gripper's names in the compiled scene."""
+
+    def __init__(self, name: str, prefix: str, joints: list[str], actuators: list[str], dof: int) -> None:
+        self.name = name
+        self.naming_prefix = prefix
+        self.joints = joints
+        self.actuators = actuators
+        self.dof = dof
+
+    def __repr__(self) -> str:
+        return f"<GripperModel {self.name} prefix={self.naming_prefix!r}>"
+
+
+class PartController:
+    """One part controller (``composite_controller.part_controllers[arm]``) with robosuite's
+    fields: ``name`` (its type, e.g. ``"OSC_POSE"``), ``ref_name`` (the end-effector site),
+    ``part_name``, ``control_dim``, ``input_type``, ``control_delta``, and its config."""
+
+    def __init__(self, kind: str, part_name: str, ref_name: str, control_dim: int, config: dict[str, Any]) -> None:
+        self.name = kind
+        self.part_name = part_name
+        self.ref_name = ref_name
+        self.control_dim = control_dim
+        self.config = config
+        self.input_type = config.get("input_type", "delta")
+        self.control_delta = self.input_type == "delta"
+        self.input_ref_frame = config.get("input_ref_frame", "base")
+
+    def __repr__(self) -> str:
+        return f"<{_CONTROLLER_CLASSES.get(self.name, self.name)} {self.part_name} ref={self.ref_name}>"
+
+
+class CompositeController:
+    """robosuite's ``robot.composite_controller``: its parts in robosuite's action order
+    (each arm's controller, then each arm's gripper)."""
+
+    def __init__(self, name: str, part_controllers: "OrderedDict[str, Any]", action_split: "OrderedDict[str, tuple[int, int]]") -> None:
+        self.name = name
+        self.part_controllers = part_controllers
+        self._action_split_indexes = action_split
+
+    @property
+    def action_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(low, high)`` of the robot's action."""
+        n = max((end for _, end in self._action_split_indexes.values()), default=0)
+        return -np.ones(n), np.ones(n)
+
+
+class Robot:
+    """A robot of the env (robosuite's ``env.robots[i]``)."""
+
+    def __init__(self, env: Any, info: dict[str, Any], model: Any, controller_config: dict[str, Any] | None) -> None:
+        self._env = env
+        index = info["index"]
+        self.name = info["name"]
+        self.robot_type = self.name
+        self.idn = index
+        self.init_qpos = np.array(info["init_qpos"])
+        self._joint_qpos = list(info["joint_qpos"])
+        self._joint_dofs = list(info["joint_dofs"])
+        self._action_low = np.array(info["action_low"])
+        self._action_high = np.array(info["action_high"])
+        jnt_qposadr = list(model.jnt_qposadr)
+        joints = [model.joint_id2name(jnt_qposadr.index(a)) for a in self._joint_qpos]
+        arm_actuators = [i for a in info["arms"] for i in a["actuators"]]
+        self.robot_model = RobotModel(self.name, index, joints, _names(model, "actuator", arm_actuators))
+        self.arms = [a["side"] for a in info["arms"]]
+        parts_cfg = (controller_config or {}).get("body_parts", {})
+        self.gripper: dict[str, GripperModel | None] = {}
+        part_controllers: OrderedDict[str, Any] = OrderedDict()
+        split: OrderedDict[str, tuple[int, int]] = OrderedDict()
+        at = 0
+        for a in info["arms"]:
+            side = a["side"]
+            cfg = parts_cfg.get(side, {}) if isinstance(parts_cfg, dict) else {}
+            ref = model.site_id2name(a["eef_site"])
+            part_controllers[side] = PartController(a["controller"], side, ref, a["controller_dim"], dict(cfg))
+            split[side] = (at, at + a["controller_dim"])
+            at += a["controller_dim"]
+        for a in info["arms"]:
+            side = a["side"]
+            if a["gripper"] is None:
+                self.gripper[side] = None
+                continue
+            g_joints = [model.joint_id2name(jnt_qposadr.index(q)) for q in a["gripper_qpos"]]
+            g_acts = _names(model, "actuator", a["gripper_actuators"])
+            prefix = g_acts[0].rsplit("_", 1)[0] + "_" if g_acts else f"gripper{index}_{side}_"
+            self.gripper[side] = GripperModel(a["gripper"], prefix, g_joints, g_acts, a["gripper_dim"])
+            part_controllers[f"{side}_gripper"] = PartController("GRIP", f"{side}_gripper", ref, a["gripper_dim"], {})
+            split[f"{side}_gripper"] = (at, at + a["gripper_dim"])
+            at += a["gripper_dim"]
+        self.part_controllers = part_controllers
+        self.composite_controller = CompositeController(
+            (controller_config or {}).get("type", "BASIC"), part_controllers, split
+        )
+
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom of the robot's joints (arms and grippers)."""
+        return len(self._joint_dofs) + sum(len(g.joints) for g in self.gripper.values() if g is not None)
+
+    @property
+    def action_dim(self) -> int:
+        """The robot's action dimension."""
+        return len(self._action_low)
+
+    @property
+    def action_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(low, high)`` of the robot's action."""
+        return self._action_low.copy(), self._action_high.copy()
+
+    @property
+    def _joint_positions(self) -> np.ndarray:
+        return self._env.sim.data.qpos[self._joint_qpos].copy()
+
+    def create_action_vector(self, action_dict: dict[str, Any]) -> np.ndarray:
+        """robosuite's ``create_action_vector``: the flat action from per-part values
+        (``{"right": ..., "right_gripper": ...}``); parts not given are zero.
+
+        Raises:
+            ValueError: for an unknown part or a value of the wrong length.
+        """
+        out = np.zeros(self.action_dim)
+        split = self.composite_controller._action_split_indexes
+        for part, value in action_dict.items():
+            if part not in split:
+                raise ValueError(f"unknown part {part!r}; parts: {list(split)}")
+            start, end = split[part]
+            value = np.asarray(value, dtype=np.float64).ravel()
+            if value.shape != (end - start,):
+                raise ValueError(f"part {part!r} takes {end - start} values, got {value.shape[0]}")
+            out[start:end] = value
+        return out
+
+    def print_action_info(self) -> None:
+        """Prints the action layout (robosuite's ``print_action_info``)."""
+        for part, (start, end) in self.composite_controller._action_split_indexes.items():
+            print(f"Action Dim for {part}: {start}:{end} ({end - start} dims)")
+
+    def print_action_info_dict(self) -> None:
+        """Prints the action layout as a dict."""
+        print({p: (s, e) for p, (s, e) in self.composite_controller._action_split_indexes.items()})
+
+    def set_robot_joint_positions(self, jpos: Any) -> None:
+        """robosuite's ``set_robot_joint_positions``: writes the arm joints' positions and
+        runs a forward pass.
+
+        Raises:
+            ValueError: for a wrong number of positions or a non-finite value.
+        """
+        jpos = np.asarray(jpos, dtype=np.float64).ravel()
+        if jpos.shape != (len(self._joint_qpos),):
+            raise ValueError(f"expected {len(self._joint_qpos)} joint positions, got {jpos.shape[0]}")
+        if not np.all(np.isfinite(jpos)):
+            raise ValueError("joint positions must be finite")
+        self._env.sim.data.qpos[self._joint_qpos] = jpos
+        self._env.sim.forward()
+
+    def __repr__(self) -> str:
+        return f"<Robot {self.name} idn={self.idn} action_dim={self.action_dim}>"
