@@ -85,98 +85,154 @@ class MjModel:
     def __dir__(self) -> list[str]:
         return sorted(set(super().__dir__()) | set(dir(self._model)))
 
-    def _name2id(self, kind: str, name: str) -> int:
-        table = object.__getattribute__(self, f"_{kind}_name2id")
-        if name not in table:
-            names = object.__getattribute__(self, f"{kind}_names")
-            raise ValueError(f'No "{kind}" with name {name} exists. Available "{kind}" names = {names}.')
-        return table[name]
-
-    def _id2name(self, kind: str, id: int) -> Any:
-        table = object.__getattribute__(self, f"_{kind}_id2name")
-        if id not in table:
-            raise ValueError(f"No {kind} with id {id} exists.")
-        return table[id]
+    def _missing(self, kind: str, name: Any) -> ValueError:
+        names = object.__getattribute__(self, f"{kind}_names")
+        return ValueError(f'No "{kind}" with name {name} exists. Available "{kind}" names = {names}.')
 
     def body_name2id(self, name: str) -> int:
         """The id of body ``name`` (``ValueError`` listing the names if there is none)."""
-        return self._name2id("body", name)
+        try:
+            return self._body_name2id[name]
+        except KeyError:
+            raise self._missing("body", name) from None
 
     def body_id2name(self, id: int) -> Any:
         """The name of body ``id``."""
-        return self._id2name("body", id)
+        try:
+            return self._body_id2name[id]
+        except KeyError:
+            raise ValueError(f"No body with id {id} exists.") from None
 
     def joint_name2id(self, name: str) -> int:
-        """The id of joint ``name``."""
-        return self._name2id("joint", name)
+        """The id of joint ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._joint_name2id[name]
+        except KeyError:
+            raise self._missing("joint", name) from None
 
     def joint_id2name(self, id: int) -> Any:
         """The name of joint ``id``."""
-        return self._id2name("joint", id)
+        try:
+            return self._joint_id2name[id]
+        except KeyError:
+            raise ValueError(f"No joint with id {id} exists.") from None
 
     def geom_name2id(self, name: str) -> int:
-        """The id of geom ``name``."""
-        return self._name2id("geom", name)
+        """The id of geom ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._geom_name2id[name]
+        except KeyError:
+            raise self._missing("geom", name) from None
 
     def geom_id2name(self, id: int) -> Any:
         """The name of geom ``id``."""
-        return self._id2name("geom", id)
+        try:
+            return self._geom_id2name[id]
+        except KeyError:
+            raise ValueError(f"No geom with id {id} exists.") from None
 
     def site_name2id(self, name: str) -> int:
-        """The id of site ``name``."""
-        return self._name2id("site", name)
+        """The id of site ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._site_name2id[name]
+        except KeyError:
+            raise self._missing("site", name) from None
 
     def site_id2name(self, id: int) -> Any:
         """The name of site ``id``."""
-        return self._id2name("site", id)
+        try:
+            return self._site_id2name[id]
+        except KeyError:
+            raise ValueError(f"No site with id {id} exists.") from None
 
     def light_name2id(self, name: str) -> int:
-        """The id of light ``name``."""
-        return self._name2id("light", name)
+        """The id of light ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._light_name2id[name]
+        except KeyError:
+            raise self._missing("light", name) from None
 
     def light_id2name(self, id: int) -> Any:
         """The name of light ``id``."""
-        return self._id2name("light", id)
+        try:
+            return self._light_id2name[id]
+        except KeyError:
+            raise ValueError(f"No light with id {id} exists.") from None
 
     def camera_name2id(self, name: str) -> int:
-        """The id of camera ``name`` (``"free"``: -1, the free camera)."""
-        return -1 if name == "free" else self._name2id("camera", name)
+        """The id of camera ``name`` (``"free"``: -1, the free camera; ``ValueError``
+        listing the names if there is none)."""
+        if name == "free":
+            return -1
+        try:
+            return self._camera_name2id[name]
+        except KeyError:
+            raise self._missing("camera", name) from None
 
     def camera_id2name(self, id: int) -> Any:
         """The name of camera ``id`` (-1: ``"free"``)."""
-        return "free" if id == -1 else self._id2name("camera", id)
+        if id == -1:
+            return "free"
+        try:
+            return self._camera_id2name[id]
+        except KeyError:
+            raise ValueError(f"No camera with id {id} exists.") from None
 
     def actuator_name2id(self, name: str) -> int:
-        """The id of actuator ``name``."""
-        return self._name2id("actuator", name)
+        """The id of actuator ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._actuator_name2id[name]
+        except KeyError:
+            raise self._missing("actuator", name) from None
 
     def actuator_id2name(self, id: int) -> Any:
         """The name of actuator ``id``."""
-        return self._id2name("actuator", id)
+        try:
+            return self._actuator_id2name[id]
+        except KeyError:
+            raise ValueError(f"No actuator with id {id} exists.") from None
 
     def sensor_name2id(self, name: str) -> int:
-        """The id of sensor ``name``."""
-        return self._name2id("sensor", name)
+        """The id of sensor ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._sensor_name2id[name]
+        except KeyError:
+            raise self._missing("sensor", name) from None
 
     def sensor_id2name(self, id: int) -> Any:
         """The name of sensor ``id``."""
-        return self._id2name("sensor", id)
+        try:
+            return self._sensor_id2name[id]
+        except KeyError:
+            raise ValueError(f"No sensor with id {id} exists.") from None
 
     def tendon_name2id(self, name: str) -> int:
-        """The id of tendon ``name``."""
-        return self._name2id("tendon", name)
+        """The id of tendon ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._tendon_name2id[name]
+        except KeyError:
+            raise self._missing("tendon", name) from None
 
     def tendon_id2name(self, id: int) -> Any:
         """The name of tendon ``id``."""
-        return self._id2name("tendon", id)
+        try:
+            return self._tendon_id2name[id]
+        except KeyError:
+            raise ValueError(f"No tendon with id {id} exists.") from None
 
     def mesh_name2id(self, name: str) -> int:
-        """The id of mesh ``name``."""
-        return self._name2id("mesh", name)
+        """The id of mesh ``name`` (``ValueError`` listing the names if there is none)."""
+        try:
+            return self._mesh_name2id[name]
+        except KeyError:
+            raise self._missing("mesh", name) from None
 
     def mesh_id2name(self, id: int) -> Any:
         """The name of mesh ``id``."""
-        return self._id2name("mesh", id)
+        try:
+            return self._mesh_id2name[id]
+        except KeyError:
+            raise ValueError(f"No mesh with id {id} exists.") from None
 
     def get_xml(self) -> str:
         """The scene as MJCF with the model's current values (what robomimic stores per
@@ -445,8 +501,15 @@ class MjSim:
             ValueError: for a state that is not flat, of the wrong length, or with a
                 non-finite value or a position or velocity beyond 1e6 (nothing is written).
         """
-        flat = np.asarray(self._native.check_flat_state(value))
-        nq = self.model.nq
+        flat = np.asarray(value, dtype=np.float64)
+        nq, nv = self.model.nq, self.model.nv
+        if flat.ndim != 1 or flat.shape[0] != 1 + nq + nv:
+            raise ValueError(
+                f"invalid argument `state`: expected a flat array of {1 + nq + nv} values "
+                f"[time, qpos, qvel], got shape {flat.shape}"
+            )
+        if not np.all(np.isfinite(flat)) or np.any(np.abs(flat[1:]) > 1e6):
+            flat = np.asarray(self._native.check_flat_state(flat))  # raises, naming the value
         self.data.time = float(flat[0])
         self.data.qpos[:] = flat[1 : 1 + nq]
         self.data.qvel[:] = flat[1 + nq :]
