@@ -34,6 +34,18 @@ impl From<String> for HandOverError {
     }
 }
 
+/// A flat `[time, qpos, qvel]` state from Python as float64 values.
+fn flat_state(state: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
+    let array = array_from_py(state)?;
+    if array.shape().len() != 1 {
+        return Err(PyValueError::new_err(format!(
+            "invalid argument `state`: expected a flat (1-D) array [time, qpos, qvel], got shape {:?}",
+            array.shape()
+        )));
+    }
+    Ok(array.cast(gym_core::DType::F64).to_f64_vec())
+}
+
 /// A robosuite environment as robosuite's Python API sees it. The Python class
 /// `robosuite_rs.RobosuiteEnv` delegates to it; `gym_env` builds the GymWrapper over the
 /// same (shared) environment.
@@ -242,14 +254,7 @@ impl PyRobosuiteEnv {
 
     /// Sets the flat simulator state `[time, qpos, qvel]` and runs `mj_forward`.
     fn set_state(&self, state: &Bound<'_, PyAny>) -> PyResult<()> {
-        let array = array_from_py(state)?;
-        if array.shape().len() != 1 {
-            return Err(PyValueError::new_err(format!(
-                "invalid argument `state`: expected a flat (1-D) array [time, qpos, qvel], got shape {:?}",
-                array.shape()
-            )));
-        }
-        let flat = array.cast(gym_core::DType::F64).to_f64_vec();
+        let flat = flat_state(state)?;
         self.lock().set_state(&flat).map_err(to_pyerr)
     }
 
@@ -395,14 +400,7 @@ impl PyRobosuiteEnv {
     /// Checks a flat state `[time, qpos, qvel]` for this model (robosuite's
     /// `set_state_from_flattened` input) without applying it.
     fn check_flat_state(&self, state: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
-        let array = array_from_py(state)?;
-        if array.shape().len() != 1 {
-            return Err(PyValueError::new_err(format!(
-                "invalid argument `state`: expected a flat (1-D) array [time, qpos, qvel], got shape {:?}",
-                array.shape()
-            )));
-        }
-        let flat = array.cast(gym_core::DType::F64).to_f64_vec();
+        let flat = flat_state(state)?;
         self.lock().sim().check_state(&flat).map_err(to_pyerr)?;
         Ok(flat)
     }
