@@ -398,6 +398,8 @@ impl Drop for Data {
             // SAFETY: dropped once; the model is this crate's.
             unsafe { ManuallyDrop::drop(&mut self.model) };
         }
+        // A handed-over model's memory is the other owner's; only mujoco-rs's small handle
+        // (its `Box`) is left unfreed, since dropping it would free that memory.
         // The other owners' handles are dropped after this: data first, then the model.
         drop(self.data_owner.take());
         drop(self.model_owner.take());
