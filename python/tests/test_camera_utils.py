@@ -24,6 +24,8 @@ import pytest
 from robosuite_rs.utils import camera_utils as CU
 from robosuite_rs.utils import transform_utils as T
 
+from .recorded import decode
+
 FIXTURE = Path(__file__).parent / "fixtures" / "robosuite_utils" / "camera_utils.json"
 DATA = json.loads(FIXTURE.read_text())
 
@@ -34,21 +36,6 @@ MOVER_TOL = 1e-6
 # robosuite names that need robosuite's env machinery (h5py demo files, XML resets,
 # DomainRandomizationWrapper); robosuite_rs does not provide them.
 NOT_PROVIDED = {"DemoPlaybackCameraMover"}
-
-
-def decode(x: Any) -> Any:
-    if isinstance(x, list):
-        return [decode(v) for v in x]
-    if isinstance(x, dict):
-        if "array" in x:
-            return np.array(x["array"], dtype=x["dtype"]).reshape(x["shape"])
-        if "scalar" in x:
-            return np.dtype(x["dtype"]).type(x["scalar"])
-        if "tuple" in x:
-            return tuple(decode(v) for v in x["tuple"])
-        return {k: decode(v) for k, v in x.items()}
-    return x
-
 
 def assert_array(ours: Any, ref: dict, tol: float = TOL, where: str = "") -> None:
     expected = decode(ref)

@@ -23,6 +23,8 @@ import pytest
 
 from robosuite_rs.utils import transform_utils as T
 
+from .recorded import decode
+
 FIXTURE = Path(__file__).parent / "fixtures" / "robosuite_utils" / "transform_utils.json"
 DATA = json.loads(FIXTURE.read_text())
 
@@ -50,26 +52,6 @@ FLOAT32_FUNCTIONS = {
 
 # numba's np.linalg.inv (robosuite) and NumPy's word "singular" differently.
 MESSAGE_DIFFERS = {"matrix_inverse"}
-
-
-def decode(x: Any) -> Any:
-    """Python/NumPy value of a fixture entry (format: scripts/record_utils.py)."""
-    if isinstance(x, list):
-        return [decode(v) for v in x]
-    if isinstance(x, dict):
-        if "array" in x:
-            return np.array(x["array"], dtype=x["dtype"]).reshape(x["shape"])
-        if "scalar" in x:
-            return np.dtype(x["dtype"]).type(x["scalar"])
-        if "tuple" in x:
-            return tuple(decode(v) for v in x["tuple"])
-        if "RandomState" in x:
-            return np.random.RandomState(x["RandomState"])
-        if "Generator" in x:
-            return np.random.default_rng(x["Generator"])
-        return {k: decode(v) for k, v in x.items()}
-    return x
-
 
 def has_float32(x: Any) -> bool:
     if isinstance(x, list):
