@@ -322,10 +322,9 @@ class RobosuiteEnv:
         """robosuite's ``MjSim`` over this env's own memory: ``sim.model._model`` and
         ``sim.data._data`` are a ``mujoco.MjModel`` and ``mujoco.MjData`` shared with the
         Rust env (see :mod:`robosuite_rs.binding_utils`)."""
-        from .binding_utils import MjSim
+        if self._sim is None:  # made on first use; reset_from_xml_string makes a new one
+            from .binding_utils import MjSim
 
-        model, data = self._native.sim_objects()
-        if self._sim is None or self._sim.model._model is not model or self._sim.data._data is not data:
             self._sim = MjSim(self._native)
         return self._sim
 

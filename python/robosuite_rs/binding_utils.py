@@ -62,6 +62,35 @@ def _names(model: mujoco.MjModel, count: str, obj: Any) -> tuple[tuple[Any, ...]
     return tuple(id2name[i] for i in sorted(name2id.values())), name2id, id2name
 
 
+def _lookups(kind: str) -> tuple[Any, Any]:
+    """``{kind}_name2id`` and ``{kind}_id2name`` with robosuite's errors (``ValueError``
+    listing the names); the camera's also map ``"free"`` and -1 to each other."""
+    free = kind == "camera"
+    by_name, by_id, names_key = f"_{kind}_name2id", f"_{kind}_id2name", f"{kind}_names"
+
+    def name2id(self: "MjModel", name: str) -> int:
+        if free and name == "free":
+            return -1
+        try:
+            return getattr(self, by_name)[name]
+        except KeyError:
+            names = getattr(self, names_key)
+            raise ValueError(f'No "{kind}" with name {name} exists. Available "{kind}" names = {names}.') from None
+
+    def id2name(self: "MjModel", id: int) -> Any:
+        if free and id == -1:
+            return "free"
+        try:
+            return getattr(self, by_id)[id]
+        except KeyError:
+            raise ValueError(f"No {kind} with id {id} exists.") from None
+
+    name2id.__name__, id2name.__name__ = f"{kind}_name2id", f"{kind}_id2name"
+    name2id.__doc__ = f"The id of {kind} ``name`` (``ValueError`` listing the names if there is none)."
+    id2name.__doc__ = f"The name of {kind} ``id``."
+    return name2id, id2name
+
+
 class MjModel:
     """robosuite's ``MjModel``: a ``mujoco.MjModel`` (``_model``) with mujoco-py's name
     lookups (``body_name2id``, ``site_id2name``, ``camera_names``, ...), ``get_xml`` and the
@@ -84,155 +113,6 @@ class MjModel:
 
     def __dir__(self) -> list[str]:
         return sorted(set(super().__dir__()) | set(dir(self._model)))
-
-    def _missing(self, kind: str, name: Any) -> ValueError:
-        names = object.__getattribute__(self, f"{kind}_names")
-        return ValueError(f'No "{kind}" with name {name} exists. Available "{kind}" names = {names}.')
-
-    def body_name2id(self, name: str) -> int:
-        """The id of body ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._body_name2id[name]
-        except KeyError:
-            raise self._missing("body", name) from None
-
-    def body_id2name(self, id: int) -> Any:
-        """The name of body ``id``."""
-        try:
-            return self._body_id2name[id]
-        except KeyError:
-            raise ValueError(f"No body with id {id} exists.") from None
-
-    def joint_name2id(self, name: str) -> int:
-        """The id of joint ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._joint_name2id[name]
-        except KeyError:
-            raise self._missing("joint", name) from None
-
-    def joint_id2name(self, id: int) -> Any:
-        """The name of joint ``id``."""
-        try:
-            return self._joint_id2name[id]
-        except KeyError:
-            raise ValueError(f"No joint with id {id} exists.") from None
-
-    def geom_name2id(self, name: str) -> int:
-        """The id of geom ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._geom_name2id[name]
-        except KeyError:
-            raise self._missing("geom", name) from None
-
-    def geom_id2name(self, id: int) -> Any:
-        """The name of geom ``id``."""
-        try:
-            return self._geom_id2name[id]
-        except KeyError:
-            raise ValueError(f"No geom with id {id} exists.") from None
-
-    def site_name2id(self, name: str) -> int:
-        """The id of site ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._site_name2id[name]
-        except KeyError:
-            raise self._missing("site", name) from None
-
-    def site_id2name(self, id: int) -> Any:
-        """The name of site ``id``."""
-        try:
-            return self._site_id2name[id]
-        except KeyError:
-            raise ValueError(f"No site with id {id} exists.") from None
-
-    def light_name2id(self, name: str) -> int:
-        """The id of light ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._light_name2id[name]
-        except KeyError:
-            raise self._missing("light", name) from None
-
-    def light_id2name(self, id: int) -> Any:
-        """The name of light ``id``."""
-        try:
-            return self._light_id2name[id]
-        except KeyError:
-            raise ValueError(f"No light with id {id} exists.") from None
-
-    def camera_name2id(self, name: str) -> int:
-        """The id of camera ``name`` (``"free"``: -1, the free camera; ``ValueError``
-        listing the names if there is none)."""
-        if name == "free":
-            return -1
-        try:
-            return self._camera_name2id[name]
-        except KeyError:
-            raise self._missing("camera", name) from None
-
-    def camera_id2name(self, id: int) -> Any:
-        """The name of camera ``id`` (-1: ``"free"``)."""
-        if id == -1:
-            return "free"
-        try:
-            return self._camera_id2name[id]
-        except KeyError:
-            raise ValueError(f"No camera with id {id} exists.") from None
-
-    def actuator_name2id(self, name: str) -> int:
-        """The id of actuator ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._actuator_name2id[name]
-        except KeyError:
-            raise self._missing("actuator", name) from None
-
-    def actuator_id2name(self, id: int) -> Any:
-        """The name of actuator ``id``."""
-        try:
-            return self._actuator_id2name[id]
-        except KeyError:
-            raise ValueError(f"No actuator with id {id} exists.") from None
-
-    def sensor_name2id(self, name: str) -> int:
-        """The id of sensor ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._sensor_name2id[name]
-        except KeyError:
-            raise self._missing("sensor", name) from None
-
-    def sensor_id2name(self, id: int) -> Any:
-        """The name of sensor ``id``."""
-        try:
-            return self._sensor_id2name[id]
-        except KeyError:
-            raise ValueError(f"No sensor with id {id} exists.") from None
-
-    def tendon_name2id(self, name: str) -> int:
-        """The id of tendon ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._tendon_name2id[name]
-        except KeyError:
-            raise self._missing("tendon", name) from None
-
-    def tendon_id2name(self, id: int) -> Any:
-        """The name of tendon ``id``."""
-        try:
-            return self._tendon_id2name[id]
-        except KeyError:
-            raise ValueError(f"No tendon with id {id} exists.") from None
-
-    def mesh_name2id(self, name: str) -> int:
-        """The id of mesh ``name`` (``ValueError`` listing the names if there is none)."""
-        try:
-            return self._mesh_name2id[name]
-        except KeyError:
-            raise self._missing("mesh", name) from None
-
-    def mesh_id2name(self, id: int) -> Any:
-        """The name of mesh ``id``."""
-        try:
-            return self._mesh_id2name[id]
-        except KeyError:
-            raise ValueError(f"No mesh with id {id} exists.") from None
 
     def get_xml(self) -> str:
         """The scene as MJCF with the model's current values (what robomimic stores per
@@ -257,6 +137,12 @@ class MjModel:
         """The ``qvel`` address of joint ``name``: an int for a 1-dof joint, else
         ``(start, end)``."""
         return self._joint_addr(name, self._model.jnt_dofadr, 6, 3)
+
+
+for _kind, _count, _obj in _OBJECTS:
+    _n2i, _i2n = _lookups(_kind)
+    setattr(MjModel, _n2i.__name__, _n2i)
+    setattr(MjModel, _i2n.__name__, _i2n)
 
 
 class MjData:

@@ -95,16 +95,22 @@ class CompositeController:
     """robosuite's ``robot.composite_controller``: its parts in robosuite's action order
     (each arm's controller, then each arm's gripper)."""
 
-    def __init__(self, name: str, part_controllers: "OrderedDict[str, Any]", action_split: "OrderedDict[str, tuple[int, int]]") -> None:
+    def __init__(
+        self,
+        name: str,
+        part_controllers: "OrderedDict[str, Any]",
+        action_split: "OrderedDict[str, tuple[int, int]]",
+        limits: tuple[np.ndarray, np.ndarray],
+    ) -> None:
         self.name = name
         self.part_controllers = part_controllers
         self._action_split_indexes = action_split
+        self._limits = limits
 
     @property
     def action_limits(self) -> tuple[np.ndarray, np.ndarray]:
         """``(low, high)`` of the robot's action."""
-        n = max((end for _, end in self._action_split_indexes.values()), default=0)
-        return -np.ones(n), np.ones(n)
+        return self._limits[0].copy(), self._limits[1].copy()
 
 
 class Robot:
@@ -152,7 +158,10 @@ class Robot:
             at += a["gripper_dim"]
         self.part_controllers = part_controllers
         self.composite_controller = CompositeController(
-            (controller_config or {}).get("type", "BASIC"), part_controllers, split
+            (controller_config or {}).get("type", "BASIC"),
+            part_controllers,
+            split,
+            (self._action_low, self._action_high),
         )
 
     @property
@@ -168,11 +177,7 @@ class Robot:
     @property
     def action_limits(self) -> tuple[np.ndarray, np.ndarray]:
         """``(low, high)`` of the robot's action."""
-        return self._action_low.copy(), self._action_high.copy()
-
-    @property
-    def _joint_positions(self) -> np.ndarray:
-        return self._env.sim.data.qpos[self._joint_qpos].copy()
+        return self.composite_controller.action_limits
 
     def create_action_vector(self, action_dict: dict[str, Any]) -> np.ndarray:
         """robosuite's ``create_action_vector``: the flat action from per-part values
