@@ -6,7 +6,7 @@ use crate::convert::{array_from_py, info_into_py, space_spec, value_into_py};
 use crate::errors::to_pyerr;
 use crate::pyenv::{PyEnv, extract_seed};
 use crate::shared::SharedEnv;
-use gym_core::{AnySpace, DictSpace, Env, IntoBoxedEnv, Value};
+use gym_core::{AnySpace, Env, IntoBoxedEnv, Value};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -53,7 +53,6 @@ fn flat_state(state: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 pub struct PyRobosuiteEnv {
     env: Arc<Mutex<RobosuiteEnv>>,
     name: String,
-    observation_space: DictSpace,
     action_low: Vec<f64>,
     action_high: Vec<f64>,
     shared: Mutex<Option<SharedSim>>,
@@ -62,7 +61,6 @@ pub struct PyRobosuiteEnv {
 impl PyRobosuiteEnv {
     /// Wraps `env`, made for the task `name`.
     pub fn new(env: RobosuiteEnv, name: &str) -> Self {
-        let observation_space = env.observation_space().clone();
         let act = env.action_space();
         let (action_low, action_high) = (
             act.low().iter().copied().collect(),
@@ -71,7 +69,6 @@ impl PyRobosuiteEnv {
         Self {
             env: Arc::new(Mutex::new(env)),
             name: name.to_owned(),
-            observation_space,
             action_low,
             action_high,
             shared: Mutex::new(None),
@@ -153,7 +150,8 @@ impl PyRobosuiteEnv {
 
     /// The observation space's description (a Dict).
     fn observation_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        space_spec(py, &AnySpace::Dict(self.observation_space.clone()))
+        let space = self.lock().observation_space().clone();
+        space_spec(py, &AnySpace::Dict(space))
     }
 
     /// The task name (`"Lift"`).
@@ -221,7 +219,7 @@ impl PyRobosuiteEnv {
     /// The keys robosuite's `GymWrapper` selects by default (`object-state`, the camera
     /// images, each robot's `proprio-state`), as `adapters::gym_wrapper::default_keys`.
     fn default_gym_keys(&self) -> Vec<String> {
-        adapters::gym_wrapper::default_keys(gym_core::Env::observation_space(&*self.lock()))
+        adapters::gym_wrapper::default_keys(self.lock().observation_space())
     }
 
     /// Whether object observations are included.
@@ -578,7 +576,7 @@ impl PyRobosuiteEnv {
             "RobosuiteEnv({}, action_dim={}, keys={})",
             self.name,
             self.action_low.len(),
-            self.observation_space.len()
+            self.lock().observation_keys().len()
         )
     }
 }

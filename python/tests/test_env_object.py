@@ -255,6 +255,7 @@ def test_observables_api():
     assert "robot0_joint_pos" not in obs2
     assert obs2["robot0_proprio-state"].shape[0] == obs["robot0_proprio-state"].shape[0] - 7
     assert "robot0_joint_pos" not in env.active_observables
+    assert "robot0_joint_pos" not in env.observation_keys()
     assert "robot0_joint_pos" not in env.step(np.zeros(7))[0]
     env.modify_observable("robot0_joint_pos", "active", True)
     assert env._get_observations()["robot0_proprio-state"].shape == obs["robot0_proprio-state"].shape
