@@ -160,6 +160,12 @@ def test_sim_render_camera_depth_and_segmentation():
     assert env.sim.model.geom_name2id("cube_g0_vis") in set(geoms.tolist())
     with pytest.raises(ValueError, match="camera"):
         env.sim.render(64, 48, camera_name="nope")
+    before = env.get_state()
+    for w, h in ((0, 48), (64, 5000)):
+        with pytest.raises(ValueError):
+            env.sim.render(w, h, camera_name="agentview")
+    np.testing.assert_array_equal(env.get_state(), before)
+    np.testing.assert_array_equal(env.sim.render(64, 48, camera_name="agentview"), rgb)
 
 
 # --- the XML round trip ------------------------------------------------------------------
