@@ -229,6 +229,14 @@ fn task_robot_count(env_name: &str) -> PyResult<usize> {
         .num_robots())
 }
 
+/// The robosuite task `env_name`'s own constructor arguments with their defaults, as JSON
+/// text (robosuite's names and values: lists as arrays, `None` as `null`).
+#[pyfunction]
+fn task_options(env_name: &str) -> PyResult<String> {
+    let spec = robosuite_env::make_task(env_name).map_err(to_pyerr)?;
+    Ok(serde_json::Value::Object(spec.options()).to_string())
+}
+
 /// The keyword arguments the Rust configuration accepts.
 #[pyfunction]
 fn config_keys() -> Vec<String> {
@@ -302,6 +310,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(robosuite_env_names, m)?)?;
     m.add_function(wrap_pyfunction!(task_robot_count, m)?)?;
     m.add_function(wrap_pyfunction!(config_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(task_options, m)?)?;
     m.add_function(wrap_pyfunction!(load_composite_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(load_part_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(part_controller_types, m)?)?;

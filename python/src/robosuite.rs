@@ -6,7 +6,7 @@ use crate::convert::{array_from_py, info_into_py, space_spec, value_into_py};
 use crate::errors::to_pyerr;
 use crate::pyenv::{PyEnv, extract_seed};
 use crate::shared::SharedEnv;
-use gym_core::{AnySpace, Env, IntoBoxedEnv, Value};
+use gym_core::{AnySpace, Env, Info, IntoBoxedEnv, Value};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -116,6 +116,62 @@ impl PyRobosuiteEnv {
             done,
             info_into_py(py, &step.info)?,
         ))
+    }
+
+    /// Starts an env step taken one substep at a time (for observables sampled between
+    /// substeps): checks the action and the episode's phase (an error changes nothing).
+    fn step_begin(&self, py: Python<'_>, action: &Bound<'_, PyAny>) -> PyResult<()> {
+        let action = array_from_py(action)?.cast(gym_core::DType::F64);
+        let action = action
+            .to_typed::<f64>()
+            .map_err(|e| PyValueError::new_err(format!("invalid action: {e}")))?;
+        py.detach(|| self.lock().begin_step(&action))
+            .map_err(to_pyerr)
+    }
+
+    /// Runs the next substep of the step under way (`sensors`: compute MuJoCo's sensors);
+    /// returns whether it was the last.
+    fn step_substep(&self, py: Python<'_>, sensors: bool) -> PyResult<bool> {
+        py.detach(|| self.lock().substep(sensors)).map_err(to_pyerr)
+    }
+
+    /// Ends the step under way: `(obs, reward, done, info)` as `step` returns them.
+    fn step_end<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, f64, bool, Bound<'py, PyDict>)> {
+        let (obs, transition, success) = py
+            .detach(|| {
+                let mut env = self.lock();
+                let (transition, success) = env.finish_step()?;
+                Ok::<_, gym_core::Error>((env.observation(), transition, success))
+            })
+            .map_err(to_pyerr)?;
+        let info = Info::new().with("success", success);
+        Ok((
+            value_into_py(py, Value::Dict(obs), true)?,
+            transition.reward,
+            transition.terminated || transition.truncated,
+            info_into_py(py, &info)?,
+        ))
+    }
+
+    /// The task's constructor arguments it was built with, as JSON text.
+    #[getter]
+    fn task_options(&self) -> String {
+        serde_json::Value::Object(self.lock().task_options().clone()).to_string()
+    }
+
+    /// The number of physics substeps of an env step.
+    #[getter]
+    fn substeps(&self) -> usize {
+        self.lock().substeps()
+    }
+
+    /// MuJoCo's timestep (robosuite's `model_timestep`), in seconds.
+    #[getter]
+    fn model_timestep(&self) -> f64 {
+        self.lock().sim().model().opt().timestep
     }
 
     /// `(low, high)`: the action bounds as float64 arrays.

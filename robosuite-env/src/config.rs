@@ -7,6 +7,7 @@ use crate::controllers::config::load_part_controller_config;
 use crate::models::grippers::gripper_info;
 use crate::models::robots::{GripperChoice, robot_info};
 use crate::robots::{InitNoise, NoiseKind};
+use crate::tasks::TaskOptions;
 use gym_core::{Error, Info, InfoValue, Result};
 
 /// robosuite's environment arguments that this crate supports.
@@ -51,6 +52,15 @@ pub struct EnvConfig {
     pub cameras: CameraConfig,
     /// How the robots are set up (robosuite's `env_configuration`; default `Default`).
     pub env_configuration: EnvConfiguration,
+    /// robosuite's `lite_physics` (default true): each substep is `mj_step1`, control,
+    /// `mj_step2`; `false` runs `mj_forward`, control, `mj_step` as robosuite ≤ 1.4.1 did
+    /// (for datasets recorded then; about twice the physics cost).
+    pub lite_physics: bool,
+    /// The task's own constructor arguments by robosuite's names (Lift's
+    /// `table_full_size`, Door's `use_latch`, Wipe's `task_config`, PickPlace's
+    /// `single_object_mode`, ...), checked against the task when the env is made; see
+    /// [`TaskSpec::options`](crate::tasks::TaskSpec::options).
+    pub task_options: TaskOptions,
 }
 
 /// robosuite's `env_configuration`: how a two-arm task sets up its robots.
@@ -127,6 +137,8 @@ impl Default for EnvConfig {
             seed: None,
             env_configuration: EnvConfiguration::Default,
             cameras: CameraConfig::default(),
+            lite_physics: true,
+            task_options: TaskOptions::new(),
         }
     }
 }
@@ -147,6 +159,8 @@ pub const CONFIG_KEYS: &[&str] = &[
     "controller_configs",
     "controller",
     "env_configuration",
+    "lite_physics",
+    "task_options",
     "use_camera_obs",
     "has_offscreen_renderer",
     "camera_names",
@@ -291,6 +305,29 @@ impl EnvConfig {
     #[must_use]
     pub fn with_ignore_done(mut self, on: bool) -> Self {
         self.ignore_done = on;
+        self
+    }
+
+    /// Sets one of the task's constructor arguments by robosuite's name (see
+    /// [`EnvConfig::task_options`]).
+    ///
+    /// ```
+    /// use robosuite_env::EnvConfig;
+    /// let config = EnvConfig::default().with_task_option("use_latch", false);
+    /// let mut env = robosuite_env::make_with("Door", config)?;
+    /// assert_eq!(env.task_options()["use_latch"], false);
+    /// # Ok::<(), gym_core::Error>(())
+    /// ```
+    #[must_use]
+    pub fn with_task_option(mut self, name: &str, value: impl Into<serde_json::Value>) -> Self {
+        self.task_options.insert(name.to_owned(), value.into());
+        self
+    }
+
+    /// Sets robosuite's `lite_physics` (see [`EnvConfig::lite_physics`]).
+    #[must_use]
+    pub fn with_lite_physics(mut self, on: bool) -> Self {
+        self.lite_physics = on;
         self
     }
 
@@ -447,6 +484,15 @@ impl EnvConfig {
                 }
                 "reward_shaping" => c.reward_shaping = Some(boolean(key, v)?),
                 "ignore_done" => c.ignore_done = boolean(key, v)?,
+                "lite_physics" => c.lite_physics = boolean(key, v)?,
+                "task_options" => match v {
+                    InfoValue::Str(text) => {
+                        c.task_options = serde_json::from_str(text).map_err(|e| {
+                            Error::invalid_argument(key, format!("not a JSON object: {e}"))
+                        })?
+                    }
+                    other => return Err(kind(key, "a JSON object as text", other)),
+                },
                 "use_object_obs" => c.use_object_obs = boolean(key, v)?,
                 "seed" => c.seed = Some(unsigned(key, v)?),
                 "initialization_noise_magnitude" => {

@@ -11,7 +11,7 @@ use crate::models::scene::{Scene, compile_cached_with_source};
 use crate::observables::{ObsLayout, ObsSpec, total_len};
 use crate::robots::{Robot, RobotState};
 use crate::sim::Sim;
-use crate::tasks::{RewardConfig, Task, TaskScene, TaskSpec};
+use crate::tasks::{RewardConfig, Task, TaskOptions, TaskScene, TaskSpec, configured};
 use gym_core::{
     BoxSpace, DictSpace, DictValue, EnvRng, Error, Frame, Info, Metadata, RenderMode, ResetOptions,
     Result, Step, Transition, entropy_seed, rng_from_seed,
@@ -98,11 +98,16 @@ pub struct RobosuiteEnv {
     buf: Vec<f64>,
     action_buf: Vec<f64>,
     substeps: usize,
+    /// The next substep of an env step taken one substep at a time
+    /// ([`RobosuiteEnv::begin_step`]); `None` when no such step is under way.
+    split_step: Option<usize>,
     timestep: u64,
     phase: Phase,
     cameras: Option<CameraRig>,
     /// The MJCF text the model was compiled from (shared by envs of one scene).
     source_xml: Arc<str>,
+    /// The task's constructor arguments it was built with.
+    task_options: TaskOptions,
     /// Every observable that exists (with `use_object_obs`'s choice applied), in order.
     obs_specs: Vec<ObsSpec>,
     /// Per observable of `obs_specs`: enabled, active (robosuite's two flags).
@@ -195,7 +200,8 @@ fn segment_groups(composed: &Composed) -> Vec<crate::camera_rig::SegmentGroup> {
 /// # Errors
 /// As [`RobosuiteEnv::new`].
 pub fn compose_scene(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Scene> {
-    Ok(compose(spec, config, assets)?.scene)
+    let spec = configured(spec, config)?;
+    Ok(compose(spec.as_ref(), config, assets)?.scene)
 }
 
 fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Composed> {
@@ -243,10 +249,18 @@ impl RobosuiteEnv {
     /// values); [`Error::Model`] when robosuite's model files are missing or MuJoCo rejects
     /// the scene.
     pub fn new(spec: &dyn TaskSpec, config: EnvConfig) -> Result<Self> {
+        let spec = configured(spec, &config)?;
         let assets = Assets::locate()?;
-        let composed = compose(spec, &config, &assets)?;
+        let composed = compose(spec.as_ref(), &config, &assets)?;
         let (model, source) = composed.scene.compile_with_source(spec.memory())?;
-        Self::from_model(spec, composed, model, source, config, ModelSource::Composed)
+        Self::from_model(
+            spec.as_ref(),
+            composed,
+            model,
+            source,
+            config,
+            ModelSource::Composed,
+        )
     }
 
     /// Builds the task `spec` on a caller-supplied scene MJCF that follows robosuite's names
@@ -260,6 +274,8 @@ impl RobosuiteEnv {
     /// [`Error::Model`] when the XML does not load or lacks a name the task needs;
     /// [`Error::InvalidArgument`] for an invalid configuration.
     pub fn from_scene_xml(spec: &dyn TaskSpec, xml: &str, config: EnvConfig) -> Result<Self> {
+        let spec = configured(spec, &config)?;
+        let spec = spec.as_ref();
         let assets = Assets::locate()?;
         let composed = compose(spec, &config, &assets)?;
         if xml.contains('\0') {
@@ -383,6 +399,7 @@ impl RobosuiteEnv {
             None => (rng_from_seed(0), false),
         };
         let buf = vec![0.0; task_range.end];
+        let task_options = spec.options();
         Ok(Self {
             sim: Sim::new(model)?,
             robots,
@@ -401,10 +418,12 @@ impl RobosuiteEnv {
             buf,
             action_buf: Vec::with_capacity(dim),
             substeps,
+            split_step: None,
             timestep: 0,
             phase: Phase::NeedsReset,
             cameras,
             source_xml,
+            task_options,
             obs_specs,
             obs_flags,
             #[cfg(feature = "render")]
@@ -458,6 +477,12 @@ impl RobosuiteEnv {
         self.task.as_ref()
     }
 
+    /// The task's constructor arguments by robosuite's names, as the env was built with
+    /// them (see [`TaskSpec::options`]).
+    pub fn task_options(&self) -> &TaskOptions {
+        &self.task_options
+    }
+
     /// Whether the model was composed by this crate or supplied by the caller.
     pub fn model_source(&self) -> ModelSource {
         self.source
@@ -509,6 +534,7 @@ impl RobosuiteEnv {
             }
             return Err(e);
         }
+        self.split_step = None;
         self.observe()
     }
 
@@ -600,6 +626,7 @@ impl RobosuiteEnv {
         self.buf.copy_from_slice(&snapshot.observation);
         self.observe_cameras()?;
         self.timestep = snapshot.timestep;
+        self.split_step = None;
         self.phase = if snapshot.phase == Phase::Closed {
             Phase::NeedsReset
         } else {
@@ -665,6 +692,7 @@ impl RobosuiteEnv {
 
     /// The end of every reset: episode counter 0, running, a first observation.
     fn begin_episode(&mut self) -> Result<(DictValue, Info)> {
+        self.split_step = None;
         self.timestep = 0;
         self.observe()?;
         self.phase = Phase::Running;
@@ -692,24 +720,96 @@ impl RobosuiteEnv {
     /// One env step without its observation: checks the order and the action, simulates,
     /// then rewards, task updates and end flags. Returns the transition and `success`.
     fn advance(&mut self, action: &ArrayD<f64>) -> Result<(Transition, bool)> {
+        self.begin_step(action)?;
+        for sub in 0..self.substeps {
+            // Sensors are read only after an env step (and at its first substep, before
+            // `mj_step2`), so only the last substep computes them.
+            self.substep(sub + 1 == self.substeps)?;
+        }
+        self.finish_step()
+    }
+}
+
+/// An env step taken one substep at a time, for callers that read the simulation between
+/// substeps (robosuite's observables sample at their own rate, on whichever substep their
+/// timer falls). [`RobosuiteEnv::begin_step`], then [`RobosuiteEnv::substep`] until it
+/// returns `true`, then [`RobosuiteEnv::finish_step`] is exactly one
+/// [`Env::step`](gym_core::Env::step): the same trajectory, bit for bit.
+impl RobosuiteEnv {
+    /// Starts an env step with `action`: checks the episode's phase and the action (an
+    /// error changes nothing), then counts the step. A reset, `set_state` or `restore`
+    /// abandons a step under way.
+    ///
+    /// # Errors
+    /// [`Error::Closed`], [`Error::ResetNeeded`], [`Error::EpisodeEnded`],
+    /// [`Error::InvalidAction`] as for a step; [`Error::InvalidArgument`] when a step is
+    /// already under way.
+    pub fn begin_step(&mut self, action: &ArrayD<f64>) -> Result<()> {
         match self.phase {
             Phase::Closed => return Err(Error::Closed),
             Phase::NeedsReset => return Err(Error::ResetNeeded),
             Phase::Ended => return Err(Error::EpisodeEnded),
             Phase::Running => {}
         }
+        if self.split_step.is_some() {
+            return Err(Error::invalid_argument(
+                "begin_step",
+                "a step is under way: run its substeps and finish_step first",
+            ));
+        }
         self.check_action(action)?;
-        let mut flat = std::mem::take(&mut self.action_buf);
-        flat.clear();
-        flat.extend(action.iter().copied());
+        self.action_buf.clear();
+        self.action_buf.extend(action.iter().copied());
         self.timestep += 1;
-        let simulated = self.simulate(&flat);
-        self.action_buf = flat;
-        if let Err(e) = simulated {
+        self.sim.clear_divergence();
+        self.split_step = Some(0);
+        Ok(())
+    }
+
+    /// Runs the next physics substep of the step under way (robosuite's
+    /// `sim.step1(); _pre_action(action, policy_step); sim.step2()`, or with
+    /// `lite_physics=False` `sim.forward(); _pre_action(...); sim.step()`). `sensors`:
+    /// whether MuJoCo's sensors are computed (they feed nothing back into the dynamics).
+    /// Returns whether this was the step's last substep.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when no step is under way or its substeps are done;
+    /// [`Error::Simulation`] when MuJoCo raised an error or the simulation diverged (the
+    /// episode then needs a reset).
+    pub fn substep(&mut self, sensors: bool) -> Result<bool> {
+        let sub = match self.split_step {
+            Some(sub) if sub < self.substeps => sub,
+            _ => {
+                return Err(Error::invalid_argument(
+                    "substep",
+                    "no substep is due: call begin_step first (finish_step after the last)",
+                ));
+            }
+        };
+        let result = self.run_substep(sub, sensors);
+        if let Err(e) = result {
             // A MuJoCo error or a diverged simulation: the episode cannot go on.
+            self.split_step = None;
             self.phase = Phase::NeedsReset;
             return Err(e);
         }
+        self.split_step = Some(sub + 1);
+        Ok(sub + 1 == self.substeps)
+    }
+
+    /// Ends the step under way after its last substep: observations, reward, the task's
+    /// updates and the end flags. Returns the transition and `success`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] when substeps remain or no step is under way.
+    pub fn finish_step(&mut self) -> Result<(Transition, bool)> {
+        if self.split_step != Some(self.substeps) {
+            return Err(Error::invalid_argument(
+                "finish_step",
+                "the step's substeps are not all run (or no step is under way)",
+            ));
+        }
+        self.split_step = None;
         // robosuite samples its observables on the last substep, before `_post_action`
         // computes the reward (which updates Wipe's wiped markers).
         self.observe()?;
@@ -731,31 +831,31 @@ impl RobosuiteEnv {
         Ok((transition, success))
     }
 
-    /// Runs one env step's physics for a checked action, stopping at the first substep in
-    /// which MuJoCo raised an error or found the simulation diverged.
-    fn simulate(&mut self, action: &[f64]) -> Result<()> {
-        self.sim.clear_divergence();
-        for sub in 0..self.substeps {
+    /// Runs substep `sub` of the step under way.
+    fn run_substep(&mut self, sub: usize, sensors: bool) -> Result<()> {
+        let lite = self.config.lite_physics;
+        if lite {
             self.sim.step1()?;
-            for (robot, split) in self.robots.iter_mut().zip(&self.action_splits) {
-                if sub == 0 {
-                    robot.set_goal(&self.sim, &action[split.clone()]);
-                }
-                robot.apply_control(&mut self.sim);
-            }
-            if sub == 0 {
-                self.task.on_policy_step(&self.sim, &self.robots);
-            }
-            // Sensors are read only after an env step (and at its first substep, before
-            // `mj_step2`), so only the last substep computes them.
-            if sub + 1 == self.substeps {
-                self.sim.step2()?;
-            } else {
-                self.sim.step2_without_sensors()?;
-            }
-            self.sim.check_diverged()?;
+        } else {
+            self.sim.forward()?;
         }
-        Ok(())
+        for (robot, split) in self.robots.iter_mut().zip(&self.action_splits) {
+            if sub == 0 {
+                robot.set_goal(&self.sim, &self.action_buf[split.clone()]);
+            }
+            robot.apply_control(&mut self.sim);
+        }
+        if sub == 0 {
+            self.task.on_policy_step(&self.sim, &self.robots);
+        }
+        if !lite {
+            self.sim.step()?;
+        } else if sensors {
+            self.sim.step2()?;
+        } else {
+            self.sim.step2_without_sensors()?;
+        }
+        self.sim.check_diverged()
     }
 }
 

@@ -335,9 +335,10 @@ impl ObjectSensors {
 }
 
 /// robosuite's `single_object_mode` for PickPlace and NutAssembly.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ObjectMode {
     /// Mode 0: every object is in play.
+    #[default]
     All,
     /// Mode 1: one object, drawn from the env RNG at every reset; the others are parked.
     RandomSingle,

@@ -3,6 +3,7 @@
 
 use super::common::{dist, eef_pos, scale_reward, sub};
 use super::lift::single_robot_table;
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -17,7 +18,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use std::f64::consts::PI;
 
 /// Door's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct DoorSpec {
     /// Whether the handle latches the door (robosuite's `use_latch`, default true): the
     /// door comes from `objects/door_lock.xml` instead of `objects/door.xml`, the reward
@@ -70,6 +71,15 @@ fn door_object(assets: &Assets, use_latch: bool) -> Result<ObjectModel> {
 }
 
 impl TaskSpec for DoorSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "Door"
     }

@@ -1,6 +1,7 @@
 //! robosuite's `Lift`: lift a small box off the table (`environments/manipulation/lift.py`).
 
 use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward, wood_material};
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -16,7 +17,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
 
 /// Lift's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LiftSpec {
     /// The table's full size (default 0.8 × 0.8 × 0.05).
     pub table_full_size: [f64; 3],
@@ -92,6 +93,15 @@ pub(crate) fn single_robot_table(
 }
 
 impl TaskSpec for LiftSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "Lift"
     }

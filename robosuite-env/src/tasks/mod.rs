@@ -12,6 +12,7 @@ mod door;
 mod lift;
 pub mod mode_objects;
 mod nut_assembly;
+pub mod options;
 mod pick_place;
 pub mod placement;
 mod stack;
@@ -26,6 +27,7 @@ mod wipe;
 pub use door::{Door, DoorSpec};
 pub use lift::{Lift, LiftSpec};
 pub use nut_assembly::{NUTS, NutAssembly, NutAssemblySpec};
+pub use options::TaskOptions;
 pub use pick_place::{PICK_PLACE_OBJECTS, PickPlace, PickPlaceSpec};
 pub use stack::{CUBE_A_HALF, CUBE_B_HALF, Stack, StackSpec};
 pub use tool_hang::{ToolHang, ToolHangSpec};
@@ -70,9 +72,28 @@ pub struct TaskScene {
 }
 
 /// A task's configuration: robosuite's environment class before `_load_model`.
-pub trait TaskSpec: Send + Sync + std::fmt::Debug {
+pub trait TaskSpec: TaskSpecClone + Send + Sync + std::fmt::Debug {
     /// robosuite's environment name, such as `"Lift"`.
     fn name(&self) -> &str;
+
+    /// The task's robosuite constructor arguments as they stand, by robosuite's names
+    /// (Lift: `table_full_size`, `table_friction`); empty for a task that takes none.
+    fn options(&self) -> TaskOptions {
+        TaskOptions::new()
+    }
+
+    /// Sets robosuite constructor arguments by name (see [`TaskSpec::options`]); the values
+    /// are checked when the scene is built.
+    ///
+    /// # Errors
+    /// [`gym_core::Error::InvalidArgument`] naming an argument the task does not take
+    /// (listing those it takes) or a value of the wrong type; the task is unchanged then.
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        match options.keys().next() {
+            None => Ok(()),
+            Some(key) => Err(options::unknown(self.name(), key, std::iter::empty())),
+        }
+    }
 
     /// The number of robots the task takes by default (a Panda each when
     /// [`crate::EnvConfig::robots`] is empty); [`TaskSpec::check_robots`] says what else it
@@ -276,4 +297,29 @@ pub trait Task: Send + std::fmt::Debug {
             ))
         }
     }
+}
+
+/// Copying a boxed [`TaskSpec`] (implemented for every `TaskSpec` that is `Clone`).
+pub trait TaskSpecClone {
+    /// A copy of this task's configuration.
+    fn clone_box(&self) -> Box<dyn TaskSpec>;
+}
+
+impl<T: TaskSpec + Clone + 'static> TaskSpecClone for T {
+    fn clone_box(&self) -> Box<dyn TaskSpec> {
+        Box::new(self.clone())
+    }
+}
+
+/// `spec` with `config`'s task arguments ([`crate::EnvConfig::task_options`]) applied.
+///
+/// # Errors
+/// As [`TaskSpec::configure`].
+pub(crate) fn configured(
+    spec: &dyn TaskSpec,
+    config: &crate::EnvConfig,
+) -> Result<Box<dyn TaskSpec>> {
+    let mut spec = spec.clone_box();
+    spec.configure(&config.task_options)?;
+    Ok(spec)
 }

@@ -5,6 +5,7 @@
 use super::common::{
     FreeBody, ObjectMode, ObjectSensors, PARKED_POS, PoseRef, dist, robot0_grasps,
 };
+use super::options::{self, TaskOptions};
 use crate::models::objects::ObjectModel;
 use crate::observables::Observable;
 use crate::robots::Robot;
@@ -21,6 +22,88 @@ pub const GRASP_MULT: f64 = 0.35;
 pub const LIFT_MULT: f64 = 0.5;
 /// robosuite's `hover_mult`: the largest hovering reward.
 pub const HOVER_MULT: f64 = 0.7;
+
+/// robosuite's `single_object_mode` and `type_key` (`object_type`, `nut_type`) arguments
+/// of a task whose objects are named `types` (robosuite's lower-case names, by id): the
+/// mode they select, taken out of `options`. Only the base task (`PickPlace`,
+/// `NutAssembly`) takes them; its registered variants fix them, as robosuite's subclasses.
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for a mode other than 0, 1, 2, an unknown type, mode 2
+/// without a type, or these arguments given to a variant.
+pub(crate) fn take_mode(
+    task: &str,
+    base: Option<ObjectMode>,
+    type_key: &str,
+    types: &[&str],
+    options: &mut TaskOptions,
+) -> Result<Option<ObjectMode>> {
+    let number: Option<u8> = options::take(options, "single_object_mode")?;
+    let kind: Option<Option<String>> = options::take(options, type_key)?;
+    let Some(current) = base else {
+        return match (number, kind) {
+            (None, None) => Ok(None),
+            _ => Err(Error::invalid_argument(
+                "single_object_mode",
+                format!("{task} fixes single_object_mode and {type_key}"),
+            )),
+        };
+    };
+    if number.is_none() && kind.is_none() {
+        return Ok(None);
+    }
+    let id = match kind.flatten() {
+        None => None,
+        Some(name) => Some(types.iter().position(|t| *t == name).ok_or_else(|| {
+            Error::invalid_argument(
+                type_key,
+                format!("unknown {type_key} `{name}`; valid: {}", types.join(", ")),
+            )
+        })?),
+    };
+    let number = number.unwrap_or(current.number());
+    let mode = match (number, id) {
+        (0, _) => ObjectMode::All,
+        (1, _) => ObjectMode::RandomSingle,
+        (2, Some(i)) => ObjectMode::Single(i),
+        (2, None) => match current {
+            ObjectMode::Single(i) => ObjectMode::Single(i),
+            _ => {
+                return Err(Error::invalid_argument(
+                    type_key,
+                    format!(
+                        "single_object_mode=2 needs {type_key}: one of {}",
+                        types.join(", ")
+                    ),
+                ));
+            }
+        },
+        (other, _) => {
+            return Err(Error::invalid_argument(
+                "single_object_mode",
+                format!(
+                    "must be 0 (all objects), 1 (one drawn per reset) or 2 (one fixed), got {other}"
+                ),
+            ));
+        }
+    };
+    Ok(Some(mode))
+}
+
+/// Adds `single_object_mode` and `type_key` for `mode` to `options` (see [`take_mode`]).
+pub(crate) fn put_mode(
+    mode: ObjectMode,
+    type_key: &str,
+    types: &[&str],
+    options: &mut TaskOptions,
+) {
+    options.insert("single_object_mode".into(), mode.number().into());
+    let kind = match mode {
+        ObjectMode::Single(i) => types.get(i).map(|t| (*t).into()),
+        _ => None,
+    };
+    options.insert(type_key.into(), kind.unwrap_or(serde_json::Value::Null));
+}
 
 /// The objects of a task with robosuite's `single_object_mode`.
 ///

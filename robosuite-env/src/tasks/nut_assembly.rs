@@ -4,6 +4,8 @@
 use super::common::{ObjectMode, dist, eef_pos};
 use super::lift::place_single_robot;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
+use super::mode_objects::{put_mode, take_mode};
+use super::options::{self, TaskOptions};
 use super::placement::{
     Axis, PlacedObject, Rotation, SequentialCompositeSampler, UniformRandomSampler,
 };
@@ -31,9 +33,13 @@ const SINGLE_VARIANTS: [&str; 2] = ["NutAssemblySquare", "NutAssemblyRound"];
 const NUT_Y_RANGES: [[f64; 2]; 2] = [[0.11, 0.225], [-0.225, -0.11]];
 
 /// NutAssembly's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NutAssemblySpec {
+    #[serde(skip)]
     mode: ObjectMode,
+    /// A registered variant (robosuite's subclasses) fixes the mode.
+    #[serde(skip)]
+    fixed_mode: bool,
     /// The table's full size (default 0.8 × 0.8 × 0.05).
     pub table_full_size: [f64; 3],
     /// The table's friction (default `(1, 0.005, 0.0001)`).
@@ -46,6 +52,7 @@ impl Default for NutAssemblySpec {
     fn default() -> Self {
         Self {
             mode: ObjectMode::All,
+            fixed_mode: false,
             table_full_size: [0.8, 0.8, 0.05],
             table_friction: [1.0, 5e-3, 1e-4],
             table_offset: [0.0, 0.0, 0.82],
@@ -54,6 +61,47 @@ impl Default for NutAssemblySpec {
 }
 
 impl NutAssemblySpec {
+    /// robosuite's `nut_type` names, by object id.
+    const TYPES: &'static [&'static str] = &["square", "round"];
+
+    /// robosuite's constructor arguments (see [`TaskSpec::options`]); the base task also
+    /// lists `single_object_mode` and `nut_type`.
+    fn task_options(&self) -> TaskOptions {
+        let mut out = options::to_options(self);
+        if !self.fixed_mode {
+            put_mode(self.mode, "nut_type", Self::TYPES, &mut out);
+        }
+        out
+    }
+
+    /// Sets robosuite's constructor arguments (see [`TaskSpec::configure`]).
+    fn set_task_options(&mut self, given: &TaskOptions) -> Result<()> {
+        let mut rest = given.clone();
+        let base = (!self.fixed_mode).then_some(self.mode);
+        let mode =
+            take_mode(self.name(), base, "nut_type", Self::TYPES, &mut rest)?.unwrap_or(self.mode);
+        let mut next: Self = options::merged(self.name(), self, &rest).map_err(|e| {
+            // An unknown name lists the mode arguments too.
+            match (&e, base) {
+                (Error::InvalidArgument { name, .. }, Some(_))
+                    if !self.task_options().contains_key(name) =>
+                {
+                    options::unknown(
+                        self.name(),
+                        name,
+                        self.task_options().keys().map(String::as_str),
+                    )
+                }
+                _ => e,
+            }
+        })?;
+        next.mode = mode;
+        next.fixed_mode = self.fixed_mode;
+        Self::new(mode)?;
+        *self = next;
+        Ok(())
+    }
+
     /// robosuite's defaults in `mode` (robosuite's `single_object_mode` and `nut_type`:
     /// [`ObjectMode::Single`] takes the nut id, square 0, round 1).
     ///
@@ -82,7 +130,10 @@ impl NutAssemblySpec {
             "NutAssemblySingle" => ObjectMode::RandomSingle,
             _ => ObjectMode::Single(SINGLE_VARIANTS.iter().position(|v| *v == name)?),
         };
-        Self::new(mode).ok()
+        Some(Self {
+            fixed_mode: name != "NutAssembly",
+            ..Self::new(mode).ok()?
+        })
     }
 
     /// The single-object mode.
@@ -118,6 +169,14 @@ impl NutAssemblySpec {
 }
 
 impl TaskSpec for NutAssemblySpec {
+    fn options(&self) -> TaskOptions {
+        self.task_options()
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        self.set_task_options(options)
+    }
+
     fn name(&self) -> &str {
         match self.mode {
             ObjectMode::All => "NutAssembly",

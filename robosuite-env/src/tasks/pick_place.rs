@@ -4,6 +4,8 @@
 use super::common::{ObjectMode, dist, eef_pos};
 use super::lift::place_single_robot;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
+use super::mode_objects::{put_mode, take_mode};
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, PlacedObject, Pose, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -31,12 +33,20 @@ const SINGLE_VARIANTS: [&str; 4] = [
 ];
 
 /// PickPlace's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct PickPlaceSpec {
+    #[serde(skip)]
     mode: ObjectMode,
+    /// A registered variant (robosuite's subclasses) fixes the mode.
+    #[serde(skip)]
+    fixed_mode: bool,
     /// The bins' inner size (robosuite's `table_full_size`, default 0.39 × 0.49 × 0.82; the
     /// arena's `bin_size`).
+    #[serde(rename = "table_full_size")]
     pub bin_size: [f64; 3],
+    /// robosuite's `table_friction` (default (1, 0.005, 0.0001)): robosuite's `BinsArena`
+    /// keeps it and uses it nowhere, and neither does this task.
+    pub table_friction: [f64; 3],
     /// Centre of the bin the objects start in (default (0.1, −0.25, 0.8)).
     pub bin1_pos: [f64; 3],
     /// Centre of the goal bin (default (0.1, 0.28, 0.8)).
@@ -51,7 +61,9 @@ impl Default for PickPlaceSpec {
     fn default() -> Self {
         Self {
             mode: ObjectMode::All,
+            fixed_mode: false,
             bin_size: [0.39, 0.49, 0.82],
+            table_friction: [1.0, 5e-3, 1e-4],
             bin1_pos: [0.1, -0.25, 0.8],
             bin2_pos: [0.1, 0.28, 0.8],
             z_offset: 0.0,
@@ -61,6 +73,47 @@ impl Default for PickPlaceSpec {
 }
 
 impl PickPlaceSpec {
+    /// robosuite's `object_type` names, by object id.
+    const TYPES: &'static [&'static str] = &["milk", "bread", "cereal", "can"];
+
+    /// robosuite's constructor arguments (see [`TaskSpec::options`]); the base task also
+    /// lists `single_object_mode` and `object_type`.
+    fn task_options(&self) -> TaskOptions {
+        let mut out = options::to_options(self);
+        if !self.fixed_mode {
+            put_mode(self.mode, "object_type", Self::TYPES, &mut out);
+        }
+        out
+    }
+
+    /// Sets robosuite's constructor arguments (see [`TaskSpec::configure`]).
+    fn set_task_options(&mut self, given: &TaskOptions) -> Result<()> {
+        let mut rest = given.clone();
+        let base = (!self.fixed_mode).then_some(self.mode);
+        let mode = take_mode(self.name(), base, "object_type", Self::TYPES, &mut rest)?
+            .unwrap_or(self.mode);
+        let mut next: Self = options::merged(self.name(), self, &rest).map_err(|e| {
+            // An unknown name lists the mode arguments too.
+            match (&e, base) {
+                (Error::InvalidArgument { name, .. }, Some(_))
+                    if !self.task_options().contains_key(name) =>
+                {
+                    options::unknown(
+                        self.name(),
+                        name,
+                        self.task_options().keys().map(String::as_str),
+                    )
+                }
+                _ => e,
+            }
+        })?;
+        next.mode = mode;
+        next.fixed_mode = self.fixed_mode;
+        Self::new(mode)?;
+        *self = next;
+        Ok(())
+    }
+
     /// robosuite's defaults in `mode` (robosuite's `single_object_mode` and `object_type`:
     /// [`ObjectMode::Single`] takes the object id, milk 0, bread 1, cereal 2, can 3).
     ///
@@ -89,7 +142,10 @@ impl PickPlaceSpec {
             "PickPlaceSingle" => ObjectMode::RandomSingle,
             _ => ObjectMode::Single(SINGLE_VARIANTS.iter().position(|v| *v == name)?),
         };
-        Self::new(mode).ok()
+        Some(Self {
+            fixed_mode: name != "PickPlace",
+            ..Self::new(mode).ok()?
+        })
     }
 
     /// The single-object mode.
@@ -205,6 +261,14 @@ impl PickPlaceSpec {
 }
 
 impl TaskSpec for PickPlaceSpec {
+    fn options(&self) -> TaskOptions {
+        self.task_options()
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        self.set_task_options(options)
+    }
+
     fn name(&self) -> &str {
         match self.mode {
             ObjectMode::All => "PickPlace",

@@ -7,8 +7,10 @@ use gym_core::{EnvRng, Error, Result};
 use rand::RngExt;
 use std::f64::consts::PI;
 
-/// How the sampler rotates objects.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// How the sampler rotates objects. Its serde form is robosuite's argument: `null`
+/// (random), a number (fixed) or `[lo, hi]` (a range).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(from = "RotationArg", into = "RotationArg")]
 pub enum Rotation {
     /// Uniform in `[0, 2π)` (robosuite's `rotation=None`).
     Random,
@@ -16,6 +18,38 @@ pub enum Rotation {
     Range(f64, f64),
     /// Always this angle.
     Fixed(f64),
+}
+
+/// robosuite's `rotation` / `z_rotation` argument as it is written.
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(
+    untagged,
+    expecting = "None, an angle (radians) or a [low, high] range"
+)]
+enum RotationArg {
+    Random(()),
+    Fixed(f64),
+    Range([f64; 2]),
+}
+
+impl From<RotationArg> for Rotation {
+    fn from(arg: RotationArg) -> Self {
+        match arg {
+            RotationArg::Random(()) => Self::Random,
+            RotationArg::Fixed(angle) => Self::Fixed(angle),
+            RotationArg::Range([lo, hi]) => Self::Range(lo, hi),
+        }
+    }
+}
+
+impl From<Rotation> for RotationArg {
+    fn from(rotation: Rotation) -> Self {
+        match rotation {
+            Rotation::Random => Self::Random(()),
+            Rotation::Fixed(angle) => Self::Fixed(angle),
+            Rotation::Range(lo, hi) => Self::Range([lo, hi]),
+        }
+    }
 }
 
 /// The axis of the sampled rotation.

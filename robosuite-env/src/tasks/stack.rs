@@ -5,6 +5,7 @@ use super::common::{
     FreeBody, dist, dist_xy, eef_pos, robot0_grasps, scale_reward, sub, wood_material,
 };
 use super::lift::{TABLE_OFFSET, single_robot_table};
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -19,7 +20,7 @@ use gym_core::{EnvRng, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 
 /// Stack's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StackSpec {
     /// The table's full size (default 0.8 × 0.8 × 0.05).
     pub table_full_size: [f64; 3],
@@ -42,6 +43,15 @@ pub const CUBE_A_HALF: f64 = 0.02;
 pub const CUBE_B_HALF: f64 = 0.025;
 
 impl TaskSpec for StackSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "Stack"
     }

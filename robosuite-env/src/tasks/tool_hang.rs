@@ -3,6 +3,7 @@
 
 use super::common::{FreeBody, ObjectSensors, PoseRef, scale_reward, sub};
 use super::lift::{TABLE_OFFSET, place_single_robot};
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler, with_init_quat};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -32,7 +33,7 @@ const CAMERA_QUAT: [f64; 4] = [
 ];
 
 /// ToolHang's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ToolHangSpec {
     /// The table's full size (default 0.8 × 0.8 × 0.05).
     pub table_full_size: [f64; 3],
@@ -122,6 +123,15 @@ impl ToolHangSpec {
 }
 
 impl TaskSpec for ToolHangSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "ToolHang"
     }

@@ -2,6 +2,7 @@
 //! (`environments/manipulation/two_arm_handover.py`, prehensile).
 
 use super::common::{FreeBody, dist, is_grasped, scale_reward, sub};
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler, with_init_quat};
 use super::two_arm::{ArmRef, check_two_arm_robots, place_two_arm_robots, task_arms};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
@@ -20,7 +21,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use std::f64::consts::PI;
 
 /// TwoArmHandover's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TwoArmHandoverSpec {
     /// The table's nominal full size (default 0.8 × 1.2 × 0.05); the table itself is a
     /// quarter as wide, centred 3/8 of the width towards robot 0.
@@ -28,6 +29,7 @@ pub struct TwoArmHandoverSpec {
     /// The table's friction (default `(1, 0.005, 0.0001)`).
     pub table_friction: [f64; 3],
     /// The ranges the hammer's figures are drawn from at every reset.
+    #[serde(skip)]
     pub hammer: HammerRanges,
 }
 
@@ -45,6 +47,32 @@ impl Default for TwoArmHandoverSpec {
 const HEIGHT_THRESHOLD: f64 = 0.1;
 
 impl TwoArmHandoverSpec {
+    /// robosuite's constructor arguments (see [`TaskSpec::options`]), `prehensile` (true)
+    /// included.
+    fn task_options(&self) -> TaskOptions {
+        let mut out = options::to_options(self);
+        out.insert("prehensile".into(), true.into());
+        out
+    }
+
+    /// Sets robosuite's constructor arguments (see [`TaskSpec::configure`]).
+    /// `prehensile=False` (the hammer starting in the first arm's gripper) is refused: in
+    /// robosuite 1.5.2 that start calls the robots' removed `controller` attribute and fails.
+    fn set_task_options(&mut self, given: &TaskOptions) -> Result<()> {
+        let mut rest = given.clone();
+        if options::take::<bool>(&mut rest, "prehensile")? == Some(false) {
+            return Err(Error::Unsupported(
+                "TwoArmHandover's prehensile=False: robosuite 1.5.2's own start for it \
+                 fails (it calls the robots' `controller`, removed in 1.5)"
+                    .into(),
+            ));
+        }
+        let mut next: Self = options::merged(self.name(), self, &rest)?;
+        next.hammer = self.hammer;
+        *self = next;
+        Ok(())
+    }
+
     /// robosuite's `table_true_size` and `table_offset`.
     fn table(&self) -> ([f64; 3], [f64; 3]) {
         let mut true_size = self.table_full_size;
@@ -57,6 +85,14 @@ impl TwoArmHandoverSpec {
 }
 
 impl TaskSpec for TwoArmHandoverSpec {
+    fn options(&self) -> TaskOptions {
+        self.task_options()
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        self.set_task_options(options)
+    }
+
     fn name(&self) -> &str {
         "TwoArmHandover"
     }

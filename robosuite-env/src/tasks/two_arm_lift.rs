@@ -3,6 +3,7 @@
 
 use super::common::{FreeBody, dist, geoms_of, is_grasped, scale_reward, sub};
 use super::lift::TABLE_OFFSET;
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, Rotation, UniformRandomSampler};
 use super::two_arm::{ArmRef, check_two_arm_robots, place_two_arm_robots, task_arms};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
@@ -21,7 +22,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use std::f64::consts::PI;
 
 /// TwoArmLift's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TwoArmLiftSpec {
     /// The table's full size (default 0.8 × 0.8 × 0.05).
     pub table_full_size: [f64; 3],
@@ -39,6 +40,15 @@ impl Default for TwoArmLiftSpec {
 }
 
 impl TaskSpec for TwoArmLiftSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "TwoArmLift"
     }

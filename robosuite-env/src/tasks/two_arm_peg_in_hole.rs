@@ -2,6 +2,7 @@
 //! put the peg through the hole (`environments/manipulation/two_arm_peg_in_hole.py`).
 
 use super::common::{scale_reward, sub};
+use super::options::{self, TaskOptions};
 use super::two_arm::{check_two_arm_robots, place_two_arm_robots};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -20,7 +21,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
 
 /// TwoArmPegInHole's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TwoArmPegInHoleSpec {
     /// The range the peg's radius is drawn from at every reset (default 1.5 to 3 cm).
     pub peg_radius: [f64; 2],
@@ -60,6 +61,15 @@ impl TwoArmPegInHoleSpec {
 const PEG_DENSITY: f64 = 1000.0;
 
 impl TaskSpec for TwoArmPegInHoleSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "TwoArmPegInHole"
     }

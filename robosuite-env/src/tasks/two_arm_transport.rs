@@ -3,6 +3,7 @@
 //! (`environments/manipulation/two_arm_transport.py`, `models/objects/group/transport.py`).
 
 use super::common::{FreeBody, PoseRef, scale_reward, sub};
+use super::options::{self, TaskOptions};
 use super::placement::{Axis, Rotation, UniformRandomSampler, with_init_quat};
 use super::two_arm::{check_two_arm_robots, place_two_arm_robots, task_arms};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
@@ -24,7 +25,7 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 
 /// TwoArmTransport's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TwoArmTransportSpec {
     /// The area both tables span (default 0.8 × 1.2 × 0.05); each table is a quarter as
     /// wide, 3/8 of the width to either side.
@@ -79,6 +80,15 @@ const TRASH_BIN_I: usize = 4;
 const LID_I: usize = 5;
 
 impl TaskSpec for TwoArmTransportSpec {
+    fn options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        *self = options::merged(self.name(), self, options)?;
+        Ok(())
+    }
+
     fn name(&self) -> &str {
         "TwoArmTransport"
     }

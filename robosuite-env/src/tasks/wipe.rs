@@ -3,6 +3,7 @@
 
 use super::common::{eef_pos, sub};
 use super::lift::place_single_robot;
+use super::options::{self, TaskOptions};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::robots::{GripperChoice, RobotModel};
@@ -21,7 +22,8 @@ const WIPING_GRIPPER: &str = "WipingGripper";
 /// Of `DEFAULT_WIPE_CONFIG`, `print_results` and `get_info` (console output and extra
 /// `info` keys) are not offered; `ee_accel_penalty`, `table_height` and `table_height_std`
 /// take only their default 0 (see [`WipeConfig::validate`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct WipeConfig {
     /// Reward on an arm collision or a joint near its limit (−10; shaped rewards only).
     pub arm_limit_collision_penalty: f64,
@@ -208,13 +210,66 @@ impl WipeConfig {
 }
 
 /// Wipe's settings: robosuite's `task_config`.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WipeSpec {
     /// The task configuration (default `DEFAULT_WIPE_CONFIG`).
     pub task_config: WipeConfig,
 }
 
+impl WipeSpec {
+    /// robosuite's constructor arguments (see [`TaskSpec::options`]): `task_config`.
+    fn task_options(&self) -> TaskOptions {
+        options::to_options(self)
+    }
+
+    /// Sets robosuite's constructor arguments (see [`TaskSpec::configure`]): the keys of a
+    /// `task_config` dict replace the current ones (robosuite's `DEFAULT_WIPE_CONFIG` as a
+    /// whole is accepted, its `print_results` and `get_info` only as `False`: console
+    /// printing and the extra `info` keys are not offered); `None` restores the defaults.
+    fn set_task_options(&mut self, given: &TaskOptions) -> Result<()> {
+        let mut rest = given.clone();
+        match rest.get_mut("task_config") {
+            Some(serde_json::Value::Null) => {
+                rest.insert(
+                    "task_config".into(),
+                    options::to_options(&WipeConfig::default()).into(),
+                );
+            }
+            Some(serde_json::Value::Object(config)) => {
+                for key in ["print_results", "get_info"] {
+                    match config.remove(key) {
+                        None | Some(serde_json::Value::Bool(false)) => {}
+                        Some(other) => {
+                            return Err(Error::Unsupported(
+                                format!(
+                                    "Wipe's task_config[{key:?}] = {other}: only false is \
+                                     supported (no console printing or extra info keys)"
+                                )
+                                .into(),
+                            ));
+                        }
+                    }
+                }
+                let mut merged = options::to_options(&self.task_config);
+                merged.extend(std::mem::take(config));
+                *config = merged;
+            }
+            _ => {}
+        }
+        *self = options::merged(self.name(), self, &rest)?;
+        Ok(())
+    }
+}
+
 impl TaskSpec for WipeSpec {
+    fn options(&self) -> TaskOptions {
+        self.task_options()
+    }
+
+    fn configure(&mut self, options: &TaskOptions) -> Result<()> {
+        self.set_task_options(options)
+    }
+
     fn name(&self) -> &str {
         "Wipe"
     }
