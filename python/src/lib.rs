@@ -23,14 +23,13 @@
 //! by maturin from the repository's `pyproject.toml`); a user's own module must not enable
 //! it (two `PyInit__native` symbols would clash).
 
+pub mod fork;
 pub mod shared;
 
 #[cfg(feature = "python")]
 mod convert;
 #[cfg(feature = "python")]
 mod errors;
-#[cfg(feature = "python")]
-mod fork;
 #[cfg(feature = "module")]
 mod module;
 #[cfg(feature = "python")]

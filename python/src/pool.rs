@@ -3,7 +3,7 @@
 
 use crate::convert::{py_into_value, space_spec, value_to_py};
 use crate::errors::to_pyerr;
-use crate::fork::ForkAwareMutex;
+use crate::fork::{ForkAwareGuard, ForkAwareMutex};
 use crate::pyenv::{extract_seeds, lock_with_gil, metadata_into_py, vector_info_into_py};
 use adapters::{BatchSpace, ThreadEnvPool, ThreadOptions};
 use gym_core::{AnySpace, BoxedEnv, Metadata, Value};
@@ -11,7 +11,6 @@ use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::sync::MutexGuard;
 
 /// A pool and the batch of actions that Python's actions are written into.
 struct PoolState {
@@ -57,7 +56,7 @@ impl PyEnvPool {
         })
     }
 
-    fn lock(&self) -> gym_core::Result<MutexGuard<'_, PoolState>> {
+    fn lock(&self) -> gym_core::Result<ForkAwareGuard<'_, PoolState>> {
         self.state.lock()
     }
 }
@@ -106,7 +105,7 @@ impl PyEnvPool {
         let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
         let pool = &mut state.pool;
         let s = py.detach(move || pool.recv()).map_err(to_pyerr)?;
-        let info_py = vector_info_into_py(py, &s.infos)?;
+        let info_py = vector_info_into_py(py, s.infos)?;
         let ids: Vec<i64> = s.env_ids.iter().map(|&i| i as i64).collect();
         info_py.set_item("env_id", PyArray1::from_vec(py, ids))?;
         Ok((

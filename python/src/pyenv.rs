@@ -6,7 +6,7 @@ use crate::convert::{
     array_to_py, info_into_py, py_into_value, py_to_info, space_spec, value_into_py, value_to_py,
 };
 use crate::errors::to_pyerr;
-use crate::fork::ForkAwareMutex;
+use crate::fork::{ForkAwareGuard, ForkAwareMutex};
 use adapters::BatchSpace;
 use adapters::vector::{
     Seeds, ThreadOptions, ThreadVectorEnv, VectorEnv, VectorInfo, VectorInfoValue,
@@ -16,7 +16,6 @@ use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// A seed from Python: a non-negative integer that fits in 64 bits, or `None`.
 pub(crate) fn extract_seed(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u64>> {
@@ -63,7 +62,7 @@ pub(crate) fn metadata_into_py<'py>(py: Python<'py>, m: &Metadata) -> PyResult<B
 /// environment stays usable after an invalid action.
 #[pyclass(name = "NativeEnv", module = "robosuite_rs._native")]
 pub struct PyEnv {
-    state: Mutex<EnvState>,
+    state: ForkAwareMutex<EnvState>,
     observation_space: AnySpace,
     action_space: AnySpace,
     metadata: Metadata,
@@ -79,7 +78,7 @@ struct EnvState {
 }
 
 /// A locked [`PyEnv`]'s environment.
-pub struct EnvGuard<'a>(MutexGuard<'a, EnvState>);
+pub struct EnvGuard<'a>(ForkAwareGuard<'a, EnvState>);
 
 impl std::ops::Deref for EnvGuard<'_> {
     type Target = BoxedEnv;
@@ -101,7 +100,7 @@ impl PyEnv {
         let action_space = env.action_space().clone();
         let metadata = env.metadata().clone();
         Self {
-            state: Mutex::new(EnvState {
+            state: ForkAwareMutex::new(EnvState {
                 action: action_space.zero_element(),
                 observation: observation_space.zero_element(),
                 info: Info::new(),
@@ -114,22 +113,12 @@ impl PyEnv {
     }
 
     /// Locks the environment (ignoring poisoning by an earlier panic).
-    pub fn lock(&self) -> EnvGuard<'_> {
-        EnvGuard(self.state.lock().unwrap_or_else(PoisonError::into_inner))
-    }
-}
-
-/// Locks `mutex` (ignoring poisoning) without ever blocking while holding the GIL; see
-/// [`lock_with_gil`].
-fn lock_plain_with_gil<'a, T: Send>(py: Python<'_>, mutex: &'a Mutex<T>) -> MutexGuard<'a, T> {
-    loop {
-        match mutex.try_lock() {
-            Ok(guard) => return guard,
-            Err(std::sync::TryLockError::Poisoned(p)) => return p.into_inner(),
-            Err(std::sync::TryLockError::WouldBlock) => {
-                py.detach(|| drop(mutex.lock()));
-            }
-        }
+    ///
+    /// # Errors
+    /// As [`ForkAwareMutex::lock`]: a call from inside another call on this env on the same
+    /// thread, or from a forked child while another thread of the parent held it.
+    pub fn lock(&self) -> gym_core::Result<EnvGuard<'_>> {
+        self.state.lock().map(EnvGuard)
     }
 }
 
@@ -152,7 +141,7 @@ impl PyEnv {
             .transpose()?
             .filter(|o| !o.is_empty());
         let (obs, info) = py
-            .detach(|| self.lock().reset(seed, options.as_ref()))
+            .detach(|| self.lock()?.reset(seed, options.as_ref()))
             .map_err(to_pyerr)?;
         Ok((value_into_py(py, obs, false)?, info_into_py(py, &info)?))
     }
@@ -162,7 +151,7 @@ impl PyEnv {
     /// into the kept action), the env steps in place (`step_into`) with the GIL released,
     /// and the observation is copied once into a fresh NumPy array.
     fn step<'py>(&self, py: Python<'py>, action: &Bound<'py, PyAny>) -> PyResult<StepPy<'py>> {
-        let mut state = lock_plain_with_gil(py, &self.state);
+        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
         let EnvState {
             env,
             action: buffer,
@@ -200,24 +189,26 @@ impl PyEnv {
 
     /// The render mode chosen when the env was made (`"rgb_array"`, `"depth_array"`) or
     /// `None`.
-    fn render_mode(&self, py: Python<'_>) -> Option<&'static str> {
-        lock_plain_with_gil(py, &self.state)
-            .env
-            .render_mode()
-            .map(|m| m.as_str())
+    fn render_mode(&self, py: Python<'_>) -> PyResult<Option<&'static str>> {
+        let state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        Ok(state.env.render_mode().map(|m| m.as_str()))
     }
 
     /// `render()`: the frame of the render mode (an `H×W×3` uint8 array for `rgb_array`,
     /// `H×W` float32 for `depth_array`, a str for `ansi`) or `None` without a render mode.
     /// The GIL is released while drawing; the frame is moved into NumPy without a copy.
     fn render<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let frame = py.detach(|| self.lock().render()).map_err(to_pyerr)?;
+        let frame = py.detach(|| self.lock()?.render()).map_err(to_pyerr)?;
         Ok(frame.map(|f| frame_into_py(py, f)))
     }
 
     /// Closes the environment; calling it again does nothing.
     fn close(&self, py: Python<'_>) {
-        py.detach(|| self.lock().close());
+        py.detach(|| {
+            if let Ok(mut env) = self.lock() {
+                env.close();
+            }
+        });
     }
 
     fn __repr__(&self) -> String {
@@ -246,7 +237,7 @@ pub(crate) fn frame_into_py(py: Python<'_>, frame: Frame) -> Bound<'_, PyAny> {
 pub(crate) fn lock_with_gil<'a, T: Send>(
     py: Python<'_>,
     mutex: &'a ForkAwareMutex<T>,
-) -> gym_core::Result<MutexGuard<'a, T>> {
+) -> gym_core::Result<ForkAwareGuard<'a, T>> {
     loop {
         if let Some(guard) = mutex.try_lock()? {
             return Ok(guard);

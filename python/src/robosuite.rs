@@ -4,6 +4,7 @@
 
 use crate::convert::{array_from_py, info_into_py, space_spec, value_into_py};
 use crate::errors::to_pyerr;
+use crate::fork::{ForkAwareGuard, ForkAwareMutex};
 use crate::pyenv::{PyEnv, extract_seed};
 use crate::shared::SharedEnv;
 use gym_core::{AnySpace, Env, Info, IntoBoxedEnv, Value};
@@ -14,7 +15,7 @@ use pyo3::types::{PyDict, PyList};
 use robosuite_env::saved::SavedEnv;
 use robosuite_env::sim::KeepAlive;
 use robosuite_env::{ObservableFlag, RobosuiteEnv};
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// The `mujoco.MjModel` / `mujoco.MjData` sharing an env's memory, with the addresses they
 /// were made for (a replaced model or data makes new ones).
@@ -51,7 +52,7 @@ fn flat_state(state: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 /// same (shared) environment.
 #[pyclass(name = "RobosuiteEnv", module = "robosuite_rs._native")]
 pub struct PyRobosuiteEnv {
-    env: Arc<Mutex<RobosuiteEnv>>,
+    env: Arc<ForkAwareMutex<RobosuiteEnv>>,
     name: String,
     action_low: Vec<f64>,
     action_high: Vec<f64>,
@@ -67,7 +68,7 @@ impl PyRobosuiteEnv {
             act.high().iter().copied().collect(),
         );
         Self {
-            env: Arc::new(Mutex::new(env)),
+            env: Arc::new(ForkAwareMutex::new(env)),
             name: name.to_owned(),
             action_low,
             action_high,
@@ -75,8 +76,18 @@ impl PyRobosuiteEnv {
         }
     }
 
-    fn lock(&self) -> MutexGuard<'_, RobosuiteEnv> {
-        self.env.lock().unwrap_or_else(PoisonError::into_inner)
+    /// Locks the env.
+    ///
+    /// # Errors
+    /// As [`ForkAwareMutex::lock`]: a call from inside another call on this env on the same
+    /// thread, or from a forked child while another thread of the parent stepped it.
+    fn lock(&self) -> gym_core::Result<ForkAwareGuard<'_, RobosuiteEnv>> {
+        self.env.lock()
+    }
+
+    /// [`Self::lock`] with its error as a Python exception.
+    fn env(&self) -> PyResult<ForkAwareGuard<'_, RobosuiteEnv>> {
+        self.lock().map_err(to_pyerr)
     }
 }
 
@@ -92,7 +103,7 @@ impl PyRobosuiteEnv {
     ) -> PyResult<Bound<'py, PyAny>> {
         let seed = extract_seed(seed)?;
         let (obs, _info) = py
-            .detach(|| self.lock().reset(seed, None))
+            .detach(|| self.lock()?.reset(seed, None))
             .map_err(to_pyerr)?;
         value_into_py(py, Value::Dict(obs), true)
     }
@@ -108,7 +119,7 @@ impl PyRobosuiteEnv {
         let action = action
             .to_typed::<f64>()
             .map_err(|e| PyValueError::new_err(format!("invalid action: {e}")))?;
-        let step = py.detach(|| self.lock().step(&action)).map_err(to_pyerr)?;
+        let step = py.detach(|| self.lock()?.step(&action)).map_err(to_pyerr)?;
         let done = step.terminated || step.truncated;
         Ok((
             value_into_py(py, Value::Dict(step.observation), true)?,
@@ -125,14 +136,15 @@ impl PyRobosuiteEnv {
         let action = action
             .to_typed::<f64>()
             .map_err(|e| PyValueError::new_err(format!("invalid action: {e}")))?;
-        py.detach(|| self.lock().begin_step(&action))
+        py.detach(|| self.lock()?.begin_step(&action))
             .map_err(to_pyerr)
     }
 
     /// Runs the next substep of the step under way (`sensors`: compute MuJoCo's sensors);
     /// returns whether it was the last.
     fn step_substep(&self, py: Python<'_>, sensors: bool) -> PyResult<bool> {
-        py.detach(|| self.lock().substep(sensors)).map_err(to_pyerr)
+        py.detach(|| self.lock()?.substep(sensors))
+            .map_err(to_pyerr)
     }
 
     /// Ends the step under way: `(obs, reward, done, info)` as `step` returns them.
@@ -142,7 +154,7 @@ impl PyRobosuiteEnv {
     ) -> PyResult<(Bound<'py, PyAny>, f64, bool, Bound<'py, PyDict>)> {
         let (obs, transition, success) = py
             .detach(|| {
-                let mut env = self.lock();
+                let mut env = self.lock()?;
                 let (transition, success) = env.finish_step()?;
                 Ok::<_, gym_core::Error>((env.observation(), transition, success))
             })
@@ -158,20 +170,20 @@ impl PyRobosuiteEnv {
 
     /// The task's constructor arguments it was built with, as JSON text.
     #[getter]
-    fn task_options(&self) -> String {
-        serde_json::Value::Object(self.lock().task_options().clone()).to_string()
+    fn task_options(&self) -> PyResult<String> {
+        Ok(serde_json::Value::Object(self.env()?.task_options().clone()).to_string())
     }
 
     /// The number of physics substeps of an env step.
     #[getter]
-    fn substeps(&self) -> usize {
-        self.lock().substeps()
+    fn substeps(&self) -> PyResult<usize> {
+        Ok(self.env()?.substeps())
     }
 
     /// MuJoCo's timestep (robosuite's `model_timestep`), in seconds.
     #[getter]
-    fn model_timestep(&self) -> f64 {
-        self.lock().sim().model().opt().timestep
+    fn model_timestep(&self) -> PyResult<f64> {
+        Ok(self.env()?.sim().model().opt().timestep)
     }
 
     /// `(low, high)`: the action bounds as float64 arrays.
@@ -194,19 +206,19 @@ impl PyRobosuiteEnv {
 
     /// The current observations (robosuite's `observation_spec()`).
     fn observation_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let obs = self.lock().observation();
+        let obs = self.env()?.observation();
         value_into_py(py, Value::Dict(obs), true)
     }
 
     /// The observation keys, in order (the active observables, then the modality
     /// concatenations).
-    fn observation_keys(&self) -> Vec<String> {
-        self.lock().observation_keys()
+    fn observation_keys(&self) -> PyResult<Vec<String>> {
+        Ok(self.env()?.observation_keys())
     }
 
     /// The observation space's description (a Dict).
     fn observation_space_spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let space = self.lock().observation_space().clone();
+        let space = self.env()?.observation_space().clone();
         space_spec(py, &AnySpace::Dict(space))
     }
 
@@ -218,128 +230,132 @@ impl PyRobosuiteEnv {
 
     /// Episode length in env steps.
     #[getter]
-    fn horizon(&self) -> u64 {
-        self.lock().config().horizon
+    fn horizon(&self) -> PyResult<u64> {
+        Ok(self.env()?.config().horizon)
     }
 
     /// Control frequency in Hz.
     #[getter]
-    fn control_freq(&self) -> f64 {
-        self.lock().config().control_freq
+    fn control_freq(&self) -> PyResult<f64> {
+        Ok(self.env()?.config().control_freq)
     }
 
     /// The reward scale (`None`: unnormalised).
     #[getter]
-    fn reward_scale(&self) -> Option<f64> {
-        self.lock().config().reward_scale
+    fn reward_scale(&self) -> PyResult<Option<f64>> {
+        Ok(self.env()?.config().reward_scale)
     }
 
     /// Whether rewards are shaped (the task's default unless set).
     #[getter]
-    fn reward_shaping(&self) -> bool {
-        self.lock().config().reward_shaping.unwrap_or(false)
+    fn reward_shaping(&self) -> PyResult<bool> {
+        Ok(self.env()?.config().reward_shaping.unwrap_or(false))
     }
 
     /// Whether the horizon is ignored.
     #[getter]
-    fn ignore_done(&self) -> bool {
-        self.lock().config().ignore_done
+    fn ignore_done(&self) -> PyResult<bool> {
+        Ok(self.env()?.config().ignore_done)
     }
 
     /// Whether camera observations are included.
     #[getter]
-    fn use_camera_obs(&self) -> bool {
-        self.lock().config().cameras.use_camera_obs
+    fn use_camera_obs(&self) -> PyResult<bool> {
+        Ok(self.env()?.config().cameras.use_camera_obs)
     }
 
     /// Whether an offscreen renderer was created.
     #[getter]
-    fn has_offscreen_renderer(&self) -> bool {
-        let env = self.lock();
-        env.config().cameras.has_offscreen_renderer || env.cameras().is_some()
+    fn has_offscreen_renderer(&self) -> PyResult<bool> {
+        let env = self.env()?;
+        Ok(env.config().cameras.has_offscreen_renderer || env.cameras().is_some())
     }
 
     /// The observed cameras' names (robosuite's `camera_names`; empty without camera
     /// observations).
     #[getter]
-    fn camera_names(&self) -> Vec<String> {
-        let env = self.lock();
+    fn camera_names(&self) -> PyResult<Vec<String>> {
+        let env = self.env()?;
         let c = &env.config().cameras;
-        if c.use_camera_obs {
+        Ok(if c.use_camera_obs {
             c.camera_names.clone()
         } else {
             Vec::new()
-        }
+        })
     }
 
     /// The keys robosuite's `GymWrapper` selects by default (`object-state`, the camera
     /// images, each robot's `proprio-state`), as `adapters::gym_wrapper::default_keys`.
-    fn default_gym_keys(&self) -> Vec<String> {
-        adapters::gym_wrapper::default_keys(self.lock().observation_space())
+    fn default_gym_keys(&self) -> PyResult<Vec<String>> {
+        Ok(adapters::gym_wrapper::default_keys(
+            self.env()?.observation_space(),
+        ))
     }
 
     /// Whether object observations are included.
     #[getter]
-    fn use_object_obs(&self) -> bool {
-        self.lock().config().use_object_obs
+    fn use_object_obs(&self) -> PyResult<bool> {
+        Ok(self.env()?.config().use_object_obs)
     }
 
     /// Env steps taken in the current episode.
     #[getter]
-    fn timestep(&self) -> u64 {
-        self.lock().timestep()
+    fn timestep(&self) -> PyResult<u64> {
+        Ok(self.env()?.timestep())
     }
 
     /// Whether the task is solved in the current state.
-    fn check_success(&self) -> bool {
-        self.lock().check_success()
+    fn check_success(&self) -> PyResult<bool> {
+        Ok(self.env()?.check_success())
     }
 
     /// The reward of the current state.
-    fn reward(&self) -> f64 {
-        self.lock().reward()
+    fn reward(&self) -> PyResult<f64> {
+        Ok(self.env()?.reward())
     }
 
     /// The flat simulator state `[time, qpos, qvel]` (robosuite's
     /// `env.sim.get_state().flatten()`).
-    fn get_state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_vec(py, self.lock().get_state())
+    fn get_state<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        Ok(PyArray1::from_vec(py, self.env()?.get_state()))
     }
 
     /// Sets the flat simulator state `[time, qpos, qvel]` and runs `mj_forward`.
     fn set_state(&self, state: &Bound<'_, PyAny>) -> PyResult<()> {
         let flat = flat_state(state)?;
-        self.lock().set_state(&flat).map_err(to_pyerr)
+        self.env()?.set_state(&flat).map_err(to_pyerr)
     }
 
     /// The whole run-time state (episode snapshot and RNG) as JSON text, for pickling and
     /// deep copies (see `robosuite_env::saved`).
     fn save_env_state(&self) -> PyResult<String> {
-        SavedEnv::of(&self.lock()).to_json().map_err(to_pyerr)
+        SavedEnv::of(&*self.env()?).to_json().map_err(to_pyerr)
     }
 
     /// Restores [`save_env_state`](Self::save_env_state)'s text into an env made with the
     /// same configuration; it then continues bit-identically.
     fn load_env_state(&self, text: &str) -> PyResult<()> {
         let saved = SavedEnv::from_json(text).map_err(to_pyerr)?;
-        saved.apply(&mut self.lock()).map_err(to_pyerr)
+        saved.apply(&mut *self.env()?).map_err(to_pyerr)
     }
 
     /// `{"render_modes": ["rgb_array", "depth_array"], "render_fps": control_freq}`.
     fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        crate::pyenv::metadata_into_py(py, self.lock().metadata())
+        crate::pyenv::metadata_into_py(py, self.env()?.metadata())
     }
 
     /// Closes the environment; calling it again does nothing.
     fn close(&self) {
-        self.lock().close();
+        if let Ok(mut env) = self.lock() {
+            env.close();
+        }
     }
 
     /// robosuite's `GymWrapper(env, keys, flatten_obs)` over this same environment, as a
     /// [`PyEnv`].
     #[pyo3(signature = (keys=None, flatten_obs=true))]
     fn gym_env(&self, keys: Option<Vec<String>>, flatten_obs: bool) -> PyResult<PyEnv> {
-        let shared = SharedEnv::from_arc(Arc::clone(&self.env));
+        let shared = SharedEnv::from_arc(Arc::clone(&self.env)).map_err(to_pyerr)?;
         // The flat wrapper's `step_into` writes the flat observation in place (the same
         // observations as GymWrapper's with `flatten_obs`).
         let env = if flatten_obs {
@@ -361,7 +377,7 @@ impl PyRobosuiteEnv {
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let mut shared = self.shared.lock().unwrap_or_else(PoisonError::into_inner);
-        let mut env = self.lock();
+        let mut env = self.env()?;
         let (m, d) = {
             let sim = env.sim();
             (
@@ -425,37 +441,42 @@ impl PyRobosuiteEnv {
     /// `mj_forward` on the env's simulator (robosuite's `sim.forward()`), through the env's
     /// guard: a MuJoCo error is a `RuntimeError` and the env then needs a reset.
     fn sim_forward(&self, py: Python<'_>) -> PyResult<()> {
-        py.detach(|| self.lock().sim_mut().forward())
+        py.detach(|| self.lock()?.sim_mut().forward())
             .map_err(to_pyerr)
     }
 
     /// `mj_step` (robosuite's `sim.step()`), guarded as [`Self::sim_forward`].
     fn sim_step(&self, py: Python<'_>) -> PyResult<()> {
-        py.detach(|| self.lock().sim_mut().step()).map_err(to_pyerr)
+        py.detach(|| self.lock()?.sim_mut().step())
+            .map_err(to_pyerr)
     }
 
     /// `mj_step1` (robosuite's `sim.step1()`).
     fn sim_step1(&self, py: Python<'_>) -> PyResult<()> {
-        py.detach(|| self.lock().sim_mut().step1())
+        py.detach(|| self.lock()?.sim_mut().step1())
             .map_err(to_pyerr)
     }
 
     /// `mj_step2` (robosuite's `sim.step2()`).
     fn sim_step2(&self, py: Python<'_>) -> PyResult<()> {
-        py.detach(|| self.lock().sim_mut().step2())
+        py.detach(|| self.lock()?.sim_mut().step2())
             .map_err(to_pyerr)
     }
 
     /// `mj_resetData` (robosuite's `sim.reset()`).
     fn sim_reset(&self, py: Python<'_>) {
-        py.detach(|| self.lock().sim_mut().reset_data());
+        py.detach(|| {
+            if let Ok(mut env) = self.lock() {
+                env.sim_mut().reset_data();
+            }
+        });
     }
 
     /// Checks a flat state `[time, qpos, qvel]` for this model (robosuite's
     /// `set_state_from_flattened` input) without applying it.
     fn check_flat_state(&self, state: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
         let flat = flat_state(state)?;
-        self.lock().sim().check_state(&flat).map_err(to_pyerr)?;
+        self.env()?.sim().check_state(&flat).map_err(to_pyerr)?;
         Ok(flat)
     }
 
@@ -463,19 +484,19 @@ impl PyRobosuiteEnv {
     /// simulator as it is now (no forward pass).
     fn update_observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let obs = py
-            .detach(|| self.lock().update_observations())
+            .detach(|| self.lock()?.update_observations())
             .map_err(to_pyerr)?;
         value_into_py(py, Value::Dict(obs), true)
     }
 
     /// robosuite's `sim.model.get_xml()`: the scene MJCF with the model's current values.
     fn get_xml(&self, py: Python<'_>) -> PyResult<String> {
-        py.detach(|| self.lock().scene_xml()).map_err(to_pyerr)
+        py.detach(|| self.lock()?.scene_xml()).map_err(to_pyerr)
     }
 
     /// The MJCF text the current model was compiled from.
-    fn source_xml(&self) -> String {
-        self.lock().source_xml().to_owned()
+    fn source_xml(&self) -> PyResult<String> {
+        Ok(self.env()?.source_xml().to_owned())
     }
 
     /// robosuite's `reset_from_xml_string(xml)`: a new model from `xml` (a scene of this
@@ -492,14 +513,14 @@ impl PyRobosuiteEnv {
         let obs = py
             .detach(|| -> gym_core::Result<gym_core::DictValue> {
                 let (config, (rng, seeded)) = {
-                    let env = self.lock();
+                    let env = self.lock()?;
                     (env.config().clone(), env.rng_state())
                 };
                 let spec = robosuite_env::make_task(&name)?;
                 let mut fresh = RobosuiteEnv::from_scene_xml(spec.as_ref(), xml, config)?;
                 fresh.set_rng(rng, seeded);
                 let (obs, _) = fresh.reset_deterministic()?;
-                *self.lock() = fresh;
+                *self.lock()? = fresh;
                 Ok(obs)
             })
             .map_err(to_pyerr)?;
@@ -510,7 +531,7 @@ impl PyRobosuiteEnv {
     /// the model places them, nothing drawn from the RNG.
     fn reset_deterministic<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (obs, _) = py
-            .detach(|| self.lock().reset_deterministic())
+            .detach(|| self.lock()?.reset_deterministic())
             .map_err(to_pyerr)?;
         value_into_py(py, Value::Dict(obs), true)
     }
@@ -518,7 +539,7 @@ impl PyRobosuiteEnv {
     /// Every observable: `[(name, modality, shape, dtype, enabled, active)]` in robosuite's
     /// order.
     fn observables<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        let items = self.lock().observables();
+        let items = self.env()?.observables();
         let rows = items
             .into_iter()
             .map(|o| {
@@ -547,7 +568,7 @@ impl PyRobosuiteEnv {
                 )));
             }
         };
-        self.lock()
+        self.env()?
             .modify_observable(name, flag, value)
             .map_err(to_pyerr)
     }
@@ -567,7 +588,7 @@ impl PyRobosuiteEnv {
     ) -> PyResult<Bound<'py, PyAny>> {
         let frame = py
             .detach(|| {
-                self.lock()
+                self.lock()?
                     .render_camera(camera, width, height, depth, segmentation)
             })
             .map_err(to_pyerr)?;
@@ -592,7 +613,7 @@ impl PyRobosuiteEnv {
     /// controller, actuators, end-effector site and body, and gripper (name, actuators,
     /// joint addresses, action dimension).
     fn robots_info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        let env = self.lock();
+        let env = self.env()?;
         let list = PyList::empty(py);
         for r in env.robots() {
             let d = PyDict::new(py);
@@ -632,7 +653,7 @@ impl PyRobosuiteEnv {
             "RobosuiteEnv({}, action_dim={}, keys={})",
             self.name,
             self.action_low.len(),
-            self.lock().observation_keys().len()
+            self.lock().map_or(0, |env| env.observation_keys().len())
         )
     }
 }

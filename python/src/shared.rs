@@ -1,21 +1,24 @@
 //! [`SharedEnv`]: one environment reachable from two places, such as robosuite's Python env
 //! object and the `GymWrapper` built over it (robosuite's wrappers share the env they wrap).
 
+use crate::fork::{ForkAwareGuard, ForkAwareMutex};
 use gym_core::{
     Env, EnvRng, Frame, Info, Metadata, RenderMode, ResetOptions, Result, Step, Transition,
 };
 use std::any::Any;
-use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::sync::Arc;
 
-/// An environment behind an `Arc<Mutex<_>>`, itself an [`Env`]: every call locks the
-/// environment for its duration. Clones share the same environment.
+/// An environment behind an `Arc<ForkAwareMutex<_>>`, itself an [`Env`]: every call locks
+/// the environment for its duration. Clones share the same environment. A call made from
+/// inside another call on the same thread, or in a forked child while another thread of
+/// the parent held the lock, is an error instead of a deadlock.
 ///
 /// The spaces and metadata are copied once at construction (they never change for the
 /// environments of this workspace). [`Env::rng`] is `None` because the RNG cannot be
 /// borrowed through the lock; [`Env::unwrapped_any`] is the `SharedEnv` itself, so
 /// `unwrapped_as::<SharedEnv<E>>()` reaches the shared environment.
 pub struct SharedEnv<E: Env> {
-    inner: Arc<Mutex<E>>,
+    inner: Arc<ForkAwareMutex<E>>,
     observation_space: E::ObsSpace,
     action_space: E::ActSpace,
     metadata: Metadata,
@@ -25,13 +28,22 @@ pub struct SharedEnv<E: Env> {
 impl<E: Env> SharedEnv<E> {
     /// Shares `env`.
     pub fn new(env: E) -> Self {
-        Self::from_arc(Arc::new(Mutex::new(env)))
+        Self {
+            observation_space: env.observation_space().clone(),
+            action_space: env.action_space().clone(),
+            metadata: env.metadata().clone(),
+            render_mode: env.render_mode(),
+            inner: Arc::new(ForkAwareMutex::new(env)),
+        }
     }
 
-    /// Shares an environment that is already behind an `Arc<Mutex<_>>`.
-    pub fn from_arc(inner: Arc<Mutex<E>>) -> Self {
+    /// Shares an environment that is already behind an `Arc<ForkAwareMutex<_>>`.
+    ///
+    /// # Errors
+    /// As [`ForkAwareMutex::lock`].
+    pub fn from_arc(inner: Arc<ForkAwareMutex<E>>) -> Result<Self> {
         let (observation_space, action_space, metadata, render_mode) = {
-            let env = inner.lock().unwrap_or_else(PoisonError::into_inner);
+            let env = inner.lock()?;
             (
                 env.observation_space().clone(),
                 env.action_space().clone(),
@@ -39,25 +51,28 @@ impl<E: Env> SharedEnv<E> {
                 env.render_mode(),
             )
         };
-        Self {
+        Ok(Self {
             inner,
             observation_space,
             action_space,
             metadata,
             render_mode,
-        }
+        })
     }
 
     /// The shared handle.
-    pub fn handle(&self) -> &Arc<Mutex<E>> {
+    pub fn handle(&self) -> &Arc<ForkAwareMutex<E>> {
         &self.inner
     }
 
     /// Locks the environment. A panic in an earlier call does not make it unusable (the
     /// poison flag is ignored: every environment method leaves a consistent state or
     /// reports an error).
-    pub fn lock(&self) -> MutexGuard<'_, E> {
-        self.inner.lock().unwrap_or_else(PoisonError::into_inner)
+    ///
+    /// # Errors
+    /// As [`ForkAwareMutex::lock`].
+    pub fn lock(&self) -> Result<ForkAwareGuard<'_, E>> {
+        self.inner.lock()
     }
 }
 
@@ -98,10 +113,10 @@ impl<E: Env> Env for SharedEnv<E> {
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(E::Obs, Info)> {
-        self.lock().reset(seed, options)
+        self.lock()?.reset(seed, options)
     }
     fn step(&mut self, action: &E::Act) -> Result<Step<E::Obs>> {
-        self.lock().step(action)
+        self.lock()?.step(action)
     }
     fn step_into(
         &mut self,
@@ -109,7 +124,7 @@ impl<E: Env> Env for SharedEnv<E> {
         observation: &mut E::Obs,
         info: &mut Info,
     ) -> Result<Transition> {
-        self.lock().step_into(action, observation, info)
+        self.lock()?.step_into(action, observation, info)
     }
     fn metadata(&self) -> &Metadata {
         &self.metadata
@@ -118,10 +133,12 @@ impl<E: Env> Env for SharedEnv<E> {
         self.render_mode
     }
     fn render(&mut self) -> Result<Option<Frame>> {
-        self.lock().render()
+        self.lock()?.render()
     }
     fn close(&mut self) {
-        self.lock().close();
+        if let Ok(mut env) = self.lock() {
+            env.close();
+        }
     }
     fn rng(&self) -> Option<&EnvRng> {
         None
@@ -187,7 +204,7 @@ mod tests {
         a.reset(None, None).unwrap();
         assert_eq!(a.step(&3).unwrap().observation, 3);
         assert_eq!(b.step(&4).unwrap().observation, 7);
-        assert_eq!(a.lock().count, 7);
+        assert_eq!(a.lock().unwrap().count, 7);
         assert_eq!(a.observation_space(), &Discrete::new(100).unwrap());
         b.close();
         assert!(a.handle().lock().unwrap().closed);

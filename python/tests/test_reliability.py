@@ -196,6 +196,89 @@ def test_vector_envs_after_fork_raise_instead_of_hanging() -> None:
     assert "child exit 0" in child.stdout, child.stdout + child.stderr
 
 
+def test_single_envs_after_fork_raise_instead_of_hanging() -> None:
+    # A step of 500 substeps (control_freq=1) holds the env's lock almost all the time, so
+    # the fork lands inside a step; the child's calls must return (an error naming the
+    # fork, or a result if the fork fell between steps), never wait on the dead thread.
+    child = run_child(
+        """
+        import os, threading, time
+        import numpy as np, robosuite_rs as suite
+        from robosuite_rs.wrappers import GymWrapper
+        env = suite.make("Lift", control_freq=1, horizon=10**6, has_offscreen_renderer=False)
+        env.reset(seed=0)
+        gym_env = GymWrapper(suite.make("Lift", control_freq=1, horizon=10**6, has_offscreen_renderer=False))
+        gym_env.reset(seed=0)
+        stop = False
+        def stepper(step):
+            while not stop:
+                step(np.zeros(7))
+        threads = [threading.Thread(target=stepper, args=(f,)) for f in (env.step, gym_env.step)]
+        for t in threads:
+            t.start()
+        time.sleep(0.5)
+        pid = os.fork()
+        if pid == 0:
+            raised = 0
+            for call in (lambda: env.step(np.zeros(7)), lambda: gym_env.step(np.zeros(7))):
+                try:
+                    call()
+                except NotImplementedError as e:
+                    assert "fork" in str(e), e
+                    raised += 1
+            os._exit(10 + raised)
+        _, status = os.waitpid(pid, 0)
+        stop = True
+        for t in threads:
+            t.join()
+        env.step(np.zeros(7))  # the parent keeps working
+        print("child exit", os.waitstatus_to_exitcode(status))
+        """,
+        timeout=120,
+    )
+    assert child.returncode == 0, child.stdout + child.stderr
+    # 10 + the number of calls that raised (each raise named the fork).
+    assert any(f"child exit {code}" in child.stdout for code in (10, 11, 12)), child.stdout + child.stderr
+
+
+def test_a_call_from_inside_a_call_on_the_same_env_raises_instead_of_deadlocking() -> None:
+    # An action whose __array__ steps the env it is an action for (the fuzz harness's
+    # reproducer): an error naming the re-entry, and the env usable afterwards.
+    child = run_child(
+        """
+        import numpy as np, robosuite_rs as suite
+        from robosuite_rs.wrappers import GymWrapper
+
+        class Sneaky:
+            def __init__(self, target, shape):
+                self.target, self.shape = target, shape
+            def __array__(self, dtype=None, copy=None):
+                self.target(np.zeros(self.shape, np.float32))
+                return np.zeros(self.shape, dtype or np.float32)
+
+        vec = suite.make_vec("Lift", 2, horizon=100)
+        vec.reset(seed=0)
+        gym_env = GymWrapper(suite.make("Lift", horizon=100, has_offscreen_renderer=False))
+        gym_env.reset(seed=0)
+        env = suite.make("Lift", horizon=100, has_offscreen_renderer=False)
+        env.reset(seed=0)
+        for name, step, shape in (("vec", vec.step, (2, 7)), ("gym", gym_env.step, (7,)), ("env", env.step, (7,))):
+            try:
+                step(Sneaky(step, shape))
+                # robosuite's env object converts the action before it takes the env, so
+                # there the inner step simply runs first.
+                assert name == "env", name
+            except NotImplementedError as e:
+                assert "re-entrant" in str(e), (name, e)
+            step(np.zeros(shape, np.float32))  # still usable
+        print("ok")
+        """,
+        timeout=120,
+    )
+    assert child.returncode == 0, child.stdout + child.stderr
+    assert "ok" in child.stdout
+
+
 def test_deepcopy_and_pickle_continue_bit_identically() -> None:
     env = suite.make("Lift", horizon=50, **QUIET)
     env.reset(seed=4)
