@@ -86,6 +86,7 @@ impl EnvConfiguration {
         "opposed",
         "parallel",
         "single-robot",
+        "bimanual",
         "single-arm-opposed",
         "single-arm-parallel",
     ];
@@ -109,7 +110,9 @@ impl EnvConfiguration {
             "default" => Ok(Self::Default),
             "opposed" | "single-arm-opposed" => Ok(Self::Opposed),
             "parallel" | "single-arm-parallel" => Ok(Self::Parallel),
-            "single-robot" => Ok(Self::SingleRobot),
+            // robosuite's demos pass "bimanual" with one bimanual robot (robosuite then sets
+            // `single-robot` whatever the string; with two robots it is an error there too).
+            "single-robot" | "bimanual" => Ok(Self::SingleRobot),
             other => Err(Error::invalid_argument(
                 "env_configuration",
                 format!(

@@ -820,7 +820,9 @@ impl RobosuiteEnv {
         let success = self.check_success();
         let terminated = self.task.check_terminated(&self.sim, &self.robots);
         let truncated = self.timestep >= self.config.horizon && !self.config.ignore_done;
-        if terminated || truncated {
+        // With `ignore_done` the episode goes on after the task terminates (Wipe's early
+        // terminations), as robosuite, whose step refuses only past the horizon.
+        if truncated || (terminated && !self.config.ignore_done) {
             self.phase = Phase::Ended;
         }
         let transition = Transition {

@@ -606,6 +606,20 @@ fn one_baxter_is_robosuites_single_robot_set_up() {
             assert_eq!(d[k], h[k] - e[k]);
         }
     }
+    // robosuite's demos name the one-bimanual-robot set-up "bimanual"; robosuite runs it as
+    // `single-robot` (and refuses it for two robots).
+    let parsed = robosuite_env::EnvConfiguration::parse("bimanual").unwrap();
+    let config = EnvConfig::default()
+        .with_robots(["Baxter"])
+        .with_env_configuration(parsed);
+    assert_eq!(
+        make_with("TwoArmLift", config).unwrap().observation_keys(),
+        env.observation_keys()
+    );
+    let two = EnvConfig::default()
+        .with_robots(["Panda", "Panda"])
+        .with_env_configuration(parsed);
+    assert_eq!(invalid_argument(make_with("TwoArmLift", two)).0, "env_configuration");
     // A bimanual robot takes no single-arm task and does not pair up.
     let (name, reason) = invalid_argument(make_with(
         "Lift",

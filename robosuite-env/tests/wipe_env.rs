@@ -233,6 +233,13 @@ fn a_joint_at_its_limit_ends_the_episode_with_the_penalty() {
     assert!((step.reward + 10.0 * norm).abs() < 1e-12, "{}", step.reward);
     assert_eq!(step.info.get_bool("success"), Some(false));
     assert_eq!(env.step(&act([0.0; 6])), Err(Error::EpisodeEnded));
+    // With ignore_done the episode goes on after the termination, as in robosuite (its
+    // step refuses only past the horizon); each step still reports it.
+    let mut env = make_with("Wipe", EnvConfig::default().with_ignore_done(true)).unwrap();
+    env.reset(Some(0), None).unwrap();
+    env.set_state(&s).unwrap();
+    assert!(env.step(&act([0.0; 6])).unwrap().terminated);
+    assert!(env.step(&act([0.0; 6])).unwrap().terminated);
     // Without shaping the penalty is 0; without early terminations the episode goes on.
     let calm = WipeConfig {
         early_terminations: false,
