@@ -80,7 +80,10 @@ fn sizes_and_observations_match_robosuite() {
     assert_eq!(get(&obs, "handle_qpos"), [env.get_state()[LATCH]]);
 
     // Without the latch: robosuite's door.xml, no handle_qpos.
-    let spec = DoorSpec { use_latch: false };
+    let spec = DoorSpec {
+        use_latch: false,
+        ..DoorSpec::default()
+    };
     let mut plain = RobosuiteEnv::new(&spec, EnvConfig::default()).unwrap();
     let (obs, _) = plain.reset(Some(0), None).unwrap();
     assert!(obs.get("handle_qpos").is_none());

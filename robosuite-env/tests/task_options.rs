@@ -2,6 +2,9 @@
 //! declares is one here with robosuite's default (recorded by
 //! `scripts/record_task_args.py`), options reach the scene, and bad ones are typed errors.
 
+mod common;
+
+use common::get;
 use gym_core::{Env, Error};
 use ndarray::ArrayD;
 use robosuite_env::sim::{body_id, geom_id, joint_id};
@@ -35,9 +38,6 @@ fn every_robosuite_task_argument_is_an_option_with_robosuite_default() {
             .as_object()
             .unwrap_or_else(|| panic!("{name} not recorded"));
         for (arg, default) in args {
-            if arg == "placement_initializer" {
-                continue; // a Python object, not a task option
-            }
             let ours = options
                 .get(arg)
                 .unwrap_or_else(|| panic!("{name}: robosuite's `{arg}` is not an option"));
@@ -116,6 +116,58 @@ fn options_reach_the_scene() {
     assert!(body_id(m, "contact29_main").is_ok());
     assert!(body_id(m, "contact30_main").is_err());
     assert_eq!(env.task_options()["task_config"]["num_markers"], 30);
+}
+
+#[test]
+fn a_placement_initializer_replaces_the_tasks_sampler() {
+    // robosuite's UniformRandomSampler arguments: a fixed spot 10 cm ahead, 20 cm left.
+    let sampler = json!({
+        "x_range": [0.1, 0.1], "y_range": [0.2, 0.2], "rotation": 0.0, "rotation_axis": "z",
+        "ensure_object_boundary_in_range": false, "ensure_valid_placement": true,
+        "reference_pos": [0.0, 0.0, 0.8], "z_offset": 0.01,
+    });
+    let config = EnvConfig::default().with_task_option("placement_initializer", sampler.clone());
+    let mut env = make_with("Lift", config).unwrap();
+    for seed in 0..3 {
+        let (obs, _) = env.reset(Some(seed), None).unwrap();
+        let pos = get(&obs, "cube_pos");
+        assert!(
+            (pos[0] - 0.1).abs() < 1e-12 && (pos[1] - 0.2).abs() < 1e-12,
+            "{pos:?}"
+        );
+        assert_eq!(get(&obs, "cube_quat"), [0.0, 0.0, 0.0, 1.0]);
+    }
+    // NutAssembly gives both nuts to it, as robosuite's add_objects: both in its range
+    // (robosuite's own samplers put them at x ≈ -0.11).
+    let wide = json!({
+        "x_range": [0.1, 0.3], "y_range": [-0.3, 0.3], "rotation": null, "rotation_axis": "z",
+        "ensure_object_boundary_in_range": false, "ensure_valid_placement": true,
+        "reference_pos": [0.0, 0.0, 0.82], "z_offset": 0.02,
+    });
+    let config = EnvConfig::default().with_task_option("placement_initializer", wide);
+    let mut env = make_with("NutAssembly", config).unwrap();
+    let (obs, _) = env.reset(Some(0), None).unwrap();
+    for nut in ["SquareNut_pos", "RoundNut_pos"] {
+        let p = get(&obs, nut);
+        assert!(
+            (0.1..=0.3).contains(&p[0]) && p[1].abs() <= 0.3,
+            "{nut} {p:?}"
+        );
+    }
+    // A sampler missing an argument or with an unknown axis names it.
+    let mut bad = sampler.clone();
+    bad["rotation_axis"] = json!("w");
+    let config = EnvConfig::default().with_task_option("placement_initializer", bad);
+    match make_with("Door", config).unwrap_err() {
+        Error::InvalidArgument { name, .. } => assert!(name.contains("rotation_axis"), "{name}"),
+        other => panic!("{other:?}"),
+    }
+    // Tasks robosuite gives no placement_initializer take none here either.
+    let config = EnvConfig::default().with_task_option("placement_initializer", sampler);
+    assert!(matches!(
+        make_with("ToolHang", config),
+        Err(Error::InvalidArgument { .. })
+    ));
 }
 
 #[test]

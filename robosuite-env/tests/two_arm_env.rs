@@ -619,7 +619,10 @@ fn one_baxter_is_robosuites_single_robot_set_up() {
     let two = EnvConfig::default()
         .with_robots(["Panda", "Panda"])
         .with_env_configuration(parsed);
-    assert_eq!(invalid_argument(make_with("TwoArmLift", two)).0, "env_configuration");
+    assert_eq!(
+        invalid_argument(make_with("TwoArmLift", two)).0,
+        "env_configuration"
+    );
     // A bimanual robot takes no single-arm task and does not pair up.
     let (name, reason) = invalid_argument(make_with(
         "Lift",

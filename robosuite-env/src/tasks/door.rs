@@ -18,17 +18,24 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use std::f64::consts::PI;
 
 /// Door's settings (robosuite's constructor defaults).
-#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct DoorSpec {
     /// Whether the handle latches the door (robosuite's `use_latch`, default true): the
     /// door comes from `objects/door_lock.xml` instead of `objects/door.xml`, the reward
     /// pays for turning the handle and `handle_qpos` is observed.
     pub use_latch: bool,
+    /// robosuite's `placement_initializer`: a sampler that replaces the task's own (it
+    /// places every object of the task); `None` (the default) keeps robosuite's.
+    #[serde(default)]
+    pub placement_initializer: Option<UniformRandomSampler>,
 }
 
 impl Default for DoorSpec {
     fn default() -> Self {
-        Self { use_latch: true }
+        Self {
+            use_latch: true,
+            placement_initializer: None,
+        }
     }
 }
 
@@ -108,16 +115,19 @@ impl TaskSpec for DoorSpec {
         let root = body_id(model, &door.root_body())?;
         let mut task = Door {
             use_latch: self.use_latch,
-            sampler: UniformRandomSampler {
-                x_range: [0.07, 0.09],
-                y_range: [-0.01, 0.01],
-                rotation: Rotation::Range(-PI / 2.0 - 0.25, -PI / 2.0),
-                rotation_axis: Axis::Z,
-                ensure_object_boundary_in_range: false,
-                ensure_valid_placement: true,
-                reference_pos: TABLE_OFFSET,
-                z_offset: 0.0,
-            },
+            sampler: self
+                .placement_initializer
+                .clone()
+                .unwrap_or_else(|| UniformRandomSampler {
+                    x_range: [0.07, 0.09],
+                    y_range: [-0.01, 0.01],
+                    rotation: Rotation::Range(-PI / 2.0 - 0.25, -PI / 2.0),
+                    rotation_axis: Axis::Z,
+                    ensure_object_boundary_in_range: false,
+                    ensure_valid_placement: true,
+                    reference_pos: TABLE_OFFSET,
+                    z_offset: 0.0,
+                }),
             extent: door.placement(),
             root,
             pose: (model.body_pos()[root], model.body_quat()[root]),

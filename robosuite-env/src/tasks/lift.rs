@@ -27,6 +27,10 @@ pub struct LiftSpec {
     pub cube_size_min: [f64; 3],
     /// Largest cube half-extents (0.022 each); each is drawn uniformly per reset.
     pub cube_size_max: [f64; 3],
+    /// robosuite's `placement_initializer`: a sampler that replaces the task's own (it
+    /// places every object of the task); `None` (the default) keeps robosuite's.
+    #[serde(default)]
+    pub placement_initializer: Option<UniformRandomSampler>,
 }
 
 /// robosuite's table top for Lift, Stack and ToolHang.
@@ -39,6 +43,7 @@ impl Default for LiftSpec {
             table_friction: [1.0, 5e-3, 1e-4],
             cube_size_min: [0.020; 3],
             cube_size_max: [0.022; 3],
+            placement_initializer: None,
         }
     }
 }
@@ -137,16 +142,19 @@ impl TaskSpec for LiftSpec {
         let eef_site = robots.first().map_or(0, |r| r.arm().eef_site());
         let mut task = Lift {
             spec: self.clone(),
-            sampler: UniformRandomSampler {
-                x_range: [-0.03, 0.03],
-                y_range: [-0.03, 0.03],
-                rotation: Rotation::Random,
-                rotation_axis: Axis::Z,
-                ensure_object_boundary_in_range: false,
-                ensure_valid_placement: true,
-                reference_pos: TABLE_OFFSET,
-                z_offset: 0.01,
-            },
+            sampler: self
+                .placement_initializer
+                .clone()
+                .unwrap_or_else(|| UniformRandomSampler {
+                    x_range: [-0.03, 0.03],
+                    y_range: [-0.03, 0.03],
+                    rotation: Rotation::Random,
+                    rotation_axis: Axis::Z,
+                    ensure_object_boundary_in_range: false,
+                    ensure_valid_placement: true,
+                    reference_pos: TABLE_OFFSET,
+                    z_offset: 0.01,
+                }),
             half,
             cube: body,
             cube_geoms: geoms,

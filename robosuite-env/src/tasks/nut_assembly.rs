@@ -46,6 +46,10 @@ pub struct NutAssemblySpec {
     pub table_friction: [f64; 3],
     /// The table top's centre (default (0, 0, 0.82)).
     pub table_offset: [f64; 3],
+    /// robosuite's `placement_initializer`: a sampler that replaces the task's own (it
+    /// places every object of the task); `None` (the default) keeps robosuite's.
+    #[serde(default)]
+    pub placement_initializer: Option<UniformRandomSampler>,
 }
 
 impl Default for NutAssemblySpec {
@@ -56,6 +60,7 @@ impl Default for NutAssemblySpec {
             table_full_size: [0.8, 0.8, 0.05],
             table_friction: [1.0, 5e-3, 1e-4],
             table_offset: [0.0, 0.0, 0.82],
+            placement_initializer: None,
         }
     }
 }
@@ -146,6 +151,12 @@ impl NutAssemblySpec {
     /// [0.11, 0.225] (square) or [−0.225, −0.11] (round) around the table top, yaw
     /// `U(0, 2π)`, 2 cm above the table, the round nut clear of the square one.
     fn sampler(&self) -> SequentialCompositeSampler {
+        if let Some(user) = &self.placement_initializer {
+            // robosuite adds every nut to the given sampler.
+            return SequentialCompositeSampler {
+                samplers: vec![(user.clone(), (0..NUTS.len()).collect())],
+            };
+        }
         SequentialCompositeSampler {
             samplers: NUT_Y_RANGES
                 .iter()

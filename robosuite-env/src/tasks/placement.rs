@@ -52,8 +52,9 @@ impl From<Rotation> for RotationArg {
     }
 }
 
-/// The axis of the sampled rotation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The axis of the sampled rotation (serde: robosuite's `"x"`, `"y"`, `"z"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Axis {
     /// About x.
     X,
@@ -85,8 +86,10 @@ pub fn with_init_quat(sampled: [f64; 4], init_quat: [f64; 4]) -> [f64; 4] {
     crate::math::quat_multiply_f32(sampled, init_quat)
 }
 
-/// robosuite's `UniformRandomSampler`.
-#[derive(Debug, Clone, PartialEq)]
+/// robosuite's `UniformRandomSampler` (serde: its constructor arguments by name, as a
+/// task's `placement_initializer` option).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct UniformRandomSampler {
     /// Range of x around the reference.
     pub x_range: [f64; 2],

@@ -26,6 +26,10 @@ pub struct StackSpec {
     pub table_full_size: [f64; 3],
     /// The table's friction (default `(1, 0.005, 0.0001)`).
     pub table_friction: [f64; 3],
+    /// robosuite's `placement_initializer`: a sampler that replaces the task's own (it
+    /// places every object of the task); `None` (the default) keeps robosuite's.
+    #[serde(default)]
+    pub placement_initializer: Option<UniformRandomSampler>,
 }
 
 impl Default for StackSpec {
@@ -33,6 +37,7 @@ impl Default for StackSpec {
         Self {
             table_full_size: [0.8, 0.8, 0.05],
             table_friction: [1.0, 5e-3, 1e-4],
+            placement_initializer: None,
         }
     }
 }
@@ -80,16 +85,19 @@ impl TaskSpec for StackSpec {
     fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>> {
         let [a, b] = [&scene.objects[0], &scene.objects[1]];
         let mut task = Stack {
-            sampler: UniformRandomSampler {
-                x_range: [-0.08, 0.08],
-                y_range: [-0.08, 0.08],
-                rotation: Rotation::Random,
-                rotation_axis: Axis::Z,
-                ensure_object_boundary_in_range: false,
-                ensure_valid_placement: true,
-                reference_pos: TABLE_OFFSET,
-                z_offset: 0.01,
-            },
+            sampler: self
+                .placement_initializer
+                .clone()
+                .unwrap_or_else(|| UniformRandomSampler {
+                    x_range: [-0.08, 0.08],
+                    y_range: [-0.08, 0.08],
+                    rotation: Rotation::Random,
+                    rotation_axis: Axis::Z,
+                    ensure_object_boundary_in_range: false,
+                    ensure_valid_placement: true,
+                    reference_pos: TABLE_OFFSET,
+                    z_offset: 0.01,
+                }),
             extents: [a.placement(), b.placement()],
             cube_a: FreeBody::bind(model, a)?,
             cube_b: FreeBody::bind(model, b)?,

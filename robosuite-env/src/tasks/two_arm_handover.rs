@@ -31,6 +31,10 @@ pub struct TwoArmHandoverSpec {
     /// The ranges the hammer's figures are drawn from at every reset.
     #[serde(skip)]
     pub hammer: HammerRanges,
+    /// robosuite's `placement_initializer`: a sampler that replaces the task's own (it
+    /// places every object of the task); `None` (the default) keeps robosuite's.
+    #[serde(default)]
+    pub placement_initializer: Option<UniformRandomSampler>,
 }
 
 impl Default for TwoArmHandoverSpec {
@@ -39,6 +43,7 @@ impl Default for TwoArmHandoverSpec {
             table_full_size: [0.8, 1.2, 0.05],
             table_friction: [1.0, 5e-3, 1e-4],
             hammer: HammerRanges::default(),
+            placement_initializer: None,
         }
     }
 }
@@ -181,16 +186,19 @@ impl TaskSpec for TwoArmHandoverSpec {
         let arms = task_arms(robots);
         let mut task = TwoArmHandover {
             spec: self.clone(),
-            sampler: UniformRandomSampler {
-                x_range: [-0.1, 0.1],
-                y_range: [-0.05, 0.05],
-                rotation: Rotation::Random,
-                rotation_axis: Axis::Y,
-                ensure_object_boundary_in_range: false,
-                ensure_valid_placement: true,
-                reference_pos: offset,
-                z_offset: 0.0,
-            },
+            sampler: self
+                .placement_initializer
+                .clone()
+                .unwrap_or_else(|| UniformRandomSampler {
+                    x_range: [-0.1, 0.1],
+                    y_range: [-0.05, 0.05],
+                    rotation: Rotation::Random,
+                    rotation_axis: Axis::Y,
+                    ensure_object_boundary_in_range: false,
+                    ensure_valid_placement: true,
+                    reference_pos: offset,
+                    z_offset: 0.0,
+                }),
             body: FreeBody::bind(model, object)?,
             handle_geom: geom_id(model, &object.name_of("handle"))?,
             handle: GeomSet::new([geom_id(model, &object.name_of("handle"))?]),

@@ -28,6 +28,10 @@ pub struct TwoArmLiftSpec {
     pub table_full_size: [f64; 3],
     /// The table's friction (default `(1, 0.005, 0.0001)`).
     pub table_friction: [f64; 3],
+    /// robosuite's `placement_initializer`: a sampler that replaces the task's own (it
+    /// places every object of the task); `None` (the default) keeps robosuite's.
+    #[serde(default)]
+    pub placement_initializer: Option<UniformRandomSampler>,
 }
 
 impl Default for TwoArmLiftSpec {
@@ -35,6 +39,7 @@ impl Default for TwoArmLiftSpec {
         Self {
             table_full_size: [0.8, 0.8, 0.05],
             table_friction: [1.0, 5e-3, 1e-4],
+            placement_initializer: None,
         }
     }
 }
@@ -110,16 +115,19 @@ impl TaskSpec for TwoArmLiftSpec {
             )
         };
         let mut task = TwoArmLift {
-            sampler: UniformRandomSampler {
-                x_range: [-0.03, 0.03],
-                y_range: [-0.03, 0.03],
-                rotation: Rotation::Range(PI + -PI / 3.0, PI + PI / 3.0),
-                rotation_axis: Axis::Z,
-                ensure_object_boundary_in_range: false,
-                ensure_valid_placement: true,
-                reference_pos: TABLE_OFFSET,
-                z_offset: 0.0,
-            },
+            sampler: self
+                .placement_initializer
+                .clone()
+                .unwrap_or_else(|| UniformRandomSampler {
+                    x_range: [-0.03, 0.03],
+                    y_range: [-0.03, 0.03],
+                    rotation: Rotation::Range(PI + -PI / 3.0, PI + PI / 3.0),
+                    rotation_axis: Axis::Z,
+                    ensure_object_boundary_in_range: false,
+                    ensure_valid_placement: true,
+                    reference_pos: TABLE_OFFSET,
+                    z_offset: 0.0,
+                }),
             extent: pot.placement(),
             pot: FreeBody::bind(model, pot)?,
             pot_top_offset: pot.top_offset[2],

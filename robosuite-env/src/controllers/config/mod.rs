@@ -312,6 +312,52 @@ pub fn robot_default(assets: &Assets, robot: &str) -> Result<CompositeController
     })
 }
 
+/// The keys of robosuite controller config `value` (composite or part) that robosuite's
+/// controllers accept and ignore (their constructors take `**kwargs`) and so does this
+/// crate: keys of another controller type left in a config, `damping_limits` beside
+/// `damping_ratio_limits`, misspellings. Each as its path (`body_parts.right.foo`), so a
+/// caller can warn about them; the values of keys that are used are still checked.
+pub fn ignored_keys(value: &Value) -> Vec<String> {
+    fn arm(value: &Value, path: &str, out: &mut Vec<String>) {
+        let Some(obj) = value.as_object() else { return };
+        let Some((keys, ignored)) = obj
+            .get("type")
+            .and_then(Value::as_str)
+            .and_then(ArmControllerConfig::keys_of)
+        else {
+            return;
+        };
+        for key in obj.keys() {
+            let k = key.as_str();
+            if !(k == "type" || k == "gripper" || keys.contains(&k) || ignored.contains(&k)) {
+                out.push(join(path, k));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    let Some(obj) = value.as_object() else {
+        return out;
+    };
+    match obj.get("body_parts").and_then(Value::as_object) {
+        None => arm(value, "", &mut out),
+        Some(parts) => {
+            for (name, part) in parts {
+                let at = join("body_parts", name);
+                match (name.as_str(), part.as_object()) {
+                    ("arms", Some(arms)) => {
+                        for (side, cfg) in arms {
+                            arm(cfg, &join(&at, side), &mut out);
+                        }
+                    }
+                    ("right" | "left", _) => arm(part, &at, &mut out),
+                    _ => {}
+                }
+            }
+        }
+    }
+    out
+}
+
 /// Parses one arm part (`{"type": ..., ..., "gripper": {...}}`) at `path`.
 fn parse_arm_part(value: &Value, path: &str) -> Result<ArmPartConfig> {
     let obj = object(value, path)?;
@@ -329,20 +375,14 @@ fn parse_arm_part(value: &Value, path: &str) -> Result<ArmPartConfig> {
         ArmControllerConfig::keys_of(kind).ok_or_else(|| unknown_type(kind, &type_path))?;
     let mut fields = Map::new();
     for (key, v) in obj {
-        match key.as_str() {
-            "type" | "gripper" => {}
-            k if keys.contains(&k) => {
-                fields.insert(key.clone(), v.clone());
-            }
-            k if ignored.contains(&k) => {}
-            _ => {
-                let mut valid = vec!["type", "gripper"];
-                valid.extend_from_slice(keys);
-                valid.extend_from_slice(ignored);
-                return Err(unknown_key(path, key, &valid));
-            }
+        if keys.contains(&key.as_str()) {
+            fields.insert(key.clone(), v.clone());
         }
+        // Other keys (`type`, `gripper` below; robosuite's ignored ones, and any other:
+        // robosuite's controllers take `**kwargs`) are not the controller's settings; see
+        // [`ignored_keys`].
     }
+    let _ = ignored;
     let fields = Value::Object(fields);
     let controller = match kind {
         "OSC_POSE" => ArmControllerConfig::OscPose(typed(fields, path)?),
