@@ -30,6 +30,7 @@ import numpy as np
 from gymnasium import error as gymnasium_error
 
 from . import _native
+from ._env_observables import EnvObservables
 
 __all__ = [
     "make",
@@ -43,6 +44,7 @@ __all__ = [
     "RobosuiteEnv",
     "ALL_ENVIRONMENTS",
     "SUPPORTED_KWARGS",
+    "task_arguments",
     "install_as_robosuite",
     "__version__",
 ]
@@ -63,22 +65,17 @@ _DIRECT_KWARGS = (
     "ignore_done",
     "use_object_obs",
     "seed",
+    "lite_physics",
 )
 
 # robosuite arguments accepted only with these values (anything else raises).
 _FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
     "has_renderer": (False,),
-    "render_gpu_device_id": (-1,),
-    "lite_physics": (True,),
     "base_types": ("default",),
     "mount_types": ("default",),
-    "placement_initializer": (None,),
     "renderer_config": (None,),
     "render_collision_mesh": (False,),
     "render_visual_mesh": (True,),
-    "table_full_size": ((0.8, 0.8, 0.05),),
-    "table_friction": ((1.0, 5e-3, 1e-4),),
-    "table_offset": ((0, 0, 0.8),),
 }
 
 # robosuite's camera arguments plus Gymnasium's render mode (and its frame size), passed
@@ -108,6 +105,7 @@ _RENDER_ONLY_KWARGS = (
 SUPPORTED_KWARGS: tuple[str, ...] = (
     ("robots", "env_configuration", "gripper_types", "controller_configs", "initialization_noise", "model_xml")
     + _DIRECT_KWARGS
+    + ("render_gpu_device_id",)
     + tuple(_FIXED_KWARGS)
     + _CAMERA_KWARGS
     + _RENDER_ONLY_KWARGS
@@ -170,7 +168,8 @@ def _camera_kwarg(key: str, value: Any) -> Any:
     if key in ("camera_heights", "camera_widths"):
         return _ints(key, value)
     if key == "camera_depths":
-        return _bools(key, value)
+        # robosuite takes None as False (robomimic's data-processing envs pass it).
+        return _bools(key, False if value is None else value)
     if key == "camera_segmentations":
         return _segmentations(value)
     if key in ("render_height", "render_width"):
@@ -214,7 +213,18 @@ def _controller_json(cfg: Any) -> str:
     one per robot) as JSON text; the Rust core parses and checks it."""
     if not isinstance(cfg, (dict, list, tuple)):
         raise ValueError(f"controller_configs must be a dict, a list of dicts or None, got {type(cfg).__name__}")
-    return json.dumps(_plain(cfg, "controller_configs"))
+    text = json.dumps(_plain(cfg, "controller_configs"))
+    for one in json.loads(text) if isinstance(cfg, (list, tuple)) else [json.loads(text)]:
+        ignored = _native.controller_ignored_keys(json.dumps(one))
+        if ignored:
+            import warnings
+
+            warnings.warn(
+                f"controller_configs: robosuite's controllers ignore {', '.join(ignored)} (not settings "
+                "of their controller type); so does robosuite_rs",
+                stacklevel=4,
+            )
+    return text
 
 
 def load_composite_controller_config(controller: str | None = None, robot: str | None = None) -> dict[str, Any]:
@@ -245,6 +255,7 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
     # robosuite's default: an offscreen renderer (used only by camera observations and
     # render modes), so `use_camera_obs=True` alone works as in robosuite.
     config: dict[str, Any] = {"robots": robots_list, "has_offscreen_renderer": True}
+    task_options: dict[str, Any] = {}
     for key, value in kwargs.items():
         if key in _DIRECT_KWARGS:
             if value is None and key not in ("reward_scale", "seed"):
@@ -258,6 +269,11 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
                     "use_camera_obs=True or render_mode='rgb_array'",
                 }.get(key, f"only {_FIXED_KWARGS[key][0]!r} is supported")
                 raise ValueError(f"{env_name}: {key}={value!r} is not supported by robosuite_rs ({hint})")
+        elif key == "render_gpu_device_id":
+            # robosuite's GPU for offscreen rendering (robomimic sets it to the first device
+            # egl_probe finds). Frames here are drawn on the first EGL device that opens.
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < -1:
+                raise ValueError(f"render_gpu_device_id must be an int >= -1 (-1: any), got {value!r}")
         elif key in _CAMERA_KWARGS:
             mapped = _camera_kwarg(key, value)
             if mapped is not None:
@@ -291,11 +307,36 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
                     config["initialization_noise_type"] = str(value["type"])
             else:
                 raise ValueError(f"initialization_noise must be 'default', None or a dict, got {value!r}")
+        elif key == "placement_initializer" and key in task_arguments(env_name):
+            from .utils.placement_samplers import UniformRandomSampler
+
+            if value is not None and not isinstance(value, UniformRandomSampler):
+                raise TypeError(
+                    "placement_initializer must be None or a robosuite_rs.utils.placement_samplers."
+                    f"UniformRandomSampler, got {type(value).__name__}"
+                )
+            task_options[key] = None if value is None else value._task_option()
+        elif key in task_arguments(env_name):
+            task_options[key] = _plain(value, key)
         else:
             raise TypeError(
-                f"make() got an unexpected keyword argument {key!r} for {env_name}; supported: {', '.join(SUPPORTED_KWARGS)}"
+                f"make() got an unexpected keyword argument {key!r} for {env_name}; supported: "
+                f"{', '.join(SUPPORTED_KWARGS)} and {env_name}'s own: {', '.join(task_arguments(env_name)) or 'none'}"
             )
+    if task_options:
+        config["task_options"] = json.dumps(task_options)
     return config
+
+
+def task_arguments(env_name: str) -> dict[str, Any]:
+    """The task ``env_name``'s own constructor arguments with robosuite's defaults (e.g.
+    ``{"use_latch": True}`` for Door; lists for robosuite's tuples, ``None`` for ``None``),
+    passed to :func:`make` as keyword arguments like robosuite's.
+
+    Raises:
+        ValueError: for an unknown task.
+    """
+    return json.loads(_native.task_options(env_name))
 
 
 class RobosuiteEnv:
@@ -315,6 +356,7 @@ class RobosuiteEnv:
         self._ep_meta: dict[str, Any] = {}
         self._xml_processors: list[Any] = [self.edit_model_xml]
         self._controller_configs: list[dict[str, Any] | None] = []
+        self._obsv = EnvObservables(native)
 
     # --- robosuite's env object: env.sim, env.robots, the XML round trip ----------------
     @property
@@ -391,6 +433,7 @@ class RobosuiteEnv:
             if not isinstance(xml, str):
                 raise TypeError(f"an xml processor returned {type(xml).__name__}, not str")
         self._native.reset_from_xml_string(xml)
+        self._obsv.native_replaced()
         self._sim = None
         self._robots = None
 
@@ -412,64 +455,87 @@ class RobosuiteEnv:
         """robosuite's hook after setting a state: nothing to update here."""
 
     # --- observables --------------------------------------------------------------------
-    def _observables(self) -> list[tuple[Any, ...]]:
-        return list(self._native.observables())
+    # robosuite's observables API (see robosuite_rs.observables and _env_observables): while
+    # every observable is as made, step/reset are single native calls; otherwise the
+    # step runs substep by substep and the observables sample on robosuite's schedule.
+    @property
+    def _observables(self) -> OrderedDict[str, Any]:
+        """robosuite's ``env._observables``: observable name -> :class:`~robosuite_rs.observables.Observable`
+        (the env's own first, in robosuite's order, then those added)."""
+        self._obsv.materialize()
+        return self._obsv.map
+
+    @property
+    def _obs_cache(self) -> dict[str, Any]:
+        """robosuite's ``env._obs_cache``: the last sampled value of every enabled
+        observable (and what sensors put there)."""
+        self._obsv.materialize()
+        return self._obsv.cache
 
     @property
     def observation_names(self) -> set[str]:
         """Every observable's name."""
-        return {o[0] for o in self._observables()}
+        return set(self._obsv.map)
 
     @property
     def observation_modalities(self) -> set[str]:
         """Every observable's modality."""
-        return {o[1] for o in self._observables()}
+        return {o.modality for o in self._obsv.map.values()}
 
     @property
     def enabled_observables(self) -> set[str]:
-        """The enabled observables."""
-        return {o[0] for o in self._observables() if o[4]}
+        """The enabled observables (sampled as the simulation runs)."""
+        return {n for n, o in self._obsv.map.items() if o.is_enabled()}
 
     @property
     def active_observables(self) -> set[str]:
         """The active observables (returned in observations when enabled)."""
-        return {o[0] for o in self._observables() if o[5]}
+        return {n for n, o in self._obsv.map.items() if o.is_active()}
 
     def modify_observable(self, observable_name: str, attribute: str, modifier: Any) -> None:
-        """robosuite's ``modify_observable`` for ``"enabled"`` and ``"active"`` (an
-        observable that is not both is left out of the observations).
+        """robosuite's ``modify_observable``: sets ``attribute`` of the observable
+        ``observable_name`` to ``modifier``: ``"sensor"`` (a :func:`~robosuite_rs.observables.sensor`
+        function), ``"corrupter"``, ``"filter"``, ``"delayer"`` (a function or ``None``),
+        ``"sampling_rate"`` (Hz), ``"enabled"``, ``"active"`` (bools; an observable that
+        is not both is left out of the observations). A new corrupter or filter is tried
+        once on the observable's current reading (NumPy's global RNG is left as it was).
 
         Raises:
-            ValueError: for an unknown observable (the message lists them) or a value
-                that is not a bool.
-            NotImplementedError: for ``"sensor"``, ``"corrupter"``, ``"filter"``,
-                ``"delayer"`` and ``"sampling_rate"``, not served yet.
+            ValueError: for an unknown observable or attribute (the message lists the valid
+                ones), a modifier of the wrong kind, a sampling rate that is not a positive
+                finite number, a sensor that fails on an empty ``obs_cache``, a corrupter or
+                filter that raises or turns the current reading into NaN/inf, a delayer not
+                giving a non-negative number; the env is then unchanged.
         """
-        if attribute in ("enabled", "active"):
-            if not isinstance(modifier, (bool, np.bool_)):
-                raise ValueError(f"modify_observable: {attribute} takes a bool, got {modifier!r}")
-            self._native.modify_observable(observable_name, attribute, bool(modifier))
-            return
-        if attribute in ("sensor", "corrupter", "filter", "delayer", "sampling_rate"):
-            if observable_name not in self.observation_names:
-                raise ValueError(
-                    f"No valid observable with name {observable_name} found. Options are: {sorted(self.observation_names)}"
-                )
-            raise NotImplementedError(f"modify_observable: {attribute!r} is not supported by robosuite_rs yet")
-        raise ValueError(f"modify_observable: unknown attribute {attribute!r}")
+        self._obsv.modify(observable_name, attribute, modifier)
+
+    def add_observable(self, observable: Any) -> None:
+        """robosuite's ``add_observable``: adds ``observable`` (an
+        :class:`~robosuite_rs.observables.Observable`) after the others; it is sampled
+        from the next step on (env steps then run substep by substep in Python).
+
+        Raises:
+            ValueError: (also an ``AssertionError``, as robosuite raises) when an
+                observable of that name exists.
+            TypeError: for anything but an ``Observable``.
+        """
+        self._obsv.add(observable)
 
     def _get_observations(self, force_update: bool = False) -> OrderedDict[str, np.ndarray]:
-        """robosuite's ``_get_observations``: with ``force_update`` every observable is
-        read again from the simulator as it is now (after ``sim.set_state_from_flattened``
-        and ``sim.forward()``); otherwise the last observations."""
-        if force_update:
-            return self._native.update_observations()
-        return self._native.observation_spec()
+        """robosuite's ``_get_observations``: the enabled and active observables' current
+        values, then the ``{modality}-state`` concatenations; with ``force_update`` every
+        enabled observable samples now (after ``sim.set_state_from_flattened`` and
+        ``sim.forward()``: the current state). As in robosuite a forced update also moves
+        the observables' clocks by one model timestep, so later env steps sample one
+        substep earlier (those steps then run substep by substep) until the next reset."""
+        return self._obsv.get_observations(force_update)
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickling and ``copy.deepcopy``: the configuration plus the whole run-time state
         (simulator, controllers, task, episode counter, RNG), so that the copy continues
-        bit-identically. A ``model_xml`` scene is re-read from its path.
+        bit-identically. A ``model_xml`` scene is re-read from its path. Observables
+        changed by ``modify_observable`` / ``add_observable`` are not carried over (the copy's
+        are as made).
 
         Raises:
             TypeError: for an env not made by :func:`make`.
@@ -481,16 +547,23 @@ class RobosuiteEnv:
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
         """Starts an episode; ``seed`` (an extension of robosuite's API) re-seeds the env."""
-        return self._native.reset(seed)
+        obsv = self._obsv
+        if obsv.fast:
+            return self._native.reset(seed)
+        return obsv.after_reset(self._native.reset(seed))
 
     def step(self, action: Any) -> tuple[OrderedDict[str, np.ndarray], float, bool, dict[str, Any]]:
         """Applies ``action``; returns ``(obs, reward, done, info)``.
 
         Raises:
             ValueError: for an action of the wrong length or with NaN/inf (the env is
-                unchanged), or when stepping an episode that is done (as robosuite).
+                unchanged), or when stepping an episode that is done (as robosuite); when
+                an observable's sensor, corrupter, filter or delayer fails (the step is
+                then taken all the same, and the message says so).
         """
-        return self._native.step(action)
+        if self._obsv.fast:
+            return self._native.step(action)
+        return self._obsv.step(action)
 
     @property
     def action_spec(self) -> tuple[np.ndarray, np.ndarray]:
@@ -504,11 +577,13 @@ class RobosuiteEnv:
 
     def observation_spec(self) -> OrderedDict[str, np.ndarray]:
         """The current observations (as robosuite's ``observation_spec()``)."""
-        return self._native.observation_spec()
+        return self._obsv.get_observations(False)
 
     def observation_keys(self) -> list[str]:
         """The observation keys, in order."""
-        return list(self._native.observation_keys())
+        if self._obsv.fast:
+            return list(self._native.observation_keys())
+        return list(self._obsv.build())
 
     @property
     def horizon(self) -> int:
@@ -556,6 +631,23 @@ class RobosuiteEnv:
         return list(self._native.camera_names)
 
     @property
+    def model_timestep(self) -> float:
+        """MuJoCo's timestep in seconds (robosuite's ``model_timestep``, 0.002)."""
+        return self._native.model_timestep
+
+    @property
+    def control_timestep(self) -> float:
+        """Seconds of simulation per env step (robosuite's ``control_timestep``,
+        ``1 / control_freq``)."""
+        return 1.0 / self._native.control_freq
+
+    @property
+    def model(self) -> "_TaskModel":
+        """robosuite's ``env.model`` (the task's MJCF model) as far as its XML: ``get_xml()``,
+        ``root`` / ``worldbody`` (ElementTree elements) and ``save_model(fname)``."""
+        return _TaskModel(self._native.source_xml())
+
+    @property
     def timestep(self) -> int:
         """Env steps taken in the current episode."""
         return self._native.timestep
@@ -595,6 +687,34 @@ class RobosuiteEnv:
 
     def __repr__(self) -> str:
         return f"<robosuite_rs.RobosuiteEnv {self.name} horizon={self.horizon}>"
+
+
+class _TaskModel:
+    """robosuite's ``env.model`` (a ``ManipulationTask``) for what is read from its XML: the
+    scene's MJCF as compiled (robosuite's names; assets by absolute path)."""
+
+    def __init__(self, xml: str) -> None:
+        import xml.etree.ElementTree as ET
+
+        self._xml = xml
+        self.root = ET.fromstring(xml)
+        self.worldbody = self.root.find("worldbody")
+        self.asset = self.root.find("asset")
+        self.actuator = self.root.find("actuator")
+
+    def get_xml(self) -> str:
+        """The scene's MJCF text."""
+        return self._xml
+
+    def save_model(self, fname: str, pretty: bool = False) -> None:
+        """Writes the MJCF to ``fname`` (``pretty``: indented)."""
+        text = self._xml
+        if pretty:
+            import xml.dom.minidom
+
+            text = xml.dom.minidom.parseString(text).toprettyxml(indent="  ")
+        with open(fname, "w", encoding="utf8") as f:
+            f.write(text)
 
 
 def make(
@@ -637,6 +757,7 @@ def make(
     native = _native.make_robosuite(env_name, config, model)
     env = RobosuiteEnv(native)
     env._make_args = (env_name, config, model)
+    env._obsv.hard_reset = bool(kwargs.get("hard_reset", True))
     env._controller_configs = _controller_config_dicts(kwargs.get("controller_configs"), robots, env)
     return env
 

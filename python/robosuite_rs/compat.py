@@ -60,7 +60,7 @@ def install_as_robosuite() -> types.ModuleType:
 
     import robosuite_rs as rs
     from . import binding_utils, robots, wrappers
-    from .utils import camera_utils, transform_utils
+    from .utils import camera_utils, placement_samplers, transform_utils
 
     macros = _module(
         "robosuite.macros",
@@ -99,7 +99,12 @@ def install_as_robosuite() -> types.ModuleType:
     utils = _module(
         "robosuite.utils",
         "robosuite's utilities.",
-        {"transform_utils": transform_utils, "camera_utils": camera_utils, "binding_utils": binding_utils},
+        {
+            "transform_utils": transform_utils,
+            "camera_utils": camera_utils,
+            "binding_utils": binding_utils,
+            "placement_samplers": placement_samplers,
+        },
         package=True,
     )
     wrappers_mod = _module(
@@ -140,6 +145,11 @@ def install_as_robosuite() -> types.ModuleType:
     for module in (robosuite, macros, controllers, robots_mod, utils, wrappers_mod, environments):
         sys.modules[module.__name__] = module
     sys.modules["robosuite.utils.transform_utils"] = transform_utils
+    sys.modules["robosuite.utils.placement_samplers"] = placement_samplers
     sys.modules["robosuite.utils.camera_utils"] = camera_utils
     sys.modules["robosuite.utils.binding_utils"] = binding_utils
+    from . import observables  # robosuite.utils.observables: Observable, sensor, corrupters, delayers
+
+    utils.observables = observables  # type: ignore[attr-defined]
+    sys.modules["robosuite.utils.observables"] = observables
     return robosuite

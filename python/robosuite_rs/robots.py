@@ -131,6 +131,12 @@ class Robot:
         joints = [model.joint_id2name(jnt_qposadr.index(a)) for a in self._joint_qpos]
         arm_actuators = [i for a in info["arms"] for i in a["actuators"]]
         self.robot_model = RobotModel(self.name, index, joints, _names(model, "actuator", arm_actuators))
+        #: robosuite's joint bookkeeping: the robot's (arm) joint names, ids, qpos and dof
+        #: addresses.
+        self.robot_joints = list(joints)
+        self._ref_joint_indexes = [model.joint_name2id(j) for j in joints]
+        self._ref_joint_pos_indexes = list(self._joint_qpos)
+        self._ref_joint_vel_indexes = list(self._joint_dofs)
         self.arms = [a["side"] for a in info["arms"]]
         parts_cfg = (controller_config or {}).get("body_parts", {})
         self.gripper: dict[str, GripperModel | None] = {}
@@ -168,6 +174,16 @@ class Robot:
     def dof(self) -> int:
         """Degrees of freedom of the robot's joints (arms and grippers)."""
         return len(self._joint_dofs) + sum(len(g.joints) for g in self.gripper.values() if g is not None)
+
+    @property
+    def _joint_positions(self) -> np.ndarray:
+        """The robot's joint positions (robosuite's ``_joint_positions``)."""
+        return self._env.sim.data.qpos[self._ref_joint_pos_indexes].copy()
+
+    @property
+    def _joint_velocities(self) -> np.ndarray:
+        """The robot's joint velocities (robosuite's ``_joint_velocities``)."""
+        return self._env.sim.data.qvel[self._ref_joint_vel_indexes].copy()
 
     @property
     def action_dim(self) -> int:

@@ -237,6 +237,15 @@ fn task_options(env_name: &str) -> PyResult<String> {
     Ok(serde_json::Value::Object(spec.options()).to_string())
 }
 
+/// The keys of a controller config (JSON text) that robosuite's controllers ignore, and so
+/// does this package, as paths (for a warning).
+#[pyfunction]
+fn controller_ignored_keys(config_json: &str) -> PyResult<Vec<String>> {
+    let value: serde_json::Value = serde_json::from_str(config_json)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("not JSON: {e}")))?;
+    Ok(robosuite_env::controllers::config::ignored_keys(&value))
+}
+
 /// The keyword arguments the Rust configuration accepts.
 #[pyfunction]
 fn config_keys() -> Vec<String> {
@@ -311,6 +320,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(task_robot_count, m)?)?;
     m.add_function(wrap_pyfunction!(config_keys, m)?)?;
     m.add_function(wrap_pyfunction!(task_options, m)?)?;
+    m.add_function(wrap_pyfunction!(controller_ignored_keys, m)?)?;
     m.add_function(wrap_pyfunction!(load_composite_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(load_part_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(part_controller_types, m)?)?;

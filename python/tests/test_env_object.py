@@ -269,8 +269,8 @@ def test_observables_api():
         env.modify_observable("nope", "active", True)
     with pytest.raises(ValueError):
         env.modify_observable("robot0_joint_pos", "active", "yes")
-    with pytest.raises(NotImplementedError):
-        env.modify_observable("robot0_joint_pos", "corrupter", lambda x: x)
+    with pytest.raises(ValueError, match="valid options"):
+        env.modify_observable("robot0_joint_pos", "colour", lambda x: x)  # the rest: test_observables.py
 
 
 def test_get_observations_force_update_reads_the_current_state():
@@ -420,3 +420,19 @@ def test_install_as_robosuite_refuses_the_real_one_and_is_idempotent():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr[-3000:]
     assert "refused" in out.stdout
+
+
+def test_env_model_and_timesteps(tmp_path):
+    import mujoco
+
+    env = suite.make("Lift", control_freq=25, has_offscreen_renderer=False)
+    env.reset(seed=0)
+    assert env.model_timestep == env.sim.model.opt.timestep == 0.002
+    assert env.control_timestep == pytest.approx(0.04)
+    # env.model's XML compiles to the env's own model (same bodies, same names).
+    model = mujoco.MjModel.from_xml_string(env.model.get_xml())
+    assert model.nbody == env.sim.model._model.nbody
+    assert [model.body(i).name for i in range(model.nbody)] == list(env.sim.model.body_names)
+    assert env.model.worldbody.find(".//body[@name='cube_main']") is not None
+    env.model.save_model(str(tmp_path / "scene.xml"), pretty=True)
+    assert mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml")).nbody == model.nbody

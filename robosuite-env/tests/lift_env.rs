@@ -624,3 +624,30 @@ fn gripper_integrator_follows_the_sign_of_the_action() {
     env.reset(None, None).unwrap();
     assert_eq!(command(&env), [0.0, 0.0]);
 }
+
+#[test]
+fn a_deterministic_reset_is_robosuites_posture_without_noise_fingers_left_as_the_scene_has_them() {
+    let mut env = lift(EnvConfig::default().with_seed(3));
+    env.reset(None, None).unwrap();
+    for _ in 0..5 {
+        let _ = env.step(&action([0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])).unwrap();
+    }
+    let rng_before = env.rng_state();
+    env.reset_deterministic().unwrap();
+    let robot = &env.robots()[0];
+    let qpos = env.sim().data().qpos();
+    let arm: Vec<f64> = robot.joint_qpos().iter().map(|&a| qpos[a]).collect();
+    assert_eq!(arm, robot.init_qpos());
+    // robosuite's `robot.reset(deterministic=True)` does not touch the fingers: after the
+    // data reset they are at the model's qpos0, not at the gripper's init_qpos.
+    let qpos0 = env.sim().model().qpos0();
+    for &a in robot.arm().gripper().qpos() {
+        assert_eq!(qpos[a], qpos0[a]);
+    }
+    assert_ne!(
+        robot.arm().gripper().info().init_qpos.map(|q| q[0]),
+        Some(qpos0[robot.arm().gripper().qpos()[0]])
+    );
+    // Nothing drawn from the RNG.
+    assert_eq!(env.rng_state(), rng_before);
+}

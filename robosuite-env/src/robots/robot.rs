@@ -546,7 +546,9 @@ impl Robot {
     }
 
     /// robosuite's deterministic reset (`robot.reset(deterministic=True)`): as
-    /// [`Robot::reset`] at `init_qpos` exactly, without noise and drawing nothing.
+    /// [`Robot::reset`] at `init_qpos` exactly, without noise and drawing nothing, and the
+    /// grippers' fingers left where the scene has them (robosuite sets them only in a
+    /// random reset).
     ///
     /// # Errors
     /// As [`Robot::reset`].
@@ -556,6 +558,8 @@ impl Robot {
 
     fn reset_with(&mut self, sim: &mut Sim, rng: Option<&mut EnvRng>) -> gym_core::Result<()> {
         self.qpos_buf.copy_from_slice(&self.init_qpos);
+        // robosuite's deterministic reset leaves the fingers where the scene has them.
+        let deterministic = rng.is_none();
         if let Some(rng) = rng {
             self.noise.perturb(rng, &mut self.qpos_buf);
         }
@@ -564,6 +568,7 @@ impl Robot {
         for arm in &mut self.arms {
             let g = &mut arm.gripper;
             if g.has_gripper
+                && !deterministic
                 && let Some(init) = g.info.init_qpos
             {
                 for (&a, &v) in g.qpos.iter().zip(init) {

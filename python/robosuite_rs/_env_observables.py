@@ -1,0 +1,669 @@
+"""The observables of one :class:`robosuite_rs.RobosuiteEnv` (robosuite's
+``env._observables`` and the env methods around it), run as robosuite 1.5.2 runs them.
+
+Two ways to step:
+
+* Fast: while every observable is as the env made it (its own sensor, the control
+  frequency as sampling rate, no corrupter, filter or delayer, none added) and its clock
+  is where robosuite's would be, an env step samples every observable on its last
+  substep, so ``env.step`` / ``env.reset`` are single calls into Rust and the Python
+  ``Observable`` objects are brought up to date only when looked at. (At a control
+  frequency whose period is not a whole number of model timesteps, e.g. 30 Hz,
+  robosuite's observables do not sample on the last substep: such envs always take the
+  slow way.)
+* Slow: otherwise the step runs one substep at a time (``step_begin`` / ``step_substep`` /
+  ``step_end`` of the native env, bit-identical to its ``step``) and updates every
+  observable after every substep, in robosuite's order; the env's own sensors read the
+  value of their key from one native observation pass at that substep.
+
+robosuite's sensors that read other observables' values from ``obs_cache`` (joint
+cos/sin, gripper-to-object vectors and alike) are computed from ``obs_cache`` here too
+whenever those inputs differ from the simulator's current values (corrupted, delayed,
+sampled at another substep or disabled), as robosuite computes them.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+import sys
+import weakref
+from collections import OrderedDict
+from typing import Any, Callable
+
+import numpy as np
+
+from .observables import NO_CORRUPTION, NO_DELAY, NO_FILTER, Observable, ObservableError
+
+ATTRIBUTES = ("sensor", "corrupter", "filter", "delayer", "sampling_rate", "enabled", "active")
+
+# robosuite's clock of an observable as made (no delay), k env steps after a reset: kept
+# every _CHECKPOINT steps per (period, timestep, substeps), the rest recomputed.
+_CHECKPOINT = 256
+_STEADY: dict[tuple[float, float, int], list[tuple[float, bool]]] = {}
+
+
+def _clock_step(t: float, sampled: bool, period: float, dt: float, substeps: int) -> tuple[float, bool]:
+    """robosuite's clock after one env step (``substeps`` updates, no delay)."""
+    for _ in range(substeps):
+        t += dt
+        if not sampled and period - 0.0 >= t:
+            sampled = True
+        if t >= period:
+            t %= period
+            sampled = False
+    return t, sampled
+
+
+def steady_clock(period: float, dt: float, substeps: int, k: int) -> tuple[float, bool]:
+    """``(time since last sample, sampled)`` of an observable as made, ``k`` env steps after
+    ``reset()`` (its forced sample included)."""
+    marks = _STEADY.setdefault((period, dt, substeps), [])
+    if not marks:
+        t, sampled = 0.0 + dt, True
+        if t >= period:
+            t, sampled = t % period, False
+        marks.append((t, sampled))
+    while (len(marks) - 1) * _CHECKPOINT < k - k % _CHECKPOINT:
+        t, sampled = marks[-1]
+        for _ in range(_CHECKPOINT):
+            t, sampled = _clock_step(t, sampled, period, dt, substeps)
+        marks.append((t, sampled))
+    t, sampled = marks[k // _CHECKPOINT]
+    for _ in range(k % _CHECKPOINT):
+        t, sampled = _clock_step(t, sampled, period, dt, substeps)
+    return t, sampled
+
+
+_ALIGNED: dict[tuple[float, float, int], bool] = {}
+
+
+def samples_at_step_ends(period: float, dt: float, substeps: int, steps: int = 256) -> bool:
+    """Whether an observable as made (sampling period = the control period) samples exactly
+    once per env step, on its last substep (checked over the first ``steps`` steps after a
+    reset; its clock drifts by ~1e-17 s per step). It does for control frequencies whose
+    period is a whole number of model timesteps (20 Hz: 25 substeps), not for others
+    (30 Hz: a 1/30 s period over steps of 16 substeps, some steps then sample twice or not
+    at all)."""
+    key = (period, dt, substeps)
+    if key not in _ALIGNED:
+        t, sampled = steady_clock(period, dt, substeps, 0)
+        ok = True
+        for _ in range(steps):
+            for i in range(substeps):
+                t += dt
+                sample = False
+                if not sampled and period - 0.0 >= t:
+                    sampled = sample = True
+                if t >= period:
+                    if not sampled:
+                        ok = False  # robosuite's late sample (with its warning)
+                    t %= period
+                    sampled = False
+                if sample != (i == substeps - 1):
+                    ok = False
+            if not ok:
+                break
+        _ALIGNED[key] = ok
+    return _ALIGNED[key]
+
+
+def _concatenate_images() -> bool:
+    """robosuite's ``macros.CONCATENATE_IMAGES`` (the served macros after
+    ``install_as_robosuite()``; robosuite's default ``False``)."""
+    macros = sys.modules.get("robosuite.macros")
+    if macros is None or not getattr(sys.modules.get("robosuite"), "__robosuite_rs__", False):
+        return False
+    return bool(getattr(macros, "CONCATENATE_IMAGES", False))
+
+
+def _same(a: Any, b: Any) -> bool:
+    """Bitwise the same value (dtype and shape included)."""
+    if b is None:
+        return False
+    a, b = np.asarray(a), np.asarray(b)
+    return a.dtype == b.dtype and a.shape == b.shape and bool(np.array_equal(a, b))
+
+
+# --- robosuite's sensors that read other observables from obs_cache --------------------
+def _difference(a: str, b: str) -> Callable[[dict[str, Any]], np.ndarray]:
+    def value(cache: dict[str, Any]) -> np.ndarray:
+        return cache[a] - cache[b] if a in cache and b in cache else np.zeros(3)
+
+    return value
+
+
+def _elementwise(fn: Callable[[Any], Any], key: str, size: int) -> Callable[[dict[str, Any]], np.ndarray]:
+    def value(cache: dict[str, Any]) -> np.ndarray:
+        return fn(cache[key]) if key in cache else np.zeros(size)
+
+    return value
+
+
+# `_get_obj_eef_sensor` observables: name pattern -> (object key, gripper number or None).
+_OBJ_EEF = (
+    (re.compile(r"^(?P<arm>.*)gripper_to_cube_pos$"), "cube_pos", None),
+    (re.compile(r"^(?P<arm>.*)gripper_to_(?P<obj>cube[AB])$"), "{obj}_pos", None),
+    (re.compile(r"^door_to_(?P<arm>.*)eef_pos$"), "door_pos", None),
+    (re.compile(r"^handle_to_(?P<arm>.*)eef_pos$"), "handle_pos", None),
+    (re.compile(r"^(?P<arm>.*)gripper_to_wipe_centroid$"), "wipe_centroid", None),
+    (re.compile(r"^(?P<arm>.*)gripper(?P<i>[01])_to_handle(?P=i)$"), "handle{i}_xpos", "i"),
+    (re.compile(r"^(?P<arm>.*)gripper(?P<i>[01])_to_handle$"), "handle_xpos", "i"),
+    (re.compile(r"^(?P<arm>.*)gripper(?P<i>[01])_to_payload$"), "payload_pos", "i"),
+    (re.compile(r"^(?P<arm>.*)gripper(?P<i>0)_to_lid_handle$"), "lid_handle_pos", "i"),
+    (re.compile(r"^(?P<arm>.*)gripper(?P<i>1)_to_trash$"), "trash_pos", "i"),
+)
+
+
+def cache_rules(specs: list[tuple[str, tuple[int, ...]]]) -> dict[str, tuple[tuple[str, ...], Callable[[dict[str, Any]], Any]]]:
+    """For each of the env's observables that robosuite computes from ``obs_cache``: the
+    keys it reads and robosuite's computation."""
+    names = {name for name, _ in specs}
+    rules: dict[str, tuple[tuple[str, ...], Callable[[dict[str, Any]], Any]]] = {}
+    for name, shape in specs:
+        size = int(np.prod(shape)) if shape else 1
+        for suffix, fn in (("_joint_pos_cos", np.cos), ("_joint_pos_sin", np.sin)):
+            if name.endswith(suffix):
+                key = name[: -len(suffix)] + "_joint_pos"
+                if key in names:
+                    rules[name] = ((key,), _elementwise(fn, key, size))
+        if name == "cubeA_to_cubeB" and {"cubeA_pos", "cubeB_pos"} <= names:
+            rules[name] = (("cubeB_pos", "cubeA_pos"), _difference("cubeB_pos", "cubeA_pos"))
+        for pattern, obj_key, robot_group in _OBJ_EEF:
+            m = pattern.match(name)
+            if m is None:
+                continue
+            groups = m.groupdict()
+            obj = obj_key.format(**groups)
+            arm = groups["arm"]
+            if robot_group is None:
+                eefs = [f"robot0_{arm}eef_pos"]
+            else:
+                i = int(groups[robot_group])
+                # two robots: robot i's arm; one two-armed robot: gripper 0 right, 1 left
+                eefs = [f"robot{i}_{arm}eef_pos"] + ([f"robot0_{('right_', 'left_')[i]}eef_pos"] if not arm else [])
+            eef = next((e for e in eefs if e in names), None)
+            if eef is not None and obj in names:
+                rules[name] = ((obj, eef), _difference(obj, eef))
+            break
+    return rules
+
+
+class BuiltinSensor:
+    """The sensor of one of the env's own observables: the value of its key in the native
+    observation pass of the current substep (outside a step: the last observation).
+    Called with robosuite's ``obs_cache`` like any sensor."""
+
+    __slots__ = ("_owner", "__name__", "__modality__", "__weakref__")
+
+    def __init__(self, owner: "EnvObservables", name: str, modality: str) -> None:
+        self._owner = weakref.ref(owner)
+        self.__name__ = name
+        self.__modality__ = modality
+
+    def __call__(self, obs_cache: dict[str, Any]) -> Any:
+        owner = self._owner()
+        if owner is None:
+            raise RuntimeError(f"the env of observable {self.__name__!r} is gone")
+        return owner.builtin_value(self.__name__, obs_cache)
+
+    def __repr__(self) -> str:
+        return f"<robosuite_rs sensor {self.__name__!r} ({self.__modality__})>"
+
+
+class EnvObservable(Observable):
+    """One of the env's own observables: an :class:`Observable` whose value, while the env
+    runs the fast way, is brought up to date when read."""
+
+    _owner: "weakref.ref[EnvObservables]"
+
+    @property
+    def obs(self) -> Any:
+        owner = self._owner()
+        if owner is not None and owner.fast:
+            owner.materialize()
+        return super().obs
+
+
+class EnvObservables:
+    """robosuite's ``env._observables`` with ``_obs_cache`` and the env methods that use
+    them, over a native env."""
+
+    def __init__(self, native: Any, hard_reset: bool = True) -> None:
+        self.native = native
+        self.hard_reset = bool(hard_reset)
+        self.dt = float(native.model_timestep)
+        self.substeps = int(native.substeps)
+        self.rate = native.control_freq
+        self.period = 1.0 / self.rate
+        specs = list(native.observables())
+        self.sensors: dict[str, BuiltinSensor] = {}
+        self.map: OrderedDict[str, Observable] = OrderedDict()
+        self.shapes: dict[str, tuple[int, ...]] = {}
+        for name, modality, shape, _dtype, enabled, active in specs:
+            s = BuiltinSensor(self, name, modality)
+            self.sensors[name] = s
+            self.shapes[name] = tuple(shape)
+            o = EnvObservable._prebuilt(name, s, self.rate, tuple(shape), bool(enabled), bool(active))
+            o._owner = weakref.ref(self)
+            self.map[name] = o
+        self.rules = cache_rules([(name, self.shapes[name]) for name in self.sensors])
+        self.cache: dict[str, Any] = {}
+        self.added: set[str] = set()
+        # fast: see the module docstring; while it holds the Observable objects' clocks and
+        # values are brought up to date only by materialize().
+        self.aligned = samples_at_step_ends(self.period, self.dt, self.substeps)
+        self.fast = self.aligned
+        self._in_step = False
+        self._pass: dict[str, Any] | None = None
+
+    # --- native values ------------------------------------------------------------------
+    def _with_shown(self, names: list[str], read: Callable[[], Any]) -> Any:
+        """``read()`` while the native env shows ``names`` (enabled and active there), its
+        flags restored after."""
+        flags = {o[0]: (o[4], o[5]) for o in self.native.observables()}
+        changed = []
+        try:
+            for n in names:
+                enabled, active = flags[n]
+                for attr, on in (("enabled", enabled), ("active", active)):
+                    if not on:
+                        self.native.modify_observable(n, attr, True)
+                        changed.append((n, attr))
+            return read()
+        finally:
+            for n, attr in reversed(changed):
+                self.native.modify_observable(n, attr, False)
+
+    def _complete(self, values: Any, wanted: list[str]) -> Any:
+        """``values`` plus those of ``wanted`` the native dict leaves out (from the same
+        observation pass: the native buffer holds every observable)."""
+        missing = [n for n in wanted if n not in values]
+        if missing:
+            extra = self._with_shown(missing, self.native.observation_spec)
+            values = dict(values)
+            for n in missing:
+                values[n] = extra[n]
+        return values
+
+    def _enabled_builtins(self) -> list[str]:
+        return [n for n, o in self.map.items() if o._enabled and n in self.sensors]
+
+    def pass_values(self) -> Any:
+        """The native values of the current observation pass: inside a step or a forced
+        update one pass per substep (made on first use), else the last observation."""
+        if self._in_step:
+            if self._pass is None:
+                self._pass = self._complete(self.native.update_observations(), self._enabled_builtins())
+            return self._pass
+        return self.native.observation_spec()
+
+    def builtin_value(self, name: str, obs_cache: dict[str, Any]) -> Any:
+        values = self.pass_values()
+        rule = self.rules.get(name)
+        if rule is not None:
+            keys, compute = rule
+            if not all(k in obs_cache and _same(obs_cache[k], values.get(k)) for k in keys):
+                return compute(obs_cache)
+        if name not in values:
+            values = self._complete(values, [name])
+        return np.array(values[name])
+
+    # --- clocks -------------------------------------------------------------------------
+    def _steady(self) -> tuple[float, bool]:
+        return steady_clock(self.period, self.dt, self.substeps, int(self.native.timestep))
+
+    def materialize(self) -> None:
+        """In the fast mode: sets every enabled observable's clock, value and cache entry to
+        what robosuite's would be now (sampled on the last substep of the last step)."""
+        if not self.fast:
+            return
+        enabled = [n for n, o in self.map.items() if o._enabled]
+        if not enabled:
+            return
+        t, sampled = self._steady()
+        values = self._complete(self.native.observation_spec(), enabled)
+        cache: dict[str, Any] = {}
+        for n in enabled:
+            o = self.map[n]
+            o._time_since_last_sample, o._sampled = t, sampled
+            o._current_delay = 0.0
+            o._current_observed_value = np.array(values[n])
+            cache[n] = np.array(values[n])
+        self.cache.clear()
+        self.cache.update(cache)
+
+    def _as_made(self) -> bool:
+        """Every observable as the env made it (settings only)."""
+        if self.added:
+            return False
+        for n, o in self.map.items():
+            if (
+                o._sensor is not self.sensors[n]
+                or o._corrupter is not NO_CORRUPTION
+                or o._filter is not NO_FILTER
+                or o._delayer is not NO_DELAY
+                or o._sampling_timestep != self.period
+                or o._current_delay != 0.0
+            ):
+                return False
+            if o._enabled:
+                rule = self.rules.get(n)
+                if rule is not None and not all(self.map[k]._enabled for k in rule[0]):
+                    return False
+        return True
+
+    def refresh(self) -> None:
+        """Chooses the fast mode when it gives robosuite's results (the Observable objects
+        must be up to date)."""
+        if self.fast:
+            return
+        self.fast = self._can_be_fast()
+
+    def _can_be_fast(self) -> bool:
+        if not self.aligned or not self._as_made():
+            return False
+        steady = None
+        shown = None
+        for n, o in self.map.items():
+            if not o._enabled:
+                continue
+            if steady is None:
+                steady = self._steady()
+            if (o._time_since_last_sample, o._sampled) != steady:
+                return False
+            if o._active:
+                if shown is None:
+                    shown = self.native.observation_spec()
+                if not _same(o._current_observed_value, shown.get(n)):
+                    return False
+        return True
+
+    # --- updates ------------------------------------------------------------------------
+    def force_update(self, values: Any = None) -> None:
+        """robosuite's ``_update_observables(force=True)``: every enabled observable
+        samples now (``values``: the native observation pass to read, if one was just
+        made)."""
+        self._in_step, self._pass = True, None
+        if values is not None:
+            self._pass = self._complete(values, self._enabled_builtins())
+        try:
+            for o in self.map.values():
+                o.update(timestep=self.dt, obs_cache=self.cache, force=True)
+        finally:
+            self._in_step, self._pass = False, None
+
+    def build(self) -> OrderedDict[str, Any]:
+        """robosuite's ``_get_observations()`` from the observables' current values."""
+        observations: OrderedDict[str, Any] = OrderedDict()
+        groups: OrderedDict[str, list[np.ndarray]] = OrderedDict()
+        for n, o in self.map.items():
+            if o._enabled and o._active:
+                value = o._current_observed_value
+                observations[n] = value
+                key = o.modality + "-state"
+                part = [value] if type(value) in (int, float) or not value.shape else value
+                groups.setdefault(key, []).append(np.array(part))
+        for key, parts in groups.items():
+            if key == "image-state" and not _concatenate_images():
+                continue
+            observations[key] = np.concatenate(parts, axis=-1)
+        return observations
+
+    def get_observations(self, force_update: bool = False) -> OrderedDict[str, Any]:
+        if force_update:
+            self.materialize()
+            self.fast = False
+            try:
+                self.force_update()
+            finally:
+                self.refresh()
+            return self.build()
+        if self.fast:
+            return self.native.observation_spec()
+        return self.build()
+
+    def after_reset(self, values: Any) -> Any:
+        """robosuite's observable handling in ``reset()`` after the native reset that gave
+        ``values``: clocks reset (delays drawn), the env's own sensors put back (with
+        ``hard_reset``), cache emptied, a forced update."""
+        if self.fast:
+            return values
+        self.cache = {}
+        for o in self.map.values():
+            o.reset()
+        if self.hard_reset:
+            for n, s in self.sensors.items():
+                o = self.map[n]
+                if o._sensor is not s:
+                    o._sensor = s
+                    o._set_shape(self.shapes[n])
+        try:
+            self.force_update(values)
+        finally:
+            self.refresh()
+        return values if self.fast else self.build()
+
+    def step(self, action: Any) -> tuple[Any, float, bool, dict[str, Any]]:
+        """robosuite's ``step`` with the observables updated after every substep.
+
+        Raises:
+            ValueError: when an observable's sensor, corrupter, filter or delayer fails: the
+                native step is finished first (the simulation and the episode move on by
+                one step), then the error is raised, saying so.
+        """
+        native = self.native
+        native.step_begin(action)
+        observables = list(self.map.values())
+        dt, substeps = self.dt, self.substeps
+        cache = self.cache
+        last = substeps - 1
+        # Observables whose clocks are equal advance together on the substeps where none
+        # samples (then update() only moves the clock); where one does, every observable
+        # is updated in order, as robosuite does.
+        groups = _clock_groups(observables)
+        for i in range(substeps):
+            due = False
+            for g in groups:
+                if not g[1]:
+                    t = g[0] + dt
+                    if g[2] - g[3] >= t or t >= g[2]:
+                        due = True
+                        break
+            if not due:
+                native.step_substep(i == last)
+                for g in groups:
+                    t = g[0] + dt
+                    if t >= g[2]:
+                        t %= g[2]
+                        g[1] = False
+                    g[0] = t
+                continue
+            native.step_substep(True)
+            _write_back(groups)
+            self._in_step, self._pass = True, None
+            try:
+                for o in observables:
+                    o.update(timestep=dt, obs_cache=cache)
+            except BaseException as e:
+                self._in_step, self._pass = False, None
+                self._finish_step(i + 1)
+                if not isinstance(e, Exception):
+                    raise
+                raise ValueError(
+                    f"{e} -- raised while updating the observables during env.step(): the step was "
+                    f"still taken (the simulation and the episode moved on by one step, now timestep "
+                    f"{native.timestep}); its observations, reward and done were not returned"
+                ) from e
+            self._in_step, self._pass = False, None
+            groups = _clock_groups(observables)
+        _write_back(groups)
+        _obs, reward, done, info = native.step_end()
+        return self.build(), reward, done, info
+
+    def _finish_step(self, done_substeps: int) -> None:
+        """Runs the rest of the native step after an observable failed at a substep."""
+        native = self.native
+        while done_substeps < self.substeps:
+            native.step_substep(done_substeps == self.substeps - 1)
+            done_substeps += 1
+        native.step_end()
+
+    # --- robosuite's modify_observable / add_observable ---------------------------------
+    def _trial_input(self, o: Observable) -> Any:
+        """The observable's sensor reading now (for checking a new corrupter or filter)."""
+        cache = dict(self.cache)
+        return o._sensor(cache)
+
+    def modify(self, name: str, attribute: str, modifier: Any) -> None:
+        if name not in self.map:
+            raise ObservableError(f"No valid observable with name {name} found. Options are: {sorted(self.map)}")
+        if attribute not in ATTRIBUTES:
+            raise ValueError(
+                f"Invalid observable attribute specified. Requested: {attribute!r}, valid options are {list(ATTRIBUTES)}"
+            )
+        o = self.map[name]
+        if attribute in ("enabled", "active"):
+            if not isinstance(modifier, (bool, np.bool_)):
+                raise ValueError(f"modify_observable: {attribute} of {name!r} takes a bool, got {modifier!r}")
+            self.materialize()
+            if name in self.sensors:
+                self.native.modify_observable(name, attribute, bool(modifier))
+            if attribute == "enabled":
+                o.set_enabled(bool(modifier))
+            else:
+                o.set_active(bool(modifier))
+            self.fast = False
+            self.refresh()
+            return
+        if attribute == "sampling_rate":
+            rate = modifier
+            if isinstance(rate, (bool, np.bool_)) or not isinstance(rate, numbers.Real) or not (
+                math.isfinite(rate) and rate > 0
+            ):
+                raise ValueError(
+                    f"modify_observable: sampling_rate of {name!r} must be a positive finite number (Hz), got {rate!r}"
+                )
+        elif modifier is not None and not callable(modifier):
+            raise ValueError(f"modify_observable: {attribute} of {name!r} must be callable or None, got {modifier!r}")
+        self.materialize()
+        if attribute == "sensor":
+            if modifier is None:
+                raise ValueError(f"modify_observable: the sensor of {name!r} must be a sensor function, got None")
+            o.set_sensor(modifier)
+        elif attribute in ("corrupter", "filter"):
+            self._check_processing(o, attribute, modifier)
+            (o.set_corrupter if attribute == "corrupter" else o.set_filter)(modifier)
+        elif attribute == "delayer":
+            if modifier is not None:
+                self._check_delayer(o, modifier)
+            o.set_delayer(modifier)
+        else:
+            o.set_sampling_rate(modifier)
+        self.fast = False
+        self.refresh()
+
+    def _check_processing(self, o: Observable, attribute: str, fn: Any) -> None:
+        """Runs the observable's current reading through the new corrupter or filter (NumPy's
+        global RNG left as it was): refuses one that raises or turns finite values into
+        NaN/inf."""
+        if fn is None:
+            return
+        state = np.random.get_state()
+        try:
+            raw = self._trial_input(o)
+            raw_array = np.asarray(raw)
+            corrupter = fn if attribute == "corrupter" else o._corrupter
+            filt = fn if attribute == "filter" else o._filter
+            try:
+                value = np.array(filt(corrupter(raw)))
+            except Exception as e:
+                raise ValueError(
+                    f"modify_observable: the new {attribute} of {o.name!r} raised {type(e).__name__}: {e} "
+                    f"on the current reading (nothing changed)"
+                ) from e
+        except ValueError:
+            raise
+        except Exception as e:
+            raise ValueError(
+                f"modify_observable: the sensor of {o.name!r} raised {type(e).__name__}: {e} (nothing changed)"
+            ) from e
+        finally:
+            np.random.set_state(state)
+        if value.dtype.kind in "fc" and not np.isfinite(value).all() and not (
+            raw_array.dtype.kind in "fc" and not np.isfinite(raw_array).all()
+        ):
+            raise ValueError(
+                f"modify_observable: the new {attribute} of {o.name!r} turns the current reading into NaN/inf "
+                f"({value!r}); nothing changed"
+            )
+
+    def _check_delayer(self, o: Observable, delayer: Any) -> None:
+        state = np.random.get_state()
+        try:
+            delay = delayer()
+        except Exception as e:
+            raise ValueError(f"modify_observable: the delayer of {o.name!r} raised {type(e).__name__}: {e}") from e
+        finally:
+            np.random.set_state(state)
+        if isinstance(delay, (bool, np.bool_)) or not isinstance(delay, numbers.Real) or not (
+            math.isfinite(delay) and delay >= 0
+        ):
+            raise ValueError(
+                f"modify_observable: the delayer of {o.name!r} must return a non-negative finite number of "
+                f"seconds, got {delay!r}"
+            )
+
+    def add(self, observable: Any) -> None:
+        if not isinstance(observable, Observable):
+            raise TypeError(f"add_observable takes an Observable, got {type(observable).__name__}")
+        if observable.name in self.map:
+            raise ObservableError(
+                f"Observable name {observable.name} is already associated with an existing observable! "
+                f"Use modify_observable(...) to modify a pre-existing observable."
+            )
+        self.materialize()
+        self.map[observable.name] = observable
+        self.added.add(observable.name)
+        self.fast = False
+
+    def native_replaced(self) -> None:
+        """After ``reset_from_xml_string`` (a new native env with its default flags): the
+        flags pushed again, then robosuite's reset handling."""
+        self.dt = float(self.native.model_timestep)
+        self.substeps = int(self.native.substeps)
+        self.aligned = samples_at_step_ends(self.period, self.dt, self.substeps)
+        if not self.aligned:
+            self.materialize()
+            self.fast = False
+        for n, enabled, active in [(o[0], o[4], o[5]) for o in self.native.observables()]:
+            ob = self.map[n]
+            if ob._enabled != enabled:
+                self.native.modify_observable(n, "enabled", ob._enabled)
+            if ob._active != active:
+                self.native.modify_observable(n, "active", ob._active)
+        if not self.fast:
+            self.after_reset(self.native.observation_spec())
+
+
+def _clock_groups(observables: list[Observable]) -> list[list[Any]]:
+    """The enabled observables grouped by clock: ``[time since last sample, sampled,
+    sampling period, current delay, members]``."""
+    groups: dict[tuple[float, bool, float, float], list[Any]] = {}
+    for o in observables:
+        if o._enabled:
+            key = (o._time_since_last_sample, o._sampled, o._sampling_timestep, o._current_delay)
+            g = groups.get(key)
+            if g is None:
+                groups[key] = [key[0], key[1], key[2], key[3], [o]]
+            else:
+                g[4].append(o)
+    return list(groups.values())
+
+
+def _write_back(groups: list[list[Any]]) -> None:
+    for t, sampled, _period, _delay, members in groups:
+        for o in members:
+            o._time_since_last_sample = t
+            o._sampled = sampled
