@@ -630,7 +630,9 @@ fn a_deterministic_reset_is_robosuites_posture_without_noise_fingers_left_as_the
     let mut env = lift(EnvConfig::default().with_seed(3));
     env.reset(None, None).unwrap();
     for _ in 0..5 {
-        let _ = env.step(&action([0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0])).unwrap();
+        let _ = env
+            .step(&action([0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]))
+            .unwrap();
     }
     let rng_before = env.rng_state();
     env.reset_deterministic().unwrap();
