@@ -71,7 +71,6 @@ _DIRECT_KWARGS = (
 # robosuite arguments accepted only with these values (anything else raises).
 _FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
     "has_renderer": (False,),
-    "base_types": ("default",),
     "mount_types": ("default",),
     "renderer_config": (None,),
     "render_collision_mesh": (False,),
@@ -103,7 +102,7 @@ _RENDER_ONLY_KWARGS = (
 
 #: Every keyword argument :func:`make` accepts.
 SUPPORTED_KWARGS: tuple[str, ...] = (
-    ("robots", "env_configuration", "gripper_types", "controller_configs", "initialization_noise", "model_xml")
+    ("robots", "env_configuration", "gripper_types", "base_types", "controller_configs", "initialization_noise", "model_xml")
     + _DIRECT_KWARGS
     + ("render_gpu_device_id",)
     + tuple(_FIXED_KWARGS)
@@ -284,6 +283,13 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
             if not isinstance(value, str):
                 raise ValueError(f"env_configuration must be a string such as 'opposed', got {value!r}")
             config["env_configuration"] = value
+        elif key == "base_types":
+            choices = value if isinstance(value, (list, tuple)) else [value] * len(robots_list)
+            if len(choices) != len(robots_list):
+                raise ValueError(f"base_types: give one per robot ({len(robots_list)}), got {len(choices)}")
+            if not all(isinstance(c, str) for c in choices):
+                raise ValueError(f"base_types: a base name or 'default' (or one per robot), got {value!r}")
+            config["base_types"] = ",".join(_names("base_types", list(choices)))
         elif key == "gripper_types":
             choices = value if isinstance(value, (list, tuple)) else [value] * len(robots_list)
             if len(choices) != len(robots_list):
@@ -753,6 +759,9 @@ def make(
         TypeError: for an unknown keyword argument.
     """
     config = _config_kwargs(env_name, robots, kwargs)
+    convention = _served_macro("IMAGE_CONVENTION", "opengl")
+    if convention != "opengl":
+        config["image_convention"] = convention
     model = None if model_xml is None else str(model_xml)
     native = _native.make_robosuite(env_name, config, model)
     env = RobosuiteEnv(native)
@@ -760,6 +769,17 @@ def make(
     env._obsv.hard_reset = bool(kwargs.get("hard_reset", True))
     env._controller_configs = _controller_config_dicts(kwargs.get("controller_configs"), robots, env)
     return env
+
+
+def _served_macro(name: str, default: Any) -> Any:
+    """robosuite's ``robosuite.macros.<name>`` as a user set it after
+    :func:`install_as_robosuite` (read when an env is made), else ``default``."""
+    import sys
+
+    macros = sys.modules.get("robosuite.macros")
+    if macros is None or not getattr(sys.modules.get("robosuite"), "__robosuite_rs__", False):
+        return default
+    return getattr(macros, name, default)
 
 
 def _controller_config_dicts(given: Any, robots: Any, env: RobosuiteEnv) -> list[dict[str, Any] | None]:

@@ -436,3 +436,24 @@ def test_env_model_and_timesteps(tmp_path):
     assert env.model.worldbody.find(".//body[@name='cube_main']") is not None
     env.model.save_model(str(tmp_path / "scene.xml"), pretty=True)
     assert mujoco.MjModel.from_xml_path(str(tmp_path / "scene.xml")).nbody == model.nbody
+
+
+def test_robosuites_image_convention_macro_flips_camera_images():
+    code = textwrap.dedent(
+        """
+        import numpy as np, robosuite_rs
+        robosuite_rs.install_as_robosuite()
+        import robosuite, robosuite.macros as macros
+        kw = dict(use_camera_obs=True, camera_names="agentview", camera_heights=32, camera_widths=32)
+        a = robosuite.make("Lift", **kw)
+        macros.IMAGE_CONVENTION = "opencv"   # as robosuite's users set it, before making the env
+        b = robosuite.make("Lift", **kw)
+        ia, ib = a.reset(seed=0)["agentview_image"], b.reset(seed=0)["agentview_image"]
+        assert not np.array_equal(ia, ib)
+        assert np.array_equal(ia[::-1], ib)
+        print("OK")
+        """
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-3000:]
+    assert "OK" in out.stdout

@@ -146,3 +146,17 @@ def test_placement_initializer_is_robosuites_uniform_sampler() -> None:
         UniformRandomSampler(name="s", x_range=[0, 1], y_range=[0, 1], rotation_axis="w")
     with pytest.raises(TypeError, match="mujoco_objects"):
         UniformRandomSampler(name="s", mujoco_objects=["cube"], x_range=[0, 1], y_range=[0, 1])
+
+
+def test_base_types_choose_the_robots_mount() -> None:
+    env = suite.make("Stack", base_types="NullMount", **QUIET)
+    env.reset(seed=0)
+    assert env.sim.data.get_body_xpos("robot0_base")[2] == 0.0  # no pedestal: on the floor
+    assert "fixed_mount0_pedestal" not in env.sim.model.body_names
+    two = suite.make("TwoArmLift", robots=["Panda", "Sawyer"], base_types=["default", "NullMount"], **QUIET)
+    assert "fixed_mount0_pedestal" in two.sim.model.body_names
+    assert "fixed_mount1_pedestal" not in two.sim.model.body_names
+    with pytest.raises(ValueError, match="NullMount"):
+        suite.make("Lift", base_types="Pedestal", **QUIET)
+    with pytest.raises(ValueError, match="one per robot"):
+        suite.make("TwoArmLift", base_types=["NullMount"] * 3, **QUIET)

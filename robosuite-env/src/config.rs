@@ -61,6 +61,10 @@ pub struct EnvConfig {
     /// `single_object_mode`, ...), checked against the task when the env is made; see
     /// [`TaskSpec::options`](crate::tasks::TaskSpec::options).
     pub task_options: TaskOptions,
+    /// robosuite's `base_types`: per robot its base (mount) by robosuite's name
+    /// (`RethinkMount`, `RethinkMinimalMount`, `NullMount`), `None` for the robot's default;
+    /// empty (the default) or one entry for every robot.
+    pub base_types: Vec<Option<String>>,
 }
 
 /// robosuite's `env_configuration`: how a two-arm task sets up its robots.
@@ -142,6 +146,7 @@ impl Default for EnvConfig {
             cameras: CameraConfig::default(),
             lite_physics: true,
             task_options: TaskOptions::new(),
+            base_types: Vec::new(),
         }
     }
 }
@@ -164,6 +169,7 @@ pub const CONFIG_KEYS: &[&str] = &[
     "env_configuration",
     "lite_physics",
     "task_options",
+    "base_types",
     "use_camera_obs",
     "has_offscreen_renderer",
     "camera_names",
@@ -224,6 +230,24 @@ impl EnvConfig {
     /// The gripper choice for arm `arm` of robot `robot`.
     pub fn gripper_choice(&self, robot: usize, _arm: usize) -> GripperChoice {
         self.gripper_types.get(robot).cloned().unwrap_or_default()
+    }
+
+    /// Robot `robot`'s base (see [`EnvConfig::base_types`]): `None` for its default.
+    pub fn base_type(&self, robot: usize) -> Option<&str> {
+        match self.base_types.as_slice() {
+            [one] => one.as_deref(),
+            many => many.get(robot).and_then(Option::as_deref),
+        }
+    }
+
+    /// Sets robosuite's `base_types` (see [`EnvConfig::base_types`]).
+    #[must_use]
+    pub fn with_base_types<S: Into<String>>(
+        mut self,
+        bases: impl IntoIterator<Item = Option<S>>,
+    ) -> Self {
+        self.base_types = bases.into_iter().map(|b| b.map(Into::into)).collect();
+        self
     }
 
     /// Sets one controller configuration for every robot (a composite config, or a part
@@ -394,6 +418,19 @@ impl EnvConfig {
                 gripper_info(name)?;
             }
         }
+        if self.base_types.len() > 1 && self.base_types.len() != self.robots.len() {
+            return Err(Error::invalid_argument(
+                "base_types",
+                format!(
+                    "give one base for every robot or one per robot ({}), got {}",
+                    self.robots.len(),
+                    self.base_types.len()
+                ),
+            ));
+        }
+        for name in self.base_types.iter().flatten() {
+            crate::models::bases::mount_info(name)?;
+        }
         if self.horizon == 0 {
             return Err(Error::invalid_argument("horizon", "must be at least 1"));
         }
@@ -488,6 +525,24 @@ impl EnvConfig {
                 "reward_shaping" => c.reward_shaping = Some(boolean(key, v)?),
                 "ignore_done" => c.ignore_done = boolean(key, v)?,
                 "lite_physics" => c.lite_physics = boolean(key, v)?,
+                "base_types" => match v {
+                    InfoValue::Str(s) => {
+                        c.base_types = s
+                            .split(',')
+                            .map(|b| match b.trim() {
+                                "default" => None,
+                                name => Some(name.to_owned()),
+                            })
+                            .collect()
+                    }
+                    other => {
+                        return Err(kind(
+                            key,
+                            "a base name or \"default\" (or comma-separated, one per robot)",
+                            other,
+                        ));
+                    }
+                },
                 "task_options" => match v {
                     InfoValue::Str(text) => {
                         c.task_options = serde_json::from_str(text).map_err(|e| {

@@ -225,7 +225,11 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
         let grippers = (0..info.arms.len())
             .map(|arm| spec.gripper(i, arm, &config.gripper_choice(i, arm)))
             .collect::<Result<Vec<_>>>()?;
-        robots.push(RobotModel::build(assets, info, i, &grippers)?);
+        let base = config
+            .base_type(i)
+            .map(crate::models::bases::mount_info)
+            .transpose()?;
+        robots.push(RobotModel::build(assets, info, i, &grippers, base)?);
     }
     let task_scene = spec.build_configured(assets, &mut robots, configuration)?;
     let mut scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;

@@ -1,6 +1,8 @@
-//! robosuite's task constructor arguments as task options: every argument robosuite 1.5.2
-//! declares is one here with robosuite's default (recorded by
-//! `scripts/record_task_args.py`), options reach the scene, and bad ones are typed errors.
+//! robosuite's `make` arguments beyond the RL loop. The tasks' constructor arguments as
+//! task options: every argument robosuite 1.5.2 declares is one here with robosuite's
+//! default (recorded by `scripts/record_task_args.py`), options reach the scene, and bad
+//! ones are typed errors. `placement_initializer`, `lite_physics`, `base_types` (scenes
+//! recorded by `scripts/record_bases.py`) and the env step taken one substep at a time.
 
 mod common;
 
@@ -313,4 +315,52 @@ fn a_step_taken_one_substep_at_a_time_is_the_same_step() {
     split.substep(false).unwrap();
     split.reset(None, None).unwrap();
     split.begin_step(&a).unwrap();
+}
+
+#[test]
+fn base_types_build_robosuites_scenes() {
+    // Recorded from robosuite 1.5.2 by scripts/record_bases.py.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/bases.json");
+    let recorded: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for scene in recorded["scenes"].as_array().unwrap() {
+        let (task, base) = (
+            scene["task"].as_str().unwrap(),
+            scene["base"].as_str().unwrap(),
+        );
+        let config = EnvConfig::default().with_base_types([Some(base)]);
+        let mut env = make_with(task, config).unwrap();
+        env.reset(Some(0), None).unwrap();
+        let m = env.sim().model();
+        let want: Vec<String> = serde_json::from_value(scene["bodies"].clone()).unwrap();
+        assert_eq!(m.ffi().nbody as usize, want.len(), "{task} {base}");
+        for (i, name) in want.iter().enumerate().skip(1) {
+            assert_eq!(body_id(m, name).ok(), Some(i), "{task} {base} {name}");
+        }
+        assert_eq!(
+            m.ffi().ngeom as u64,
+            scene["ngeom"].as_u64().unwrap(),
+            "{task} {base}"
+        );
+        let b = body_id(m, "robot0_base").unwrap();
+        let pos = env.sim().data().xpos()[b];
+        for (k, want) in scene["base_pos"].as_array().unwrap().iter().enumerate() {
+            assert!(
+                (pos[k] - want.as_f64().unwrap()).abs() < 1e-9,
+                "{task} {base} {pos:?}"
+            );
+        }
+        let mass: f64 = m.body_mass().iter().sum();
+        assert!(
+            (mass - scene["total_mass"].as_f64().unwrap()).abs() < 1e-6,
+            "{task} {base} {mass}"
+        );
+    }
+    let bad = EnvConfig::default().with_base_types([Some("Pedestal")]);
+    match make_with("Lift", bad).unwrap_err() {
+        Error::InvalidArgument { name, reason } => {
+            assert_eq!(name, "base_types");
+            assert!(reason.contains("NullMount"), "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
 }

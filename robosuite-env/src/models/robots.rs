@@ -277,8 +277,8 @@ pub struct RobotModel {
 }
 
 impl RobotModel {
-    /// Builds robot `info` as robot `idn` with its default mount and the given grippers (one
-    /// choice per arm).
+    /// Builds robot `info` as robot `idn` on `base` (robosuite's `base_types`; `None`: the
+    /// robot's default mount) with the given grippers (one choice per arm).
     ///
     /// # Errors
     /// [`Error::Model`] when a file is missing or malformed; [`Error::InvalidArgument`] for
@@ -288,6 +288,7 @@ impl RobotModel {
         info: RobotInfo,
         idn: usize,
         grippers: &[GripperChoice],
+        base: Option<MountInfo>,
     ) -> Result<Self> {
         if grippers.len() != info.arms.len() {
             return Err(Error::invalid_argument(
@@ -330,7 +331,8 @@ impl RobotModel {
             mount: None,
             arms: Vec::new(),
         };
-        model.add_mount(MountModel::load(assets, info.default_mount, idn)?)?;
+        let mount = base.unwrap_or(info.default_mount);
+        model.add_mount(MountModel::load(assets, mount, idn)?)?;
         for (i, side) in info.arms.iter().enumerate() {
             let (gripper_info, has_gripper) = grippers[i].resolve(&info, i)?;
             let gripper = GripperModel::load(assets, gripper_info, idn, side)?;
