@@ -413,7 +413,8 @@ class MjSim:
     ) -> Any:
         """A frame of ``camera_name`` at ``width × height``, rows bottom first (OpenGL's
         order, as robosuite): uint8 H×W×3, or ``(rgb, depth)`` with ``depth``; with
-        ``segmentation`` an int32 H×W×2 image of ``(object type, object id)``.
+        ``segmentation`` an int32 H×W×2 image of ``(object type, object id)``. Without
+        ``camera_name``, as robosuite: the camera of the previous call (camera 0 at first).
 
         Raises:
             ValueError: for an unknown camera, a missing or bad size, or a mode other
@@ -423,13 +424,14 @@ class MjSim:
             raise ValueError(f"only mode='offscreen' is supported, got {mode!r}")
         if width is None or height is None:
             raise ValueError("render needs width and height")
-        if camera_name is None or camera_name == "free":
-            raise ValueError(
-                "render needs a fixed camera_name (the free camera is not supported); "
-                f"cameras: {self.model.camera_names}"
-            )
-        camera = self.model.camera_name2id(camera_name)
-        return self._native.render_camera(camera, int(width), int(height), bool(depth), bool(segmentation))
+        # robosuite's render context keeps its camera between calls: without a name it draws
+        # from the last camera named (camera 0 at first).
+        camera = getattr(self, "_render_camera", 0) if camera_name is None else self.model.camera_name2id(camera_name)
+        if camera < 0:
+            raise ValueError(f"render draws fixed cameras ({self.model.camera_names}); the free camera is not offered")
+        frame = self._native.render_camera(camera, int(width), int(height), bool(depth), bool(segmentation))
+        self._render_camera = camera
+        return frame
 
     def free(self) -> None:
         """Nothing to free: the environment owns the simulation."""

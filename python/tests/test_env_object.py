@@ -166,6 +166,15 @@ def test_sim_render_camera_depth_and_segmentation():
             env.sim.render(w, h, camera_name="agentview")
     np.testing.assert_array_equal(env.get_state(), before)
     np.testing.assert_array_equal(env.sim.render(64, 48, camera_name="agentview"), rgb)
+    # Without a name, as robosuite's render context: the previous call's camera ...
+    np.testing.assert_array_equal(env.sim.render(64, 48), rgb)
+    # ... and camera 0 in a sim that has not rendered yet.
+    other = lift()
+    other.reset()
+    first = other.sim.model.camera_id2name(0)
+    np.testing.assert_array_equal(other.sim.render(40, 30), other.sim.render(40, 30, camera_name=first))
+    with pytest.raises(ValueError, match="free camera"):
+        env.sim.render(64, 48, camera_name="free")
 
 
 # --- the XML round trip ------------------------------------------------------------------
