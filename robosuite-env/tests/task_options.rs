@@ -364,3 +364,29 @@ fn base_types_build_robosuites_scenes() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn an_unknown_argument_of_a_task_with_object_modes_lists_the_mode_arguments() {
+    let config = EnvConfig::default().with_task_option("bin3_pos", json!([0, 0, 0]));
+    match make_with("PickPlace", config).unwrap_err() {
+        Error::InvalidArgument { name, reason } => {
+            assert_eq!(name, "bin3_pos");
+            assert!(
+                reason.contains("single_object_mode") && reason.contains("object_type"),
+                "{reason}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    // A variant fixes them, so its list does not offer them.
+    let config = EnvConfig::default().with_task_option("bin3_pos", json!([0, 0, 0]));
+    match make_with("PickPlaceCan", config).unwrap_err() {
+        Error::InvalidArgument { reason, .. } => {
+            assert!(
+                !reason.contains("single_object_mode") && reason.contains("bin1_pos"),
+                "{reason}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}

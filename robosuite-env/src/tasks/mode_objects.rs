@@ -13,6 +13,8 @@ use crate::sim::{GeomSet, Sim};
 use gym_core::{DType, EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use rand::RngExt;
+use serde::Serialize;
+use serde::de::DeserializeOwned;
 
 /// robosuite's `reach_mult`: the largest reaching reward.
 pub const REACH_MULT: f64 = 0.1;
@@ -24,85 +26,126 @@ pub const LIFT_MULT: f64 = 0.5;
 pub const HOVER_MULT: f64 = 0.7;
 
 /// robosuite's `single_object_mode` and `type_key` (`object_type`, `nut_type`) arguments
-/// of a task whose objects are named `types` (robosuite's lower-case names, by id): the
-/// mode they select, taken out of `options`. Only the base task (`PickPlace`,
-/// `NutAssembly`) takes them; its registered variants fix them, as robosuite's subclasses.
-///
-/// # Errors
-/// [`Error::InvalidArgument`] for a mode other than 0, 1, 2, an unknown type, mode 2
-/// without a type, or these arguments given to a variant.
-pub(crate) fn take_mode(
-    task: &str,
-    base: Option<ObjectMode>,
-    type_key: &str,
-    types: &[&str],
-    options: &mut TaskOptions,
-) -> Result<Option<ObjectMode>> {
-    let number: Option<u8> = options::take(options, "single_object_mode")?;
-    let kind: Option<Option<String>> = options::take(options, type_key)?;
-    let Some(current) = base else {
-        return match (number, kind) {
-            (None, None) => Ok(None),
-            _ => Err(Error::invalid_argument(
-                "single_object_mode",
-                format!("{task} fixes single_object_mode and {type_key}"),
-            )),
-        };
-    };
-    if number.is_none() && kind.is_none() {
-        return Ok(None);
+/// of a task whose objects are named `types` (robosuite's lower-case names, by id). Only
+/// the base task (`PickPlace`, `NutAssembly`) takes them; its registered variants fix them,
+/// as robosuite's subclasses do.
+pub(crate) struct ModeArgs {
+    /// `object_type` or `nut_type`.
+    pub type_key: &'static str,
+    /// robosuite's names of the objects, by id.
+    pub types: &'static [&'static str],
+}
+
+impl ModeArgs {
+    /// `spec`'s options (see [`TaskSpec::options`](super::TaskSpec::options)) with the mode
+    /// arguments when the mode is not `fixed`.
+    pub(crate) fn options<T: Serialize>(
+        &self,
+        spec: &T,
+        mode: ObjectMode,
+        fixed: bool,
+    ) -> TaskOptions {
+        let mut out = options::to_options(spec);
+        if !fixed {
+            out.insert("single_object_mode".into(), mode.number().into());
+            let kind = match mode {
+                ObjectMode::Single(i) => self.types.get(i).map(|t| (*t).into()),
+                _ => None,
+            };
+            out.insert(
+                self.type_key.into(),
+                kind.unwrap_or(serde_json::Value::Null),
+            );
+        }
+        out
     }
-    let id = match kind.flatten() {
-        None => None,
-        Some(name) => Some(types.iter().position(|t| *t == name).ok_or_else(|| {
-            Error::invalid_argument(
-                type_key,
-                format!("unknown {type_key} `{name}`; valid: {}", types.join(", ")),
-            )
-        })?),
-    };
-    let number = number.unwrap_or(current.number());
-    let mode = match (number, id) {
-        (0, _) => ObjectMode::All,
-        (1, _) => ObjectMode::RandomSingle,
-        (2, Some(i)) => ObjectMode::Single(i),
-        (2, None) => match current {
-            ObjectMode::Single(i) => ObjectMode::Single(i),
-            _ => {
+
+    /// `spec` with `given` applied and the mode they select (see
+    /// [`TaskSpec::configure`](super::TaskSpec::configure)).
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a mode other than 0, 1, 2, an unknown type, mode 2
+    /// without a type, these arguments given to a variant, or another argument the task
+    /// does not take or of the wrong type.
+    pub(crate) fn configure<T: Serialize + DeserializeOwned>(
+        &self,
+        task: &str,
+        spec: &T,
+        current: ObjectMode,
+        fixed: bool,
+        given: &TaskOptions,
+    ) -> Result<(T, ObjectMode)> {
+        let mut rest = given.clone();
+        let number: Option<u8> = options::take(&mut rest, "single_object_mode")?;
+        let kind: Option<Option<String>> = options::take(&mut rest, self.type_key)?;
+        let mode = if fixed {
+            if number.is_some() || kind.is_some() {
                 return Err(Error::invalid_argument(
-                    type_key,
+                    "single_object_mode",
+                    format!("{task} fixes single_object_mode and {}", self.type_key),
+                ));
+            }
+            current
+        } else {
+            self.mode(number, kind.flatten(), current)?
+        };
+        let next = options::merged(task, spec, &rest).map_err(|e| match &e {
+            // An unknown name lists the mode arguments too.
+            Error::InvalidArgument { name, .. } if !fixed => {
+                let all = self.options(spec, current, fixed);
+                if all.contains_key(name) {
+                    e
+                } else {
+                    options::unknown(task, name, all.keys().map(String::as_str))
+                }
+            }
+            _ => e,
+        })?;
+        Ok((next, mode))
+    }
+
+    fn mode(
+        &self,
+        number: Option<u8>,
+        kind: Option<String>,
+        current: ObjectMode,
+    ) -> Result<ObjectMode> {
+        let key = self.type_key;
+        let id = match kind {
+            None => None,
+            Some(name) => Some(self.types.iter().position(|t| *t == name).ok_or_else(|| {
+                Error::invalid_argument(
+                    key,
+                    format!("unknown {key} `{name}`; valid: {}", self.types.join(", ")),
+                )
+            })?),
+        };
+        Ok(match (number.unwrap_or(current.number()), id) {
+            (0, _) => ObjectMode::All,
+            (1, _) => ObjectMode::RandomSingle,
+            (2, Some(i)) => ObjectMode::Single(i),
+            (2, None) => match current {
+                ObjectMode::Single(i) => ObjectMode::Single(i),
+                _ => {
+                    return Err(Error::invalid_argument(
+                        key,
+                        format!(
+                            "single_object_mode=2 needs {key}: one of {}",
+                            self.types.join(", ")
+                        ),
+                    ));
+                }
+            },
+            (other, _) => {
+                return Err(Error::invalid_argument(
+                    "single_object_mode",
                     format!(
-                        "single_object_mode=2 needs {type_key}: one of {}",
-                        types.join(", ")
+                        "must be 0 (all objects), 1 (one drawn per reset) or 2 (one fixed), got {other}"
                     ),
                 ));
             }
-        },
-        (other, _) => {
-            return Err(Error::invalid_argument(
-                "single_object_mode",
-                format!(
-                    "must be 0 (all objects), 1 (one drawn per reset) or 2 (one fixed), got {other}"
-                ),
-            ));
-        }
-    };
-    Ok(Some(mode))
-}
-
-/// Adds `single_object_mode` and `type_key` for `mode` to `options` (see [`take_mode`]).
-pub(crate) fn put_mode(
-    mode: ObjectMode,
-    type_key: &str,
-    types: &[&str],
-    options: &mut TaskOptions,
-) {
-    options.insert("single_object_mode".into(), mode.number().into());
-    let kind = match mode {
-        ObjectMode::Single(i) => types.get(i).map(|t| (*t).into()),
-        _ => None,
-    };
-    options.insert(type_key.into(), kind.unwrap_or(serde_json::Value::Null));
+        })
+    }
 }
 
 /// The objects of a task with robosuite's `single_object_mode`.

@@ -3,9 +3,9 @@
 
 use super::common::{ObjectMode, dist, eef_pos};
 use super::lift::place_single_robot;
+use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
-use super::mode_objects::{put_mode, take_mode};
-use super::options::{self, TaskOptions};
+use super::options::TaskOptions;
 use super::placement::{
     Axis, PlacedObject, Rotation, SequentialCompositeSampler, UniformRandomSampler,
 };
@@ -66,43 +66,25 @@ impl Default for NutAssemblySpec {
 }
 
 impl NutAssemblySpec {
-    /// robosuite's `nut_type` names, by object id.
-    const TYPES: &'static [&'static str] = &["square", "round"];
+    /// robosuite's `single_object_mode` and `nut_type`.
+    const MODE_ARGS: ModeArgs = ModeArgs {
+        type_key: "nut_type",
+        types: &["square", "round"],
+    };
 
     /// robosuite's constructor arguments (see [`TaskSpec::options`]); the base task also
     /// lists `single_object_mode` and `nut_type`.
     fn task_options(&self) -> TaskOptions {
-        let mut out = options::to_options(self);
-        if !self.fixed_mode {
-            put_mode(self.mode, "nut_type", Self::TYPES, &mut out);
-        }
-        out
+        Self::MODE_ARGS.options(self, self.mode, self.fixed_mode)
     }
 
     /// Sets robosuite's constructor arguments (see [`TaskSpec::configure`]).
     fn set_task_options(&mut self, given: &TaskOptions) -> Result<()> {
-        let mut rest = given.clone();
-        let base = (!self.fixed_mode).then_some(self.mode);
-        let mode =
-            take_mode(self.name(), base, "nut_type", Self::TYPES, &mut rest)?.unwrap_or(self.mode);
-        let mut next: Self = options::merged(self.name(), self, &rest).map_err(|e| {
-            // An unknown name lists the mode arguments too.
-            match (&e, base) {
-                (Error::InvalidArgument { name, .. }, Some(_))
-                    if !self.task_options().contains_key(name) =>
-                {
-                    options::unknown(
-                        self.name(),
-                        name,
-                        self.task_options().keys().map(String::as_str),
-                    )
-                }
-                _ => e,
-            }
-        })?;
+        let (mut next, mode) =
+            Self::MODE_ARGS.configure(self.name(), self, self.mode, self.fixed_mode, given)?;
+        Self::new(mode)?;
         next.mode = mode;
         next.fixed_mode = self.fixed_mode;
-        Self::new(mode)?;
         *self = next;
         Ok(())
     }

@@ -3,9 +3,9 @@
 
 use super::common::{ObjectMode, dist, eef_pos};
 use super::lift::place_single_robot;
+use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
-use super::mode_objects::{put_mode, take_mode};
-use super::options::{self, TaskOptions};
+use super::options::TaskOptions;
 use super::placement::{Axis, PlacedObject, Pose, Rotation, UniformRandomSampler};
 use super::{RewardConfig, Task, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -73,43 +73,25 @@ impl Default for PickPlaceSpec {
 }
 
 impl PickPlaceSpec {
-    /// robosuite's `object_type` names, by object id.
-    const TYPES: &'static [&'static str] = &["milk", "bread", "cereal", "can"];
+    /// robosuite's `single_object_mode` and `object_type`.
+    const MODE_ARGS: ModeArgs = ModeArgs {
+        type_key: "object_type",
+        types: &["milk", "bread", "cereal", "can"],
+    };
 
     /// robosuite's constructor arguments (see [`TaskSpec::options`]); the base task also
     /// lists `single_object_mode` and `object_type`.
     fn task_options(&self) -> TaskOptions {
-        let mut out = options::to_options(self);
-        if !self.fixed_mode {
-            put_mode(self.mode, "object_type", Self::TYPES, &mut out);
-        }
-        out
+        Self::MODE_ARGS.options(self, self.mode, self.fixed_mode)
     }
 
     /// Sets robosuite's constructor arguments (see [`TaskSpec::configure`]).
     fn set_task_options(&mut self, given: &TaskOptions) -> Result<()> {
-        let mut rest = given.clone();
-        let base = (!self.fixed_mode).then_some(self.mode);
-        let mode = take_mode(self.name(), base, "object_type", Self::TYPES, &mut rest)?
-            .unwrap_or(self.mode);
-        let mut next: Self = options::merged(self.name(), self, &rest).map_err(|e| {
-            // An unknown name lists the mode arguments too.
-            match (&e, base) {
-                (Error::InvalidArgument { name, .. }, Some(_))
-                    if !self.task_options().contains_key(name) =>
-                {
-                    options::unknown(
-                        self.name(),
-                        name,
-                        self.task_options().keys().map(String::as_str),
-                    )
-                }
-                _ => e,
-            }
-        })?;
+        let (mut next, mode) =
+            Self::MODE_ARGS.configure(self.name(), self, self.mode, self.fixed_mode, given)?;
+        Self::new(mode)?;
         next.mode = mode;
         next.fixed_mode = self.fixed_mode;
-        Self::new(mode)?;
         *self = next;
         Ok(())
     }
