@@ -94,7 +94,7 @@ def test_controller_configs() -> None:
     [
         {"has_renderer": True},
         {"render_collision_mesh": True},
-        {"base_types": "NullMount"},
+        {"render_visual_mesh": False},
     ],
 )
 def test_unsupported_arguments_raise(kwargs: dict[str, object]) -> None:
