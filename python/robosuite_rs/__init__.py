@@ -31,6 +31,7 @@ from gymnasium import error as gymnasium_error
 
 from . import _native
 from ._env_observables import EnvObservables
+from .compat import served_macro
 
 __all__ = [
     "make",
@@ -255,6 +256,7 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
     # render modes), so `use_camera_obs=True` alone works as in robosuite.
     config: dict[str, Any] = {"robots": robots_list, "has_offscreen_renderer": True}
     task_options: dict[str, Any] = {}
+    own: dict[str, Any] | None = None  # the task's own arguments, read when first needed
     for key, value in kwargs.items():
         if key in _DIRECT_KWARGS:
             if value is None and key not in ("reward_scale", "seed"):
@@ -313,25 +315,30 @@ def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[s
                     config["initialization_noise_type"] = str(value["type"])
             else:
                 raise ValueError(f"initialization_noise must be 'default', None or a dict, got {value!r}")
-        elif key == "placement_initializer" and key in task_arguments(env_name):
-            from .utils.placement_samplers import UniformRandomSampler
-
-            if value is not None and not isinstance(value, UniformRandomSampler):
-                raise TypeError(
-                    "placement_initializer must be None or a robosuite_rs.utils.placement_samplers."
-                    f"UniformRandomSampler, got {type(value).__name__}"
-                )
-            task_options[key] = None if value is None else value._task_option()
-        elif key in task_arguments(env_name):
-            task_options[key] = _plain(value, key)
         else:
-            raise TypeError(
-                f"make() got an unexpected keyword argument {key!r} for {env_name}; supported: "
-                f"{', '.join(SUPPORTED_KWARGS)} and {env_name}'s own: {', '.join(task_arguments(env_name)) or 'none'}"
-            )
+            if own is None:
+                own = task_arguments(env_name)
+            if key not in own:
+                raise TypeError(
+                    f"make() got an unexpected keyword argument {key!r} for {env_name}; supported: "
+                    f"{', '.join(SUPPORTED_KWARGS)} and {env_name}'s own: {', '.join(own) or 'none'}"
+                )
+            task_options[key] = _placement_option(value) if key == "placement_initializer" else _plain(value, key)
     if task_options:
         config["task_options"] = json.dumps(task_options)
     return config
+
+
+def _placement_option(value: Any) -> dict[str, Any] | None:
+    """``placement_initializer`` as the task's option."""
+    from .utils.placement_samplers import UniformRandomSampler
+
+    if value is not None and not isinstance(value, UniformRandomSampler):
+        raise TypeError(
+            "placement_initializer must be None or a robosuite_rs.utils.placement_samplers."
+            f"UniformRandomSampler, got {type(value).__name__}"
+        )
+    return None if value is None else value._task_option()
 
 
 def task_arguments(env_name: str) -> dict[str, Any]:
@@ -553,10 +560,7 @@ class RobosuiteEnv:
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
         """Starts an episode; ``seed`` (an extension of robosuite's API) re-seeds the env."""
-        obsv = self._obsv
-        if obsv.fast:
-            return self._native.reset(seed)
-        return obsv.after_reset(self._native.reset(seed))
+        return self._obsv.after_reset(self._native.reset(seed))
 
     def step(self, action: Any) -> tuple[OrderedDict[str, np.ndarray], float, bool, dict[str, Any]]:
         """Applies ``action``; returns ``(obs, reward, done, info)``.
@@ -759,7 +763,7 @@ def make(
         TypeError: for an unknown keyword argument.
     """
     config = _config_kwargs(env_name, robots, kwargs)
-    convention = _served_macro("IMAGE_CONVENTION", "opengl")
+    convention = served_macro("IMAGE_CONVENTION", "opengl")
     if convention != "opengl":
         config["image_convention"] = convention
     model = None if model_xml is None else str(model_xml)
@@ -769,17 +773,6 @@ def make(
     env._obsv.hard_reset = bool(kwargs.get("hard_reset", True))
     env._controller_configs = _controller_config_dicts(kwargs.get("controller_configs"), robots, env)
     return env
-
-
-def _served_macro(name: str, default: Any) -> Any:
-    """robosuite's ``robosuite.macros.<name>`` as a user set it after
-    :func:`install_as_robosuite` (read when an env is made), else ``default``."""
-    import sys
-
-    macros = sys.modules.get("robosuite.macros")
-    if macros is None or not getattr(sys.modules.get("robosuite"), "__robosuite_rs__", False):
-        return default
-    return getattr(macros, name, default)
 
 
 def _controller_config_dicts(given: Any, robots: Any, env: RobosuiteEnv) -> list[dict[str, Any] | None]:

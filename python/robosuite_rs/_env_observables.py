@@ -27,13 +27,13 @@ from __future__ import annotations
 import math
 import numbers
 import re
-import sys
 import weakref
 from collections import OrderedDict
 from typing import Any, Callable
 
 import numpy as np
 
+from .compat import served_macro
 from .observables import NO_CORRUPTION, NO_DELAY, NO_FILTER, Observable, ObservableError
 
 ATTRIBUTES = ("sensor", "corrupter", "filter", "delayer", "sampling_rate", "enabled", "active")
@@ -48,7 +48,7 @@ def _clock_step(t: float, sampled: bool, period: float, dt: float, substeps: int
     """robosuite's clock after one env step (``substeps`` updates, no delay)."""
     for _ in range(substeps):
         t += dt
-        if not sampled and period - 0.0 >= t:
+        if not sampled and period >= t:
             sampled = True
         if t >= period:
             t %= period
@@ -94,7 +94,7 @@ def samples_at_step_ends(period: float, dt: float, substeps: int, steps: int = 2
             for i in range(substeps):
                 t += dt
                 sample = False
-                if not sampled and period - 0.0 >= t:
+                if not sampled and period >= t:
                     sampled = sample = True
                 if t >= period:
                     if not sampled:
@@ -107,15 +107,6 @@ def samples_at_step_ends(period: float, dt: float, substeps: int, steps: int = 2
                 break
         _ALIGNED[key] = ok
     return _ALIGNED[key]
-
-
-def _concatenate_images() -> bool:
-    """robosuite's ``macros.CONCATENATE_IMAGES`` (the served macros after
-    ``install_as_robosuite()``; robosuite's default ``False``)."""
-    macros = sys.modules.get("robosuite.macros")
-    if macros is None or not getattr(sys.modules.get("robosuite"), "__robosuite_rs__", False):
-        return False
-    return bool(getattr(macros, "CONCATENATE_IMAGES", False))
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -259,29 +250,12 @@ class EnvObservables:
         self._pass: dict[str, Any] | None = None
 
     # --- native values ------------------------------------------------------------------
-    def _with_shown(self, names: list[str], read: Callable[[], Any]) -> Any:
-        """``read()`` while the native env shows ``names`` (enabled and active there), its
-        flags restored after."""
-        flags = {o[0]: (o[4], o[5]) for o in self.native.observables()}
-        changed = []
-        try:
-            for n in names:
-                enabled, active = flags[n]
-                for attr, on in (("enabled", enabled), ("active", active)):
-                    if not on:
-                        self.native.modify_observable(n, attr, True)
-                        changed.append((n, attr))
-            return read()
-        finally:
-            for n, attr in reversed(changed):
-                self.native.modify_observable(n, attr, False)
-
     def _complete(self, values: Any, wanted: list[str]) -> Any:
         """``values`` plus those of ``wanted`` the native dict leaves out (from the same
         observation pass: the native buffer holds every observable)."""
         missing = [n for n in wanted if n not in values]
         if missing:
-            extra = self._with_shown(missing, self.native.observation_spec)
+            extra = self.native.all_observations()
             values = dict(values)
             for n in missing:
                 values[n] = extra[n]
@@ -406,7 +380,7 @@ class EnvObservables:
                 part = [value] if type(value) in (int, float) or not value.shape else value
                 groups.setdefault(key, []).append(np.array(part))
         for key, parts in groups.items():
-            if key == "image-state" and not _concatenate_images():
+            if key == "image-state" and not served_macro("CONCATENATE_IMAGES", False):
                 continue
             observations[key] = np.concatenate(parts, axis=-1)
         return observations

@@ -13,6 +13,15 @@ import sys
 import types
 from typing import Any
 
+def served_macro(name: str, default: Any) -> Any:
+    """``robosuite.macros.<name>`` as a user set it after :func:`install_as_robosuite`,
+    else ``default`` (robosuite's value)."""
+    macros = sys.modules.get("robosuite.macros")
+    if macros is None or not getattr(sys.modules.get("robosuite"), "__robosuite_rs__", False):
+        return default
+    return getattr(macros, name, default)
+
+
 #: The robosuite release whose API is served.
 ROBOSUITE_API_VERSION = "1.5.2"
 

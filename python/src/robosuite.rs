@@ -210,6 +210,12 @@ impl PyRobosuiteEnv {
         value_into_py(py, Value::Dict(obs), true)
     }
 
+    /// Every observable's value from the last observation pass, whatever its flags.
+    fn all_observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let obs = self.env()?.all_observations();
+        value_into_py(py, Value::Dict(obs), true)
+    }
+
     /// The observation keys, in order (the active observables, then the modality
     /// concatenations).
     fn observation_keys(&self) -> PyResult<Vec<String>> {

@@ -24,6 +24,7 @@ import pytest
 from robosuite_rs.utils import camera_utils as CU
 from robosuite_rs.utils import transform_utils as T
 
+from . import recorded
 from .recorded import decode
 
 FIXTURE = Path(__file__).parent / "fixtures" / "robosuite_utils" / "camera_utils.json"
@@ -38,14 +39,7 @@ MOVER_TOL = 1e-6
 NOT_PROVIDED = {"DemoPlaybackCameraMover"}
 
 def assert_array(ours: Any, ref: dict, tol: float = TOL, where: str = "") -> None:
-    expected = decode(ref)
-    assert isinstance(ours, np.ndarray), where
-    assert ours.dtype == expected.dtype, f"{where}: dtype {ours.dtype} != {expected.dtype}"
-    assert ours.shape == expected.shape, f"{where}: shape {ours.shape} != {expected.shape}"
-    if np.issubdtype(expected.dtype, np.floating):
-        np.testing.assert_allclose(ours, expected, rtol=tol, atol=tol, err_msg=where)
-    else:
-        np.testing.assert_array_equal(ours, expected, err_msg=where)
+    recorded.assert_array(ours, ref, tol, where)
 
 
 def mujoco_quat2mat(q: np.ndarray) -> np.ndarray:

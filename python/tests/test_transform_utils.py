@@ -23,7 +23,7 @@ import pytest
 
 from robosuite_rs.utils import transform_utils as T
 
-from .recorded import decode
+from .recorded import assert_array, decode
 
 FIXTURE = Path(__file__).parent / "fixtures" / "robosuite_utils" / "transform_utils.json"
 DATA = json.loads(FIXTURE.read_text())
@@ -66,14 +66,7 @@ def has_float32(x: Any) -> bool:
 def assert_matches(ours: Any, ref: Any, tol: float, where: str = "result") -> None:
     """``ours`` has the type, dtype, shape and (within ``tol``) the values of fixture ``ref``."""
     if isinstance(ref, dict) and "array" in ref:
-        expected = decode(ref)
-        assert isinstance(ours, np.ndarray), f"{where}: {type(ours)} is not an ndarray"
-        assert ours.dtype == expected.dtype, f"{where}: dtype {ours.dtype} != {expected.dtype}"
-        assert ours.shape == expected.shape, f"{where}: shape {ours.shape} != {expected.shape}"
-        if np.issubdtype(expected.dtype, np.floating):
-            np.testing.assert_allclose(ours, expected, rtol=tol, atol=tol, err_msg=where)
-        else:
-            np.testing.assert_array_equal(ours, expected, err_msg=where)
+        assert_array(ours, ref, tol, where)
     elif isinstance(ref, dict) and "scalar" in ref:
         expected = decode(ref)
         assert isinstance(ours, np.generic), f"{where}: {type(ours)} is not a NumPy scalar"

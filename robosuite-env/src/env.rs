@@ -108,9 +108,12 @@ pub struct RobosuiteEnv {
     source_xml: Arc<str>,
     /// The task's constructor arguments it was built with.
     task_options: TaskOptions,
-    /// Every observable that exists (with `use_object_obs`'s choice applied), in order.
+    /// Every observable of the robots and the task, in order (the observation buffer's
+    /// layout); those `use_object_obs` leaves out do not exist (see
+    /// [`RobosuiteEnv::observable_exists`]).
     obs_specs: Vec<ObsSpec>,
-    /// Per observable of `obs_specs`: enabled, active (robosuite's two flags).
+    /// Per observable of `obs_specs`: enabled, active (robosuite's two flags; both false
+    /// for one that does not exist).
     obs_flags: Vec<(bool, bool)>,
     #[cfg(feature = "render")]
     viewer_renderer: Option<crate::render::OffscreenRenderer>,
@@ -645,6 +648,15 @@ impl RobosuiteEnv {
         self.layout.to_dict_with(&self.buf, self.frames())
     }
 
+    /// Every observable's value from the last observation pass, whatever its enabled and
+    /// active flags (the buffer holds them all), with the `{modality}-state`
+    /// concatenations of them all: what robosuite's disabled or inactive observables would
+    /// read.
+    pub fn all_observations(&self) -> DictValue {
+        ObsLayout::new(self.obs_specs.clone(), |s| self.observable_exists(s))
+            .to_dict_with(&self.buf, self.frames())
+    }
+
     /// The camera frames of the last observation pass (empty without camera observations).
     fn frames(&self) -> &[gym_core::ArrayValue] {
         self.cameras.as_ref().map_or(&[], CameraRig::frames)
@@ -969,14 +981,19 @@ impl RobosuiteEnv {
         }
     }
 
+    /// Whether observable `spec` exists in this env: robosuite creates the object
+    /// observables only with `use_object_obs`.
+    fn observable_exists(&self, spec: &ObsSpec) -> bool {
+        self.config.use_object_obs || !spec.needs_object_obs
+    }
+
     /// Every observable of the env in robosuite's order with its flags (robosuite's
     /// `observation_names`, `enabled_observables`, `active_observables`).
     pub fn observables(&self) -> Vec<ObservableInfo> {
-        let use_object_obs = self.config.use_object_obs;
         self.obs_specs
             .iter()
             .zip(&self.obs_flags)
-            .filter(|(s, _)| use_object_obs || !s.needs_object_obs)
+            .filter(|(s, _)| self.observable_exists(s))
             .map(|(s, &(enabled, active))| ObservableInfo {
                 spec: s.clone(),
                 enabled,
@@ -998,19 +1015,17 @@ impl RobosuiteEnv {
         flag: ObservableFlag,
         value: bool,
     ) -> Result<()> {
-        let use_object_obs = self.config.use_object_obs;
-        let exists = |s: &ObsSpec| use_object_obs || !s.needs_object_obs;
         let Some(i) = self
             .obs_specs
             .iter()
-            .position(|s| s.key == name && exists(s))
+            .position(|s| s.key == name && self.observable_exists(s))
         else {
             return Err(Error::UnknownKey {
                 key: name.to_owned(),
                 available: self
                     .obs_specs
                     .iter()
-                    .filter(|s| exists(s))
+                    .filter(|s| self.observable_exists(s))
                     .map(|s| s.key.clone())
                     .collect(),
             });
@@ -1024,7 +1039,7 @@ impl RobosuiteEnv {
             .obs_specs
             .iter()
             .zip(&flags)
-            .filter(|(s, (e, a))| exists(s) && *e && *a)
+            .filter(|(_, (e, a))| *e && *a)
             .map(|(s, _)| s.key.as_str())
             .collect();
         let layout = ObsLayout::new(self.obs_specs.clone(), |s| shown.contains(s.key.as_str()));

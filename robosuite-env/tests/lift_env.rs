@@ -653,3 +653,27 @@ fn a_deterministic_reset_is_robosuites_posture_without_noise_fingers_left_as_the
     // Nothing drawn from the RNG.
     assert_eq!(env.rng_state(), rng_before);
 }
+
+#[test]
+fn an_inactive_observable_leaves_the_observation_but_keeps_its_value() {
+    use robosuite_env::ObservableFlag;
+    let mut env = lift(EnvConfig::default().with_seed(1));
+    let (obs, _) = env.reset(None, None).unwrap();
+    env.modify_observable("cube_pos", ObservableFlag::Active, false)
+        .unwrap();
+    let after = env.observation();
+    assert!(after.get("cube_pos").is_none());
+    assert_eq!(
+        get(&env.all_observations(), "cube_pos"),
+        get(&obs, "cube_pos")
+    );
+    // The object-state concatenation shrinks by the three values.
+    assert_eq!(
+        get(&after, "object-state").len() + 3,
+        get(&obs, "object-state").len()
+    );
+    assert!(matches!(
+        env.modify_observable("nope", ObservableFlag::Active, false),
+        Err(Error::UnknownKey { .. })
+    ));
+}
