@@ -114,7 +114,7 @@ fn gym_wrapper_keys_on_lift() {
 #[test]
 fn gym_wrapper_over_a_registry_made_lift() -> Result<(), Error> {
     robosuite_env::register_envs();
-    let boxed = gym_core::registry::make("Lift", &gym_core::Info::new().with("horizon", 2i64))?;
+    let boxed = gym_core::registry::make("Lift", &serde_json::json!({"horizon": 2}))?;
     let mut env = boxed.gym_wrapper(None, true)?.time_limit(10)?;
     assert_eq!(env.observation_space().shape(), Some(&[60usize][..]));
     let (obs, _) = env.reset(Some(0), None)?;

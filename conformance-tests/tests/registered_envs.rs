@@ -11,7 +11,7 @@ use conformance_tests::prop::{
 use conformance_tests::toy::{GridWorld, PointMass};
 use conformance_tests::{Check, CheckOptions, check_env};
 use gym_core::registry::{self, EnvSpec, register, registered_ids};
-use gym_core::{BoxedEnv, Env, EnvExt, Error, Info, IntoBoxedEnv, Result};
+use gym_core::{BoxedEnv, Env, EnvExt, Error, IntoBoxedEnv, Result};
 use robosuite_env::{EnvSnapshot, RobosuiteEnv};
 use std::sync::{Arc, Once};
 
@@ -44,11 +44,11 @@ fn is_robosuite(id: &str) -> bool {
 }
 
 /// Keyword arguments that keep an environment cheap.
-fn kwargs(id: &str) -> Info {
+fn kwargs(id: &str) -> serde_json::Value {
     if is_robosuite(id) {
-        Info::new().with("horizon", HORIZON)
+        serde_json::json!({ "horizon": HORIZON })
     } else {
-        Info::new()
+        serde_json::Value::Null
     }
 }
 

@@ -112,7 +112,7 @@ fn time_limit_truncates_at_exactly_n() {
     // The limit of a TimeLimit over a boxed environment from the registry.
     robosuite_env::register_envs();
     let boxed = || {
-        let kwargs = gym_core::Info::new().with("horizon", HORIZON);
+        let kwargs = serde_json::json!({ "horizon": HORIZON });
         gym_core::registry::make("Lift", &kwargs)
             .unwrap()
             .time_limit(3)

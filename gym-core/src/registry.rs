@@ -1,16 +1,19 @@
 //! A process-wide registry of environments by id (Gymnasium's `gymnasium.make`).
 //!
 //! Crates that provide environments register them (robosuite-env: `register_envs()`);
-//! [`make`] builds one by id with keyword arguments given as an [`Info`].
+//! [`make`] builds one by id with keyword arguments given as JSON values (Gymnasium's
+//! `**kwargs`: numbers, strings, lists, dicts, `None`).
 
 use crate::dynamic::BoxedEnv;
 use crate::error::{Error, Result};
-use crate::info::Info;
 use indexmap::IndexMap;
 use std::sync::{Arc, LazyLock, RwLock};
 
+/// Keyword arguments by name (Gymnasium's `**kwargs`).
+pub type Kwargs = serde_json::Map<String, serde_json::Value>;
+
 /// Builds an environment from keyword arguments.
-pub type EnvFactory = Arc<dyn Fn(&Info) -> Result<BoxedEnv> + Send + Sync>;
+pub type EnvFactory = Arc<dyn Fn(&Kwargs) -> Result<BoxedEnv> + Send + Sync>;
 
 /// How to make a registered environment (Gymnasium's `EnvSpec`).
 #[derive(Clone)]
@@ -62,14 +65,27 @@ pub fn spec(id: &str) -> Result<EnvSpec> {
     })
 }
 
-/// Makes the environment registered under `id` with keyword arguments `kwargs`.
+/// Makes the environment registered under `id` with keyword arguments `kwargs`: a JSON
+/// object of them, or `null` for none.
+///
+/// ```no_run
+/// let env = gym_core::registry::make("Lift", &serde_json::json!({"horizon": 200}))?;
+/// # Ok::<(), gym_core::Error>(())
+/// ```
 ///
 /// # Errors
-/// [`Error::UnknownEnv`] for an unregistered id; whatever the factory returns for bad
-/// arguments.
-pub fn make(id: &str, kwargs: &Info) -> Result<BoxedEnv> {
+/// [`Error::UnknownEnv`] for an unregistered id; [`Error::InvalidArgument`] when `kwargs`
+/// is neither an object nor `null`; whatever the factory returns for bad arguments.
+pub fn make(id: &str, kwargs: &serde_json::Value) -> Result<BoxedEnv> {
     let spec = spec(id)?;
-    (spec.factory)(kwargs)
+    match kwargs {
+        serde_json::Value::Object(map) => (spec.factory)(map),
+        serde_json::Value::Null => (spec.factory)(&Kwargs::new()),
+        other => Err(Error::invalid_argument(
+            "kwargs",
+            format!("must be an object of keyword arguments or null, got {other}"),
+        )),
+    }
 }
 
 /// Every registered id, in registration order.

@@ -181,7 +181,7 @@ fn boxed_env_converts_values_and_rejects_bad_actions() {
 fn registry_makes_by_id_and_lists_ids_on_unknown() {
     registry::register(EnvSpec {
         id: "Walk-v0".into(),
-        factory: Arc::new(|kwargs: &Info| {
+        factory: Arc::new(|kwargs: &registry::Kwargs| {
             if kwargs.contains_key("bad") {
                 return Err(Error::invalid_argument("bad", "not accepted"));
             }
@@ -191,20 +191,27 @@ fn registry_makes_by_id_and_lists_ids_on_unknown() {
         nondeterministic: false,
         description: "a walk on a line".into(),
     });
-    let mut env = registry::make("Walk-v0", &Info::new()).unwrap();
+    let mut env = registry::make("Walk-v0", &serde_json::Value::Null).unwrap();
     assert!(env.reset(Some(1), None).is_ok());
     assert!(registry::registered_ids().contains(&"Walk-v0".to_owned()));
-    match registry::make("Nope-v0", &Info::new()) {
+    match registry::make("Nope-v0", &serde_json::json!({})) {
         Err(Error::UnknownEnv { id, available }) => {
             assert_eq!(id, "Nope-v0");
             assert!(available.contains(&"Walk-v0".to_owned()));
         }
         other => panic!("expected UnknownEnv, got {:?}", other.map(|_| ())),
     }
-    let err = registry::make("Walk-v0", &Info::new().with("bad", true))
+    let err = registry::make("Walk-v0", &serde_json::json!({"bad": true}))
         .map(|_| ())
         .unwrap_err();
     assert_eq!(err.to_string(), "invalid argument `bad`: not accepted");
+    let err = registry::make("Walk-v0", &serde_json::json!([1]))
+        .map(|_| ())
+        .unwrap_err();
+    assert!(
+        matches!(err, Error::InvalidArgument { ref name, .. } if name == "kwargs"),
+        "{err}"
+    );
 }
 
 #[test]

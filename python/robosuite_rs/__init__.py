@@ -21,7 +21,6 @@ import mujoco as _mujoco  # noqa: F401  (imported for its side effect)
 
 import json
 import operator
-import math
 from collections import OrderedDict
 from os import PathLike
 from typing import Any
@@ -58,173 +57,10 @@ ALL_PART_CONTROLLERS: tuple[str, ...] = tuple(_native.part_controller_types())
 #: The robosuite tasks this build provides.
 ALL_ENVIRONMENTS: list[str] = list(_native.robosuite_env_names())
 
-_DIRECT_KWARGS = (
-    "horizon",
-    "control_freq",
-    "reward_scale",
-    "reward_shaping",
-    "ignore_done",
-    "use_object_obs",
-    "seed",
-    "lite_physics",
-)
-
-# robosuite arguments accepted only with these values (anything else raises).
-_FIXED_KWARGS: dict[str, tuple[Any, ...]] = {
-    "has_renderer": (False,),
-    "mount_types": ("default",),
-    "renderer_config": (None,),
-    "render_collision_mesh": (False,),
-    "render_visual_mesh": (True,),
-}
-
-# robosuite's camera arguments plus Gymnasium's render mode (and its frame size), passed
-# to the Rust configuration (robosuite_env::cameras::CameraConfig), which validates them.
-_CAMERA_KWARGS = (
-    "use_camera_obs",
-    "has_offscreen_renderer",
-    "camera_names",
-    "camera_heights",
-    "camera_widths",
-    "camera_depths",
-    "camera_segmentations",
-    "render_camera",
-    "render_mode",
-    "render_height",
-    "render_width",
-)
-
-# robosuite arguments that only concern its on-screen viewer or model reloading: accepted
-# with any value (they change nothing here).
-_RENDER_ONLY_KWARGS = (
-    "renderer",
-    "hard_reset",
-)
-
-#: Every keyword argument :func:`make` accepts.
-SUPPORTED_KWARGS: tuple[str, ...] = (
-    ("robots", "env_configuration", "gripper_types", "base_types", "controller_configs", "initialization_noise", "model_xml")
-    + _DIRECT_KWARGS
-    + ("render_gpu_device_id",)
-    + tuple(_FIXED_KWARGS)
-    + _CAMERA_KWARGS
-    + _RENDER_ONLY_KWARGS
-)
-
-
-def _names(key: str, value: Any) -> list[str]:
-    """A str or a list of strs (robosuite's ``_input2list``)."""
-    items = [value] if isinstance(value, str) else value
-    if not isinstance(items, (list, tuple)) or not all(isinstance(v, str) for v in items):
-        raise ValueError(f"{key} must be a str or a list of str, got {value!r}")
-    if any("," in v or ";" in v for v in items):
-        raise ValueError(f"{key}: names must not contain ',' or ';', got {value!r}")
-    return list(items)
-
-
-def _ints(key: str, value: Any) -> str:
-    """An int or a list of ints, as the comma-separated text the Rust core parses."""
-    items = value.tolist() if isinstance(value, np.ndarray) else value
-    items = items if isinstance(items, (list, tuple)) else [items]
-    out = []
-    for v in items:
-        if isinstance(v, (bool, np.bool_)) or not isinstance(v, (int, np.integer)):
-            raise ValueError(f"{key} must be an int or a list of ints (pixels), got {value!r}")
-        out.append(str(int(v)))
-    return ",".join(out)
-
-
-def _bools(key: str, value: Any) -> str:
-    items = value if isinstance(value, (list, tuple)) else [value]
-    if not all(isinstance(v, (bool, np.bool_)) for v in items):
-        raise ValueError(f"{key} must be a bool or a list of bools, got {value!r}")
-    return ",".join("True" if v else "False" for v in items)
-
-
-def _segmentations(value: Any) -> str:
-    """robosuite's ``camera_segmentations`` (``None``, a level, a list of levels for every
-    camera, or a nested list: one list (or ``None``) per camera) as the Rust core's text:
-    ``,`` separates levels, ``;`` cameras."""
-    if value is None:
-        return "None"
-    if isinstance(value, str):
-        return ",".join(_names("camera_segmentations", value))
-    if not isinstance(value, (list, tuple)):
-        raise ValueError(f"camera_segmentations must be None, a str or a list, got {value!r}")
-    if any(isinstance(v, (list, tuple)) for v in value):
-        return ";".join("" if v is None else ",".join(_names("camera_segmentations", v)) for v in value)
-    levels = [v for v in value if v is not None]
-    return ",".join(_names("camera_segmentations", levels)) if levels else "None"
-
-
-def _camera_kwarg(key: str, value: Any) -> Any:
-    """One camera argument as the Rust configuration's value (``None``: leave the default)."""
-    if key in ("use_camera_obs", "has_offscreen_renderer"):
-        if not isinstance(value, (bool, np.bool_)):
-            raise ValueError(f"{key} must be a bool, got {value!r}")
-        return bool(value)
-    if key == "camera_names":
-        return ",".join(_names(key, value))
-    if key in ("camera_heights", "camera_widths"):
-        return _ints(key, value)
-    if key == "camera_depths":
-        # robosuite takes None as False (robomimic's data-processing envs pass it).
-        return _bools(key, False if value is None else value)
-    if key == "camera_segmentations":
-        return _segmentations(value)
-    if key in ("render_height", "render_width"):
-        if isinstance(value, (list, tuple, np.ndarray)):
-            raise ValueError(f"{key} must be an int (pixels), got {value!r}")
-        return int(_ints(key, value))
-    # render_camera, render_mode: a str, or None (robosuite's free camera: our default
-    # `frontview`; no render mode).
-    if value is None:
-        return "None" if key == "render_mode" else None
-    if not isinstance(value, str):
-        raise ValueError(f"{key} must be a str or None, got {value!r}")
-    return value
-
-
-def _same(a: Any, b: Any) -> bool:
-    try:
-        return bool(np.array_equal(np.asarray(a, dtype=object if a is None else None), np.asarray(b, dtype=object if b is None else None)))
-    except (TypeError, ValueError):
-        return a == b
-
-
-def _plain(value: Any, path: str) -> Any:
-    """A controller config as plain JSON values (NumPy arrays and scalars included),
-    refusing non-finite numbers with the key that holds them."""
-    if isinstance(value, np.ndarray):
-        value = value.tolist()
-    elif isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, dict):
-        return {str(k): _plain(v, f"{path}.{k}") for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_plain(v, f"{path}[{i}]") for i, v in enumerate(value)]
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError(f"invalid argument `{path}`: must be a finite number, got {value}")
-    return value
-
-
-def _controller_json(cfg: Any) -> str:
-    """robosuite's ``controller_configs`` (a composite or part config dict, or a list of
-    one per robot) as JSON text; the Rust core parses and checks it."""
-    if not isinstance(cfg, (dict, list, tuple)):
-        raise ValueError(f"controller_configs must be a dict, a list of dicts or None, got {type(cfg).__name__}")
-    text = json.dumps(_plain(cfg, "controller_configs"))
-    for one in json.loads(text) if isinstance(cfg, (list, tuple)) else [json.loads(text)]:
-        ignored = _native.controller_ignored_keys(json.dumps(one))
-        if ignored:
-            import warnings
-
-            warnings.warn(
-                f"controller_configs: robosuite's controllers ignore {', '.join(ignored)} (not settings "
-                "of their controller type); so does robosuite_rs",
-                stacklevel=4,
-            )
-    return text
+#: Every keyword argument :func:`make` takes besides ``model_xml`` and each task's own
+#: (:func:`task_arguments`): the configuration schema, declared once in the Rust core
+#: (``robosuite_env::config::kwarg_names``), which checks every name, type and value.
+SUPPORTED_KWARGS: tuple[str, ...] = tuple(_native.supported_kwargs())
 
 
 def load_composite_controller_config(controller: str | None = None, robot: str | None = None) -> dict[str, Any]:
@@ -243,96 +79,36 @@ def load_part_controller_config(custom_fpath: str | PathLike[str] | None = None,
     return json.loads(_native.load_part_controller_config(path, default_controller))
 
 
-def _config_kwargs(env_name: str, robots: Any, kwargs: dict[str, Any]) -> dict[str, Any]:
-    """robosuite keyword arguments → the Rust configuration's keys (validated)."""
-    if robots is None:
-        # robosuite requires robots; by default a Panda for each robot the task takes.
-        robots_list = ["Panda"] * _native.task_robot_count(env_name)
-    elif isinstance(robots, str):
-        robots_list = [robots]
-    else:
-        robots_list = list(robots)
-    # robosuite's default: an offscreen renderer (used only by camera observations and
-    # render modes), so `use_camera_obs=True` alone works as in robosuite.
-    config: dict[str, Any] = {"robots": robots_list, "has_offscreen_renderer": True}
-    task_options: dict[str, Any] = {}
-    own: dict[str, Any] | None = None  # the task's own arguments, read when first needed
-    for key, value in kwargs.items():
-        if key in _DIRECT_KWARGS:
-            if value is None and key not in ("reward_scale", "seed"):
-                raise ValueError(f"{key}=None is not supported")
-            if value is not None or key == "reward_scale":
-                config[key] = value.item() if isinstance(value, np.generic) else value
-        elif key in _FIXED_KWARGS:
-            if not any(_same(value, allowed) for allowed in _FIXED_KWARGS[key]):
-                hint = {
-                    "has_renderer": "no on-screen viewer; use has_offscreen_renderer=True, "
-                    "use_camera_obs=True or render_mode='rgb_array'",
-                }.get(key, f"only {_FIXED_KWARGS[key][0]!r} is supported")
-                raise ValueError(f"{env_name}: {key}={value!r} is not supported by robosuite_rs ({hint})")
-        elif key == "render_gpu_device_id":
-            # robosuite's GPU for offscreen rendering (robomimic sets it to the first device
-            # egl_probe finds). Frames here are drawn on the first EGL device that opens.
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < -1:
-                raise ValueError(f"render_gpu_device_id must be an int >= -1 (-1: any), got {value!r}")
-        elif key in _CAMERA_KWARGS:
-            mapped = _camera_kwarg(key, value)
-            if mapped is not None:
-                config[key] = mapped
-        elif key in _RENDER_ONLY_KWARGS:
-            continue
-        elif key == "env_configuration":
-            if not isinstance(value, str):
-                raise ValueError(f"env_configuration must be a string such as 'opposed', got {value!r}")
-            config["env_configuration"] = value
-        elif key == "base_types":
-            choices = value if isinstance(value, (list, tuple)) else [value] * len(robots_list)
-            if len(choices) != len(robots_list):
-                raise ValueError(f"base_types: give one per robot ({len(robots_list)}), got {len(choices)}")
-            if not all(isinstance(c, str) for c in choices):
-                raise ValueError(f"base_types: a base name or 'default' (or one per robot), got {value!r}")
-            config["base_types"] = ",".join(_names("base_types", list(choices)))
-        elif key == "gripper_types":
-            choices = value if isinstance(value, (list, tuple)) else [value] * len(robots_list)
-            if len(choices) != len(robots_list):
-                raise ValueError(f"gripper_types: give one per robot ({len(robots_list)}), got {len(choices)}")
-            config["gripper_types"] = ",".join("None" if c is None else str(c) for c in choices)
-        elif key == "controller_configs":
-            if value is not None:
-                config["controller_configs"] = _controller_json(value)
-        elif key == "initialization_noise":
-            if value is None:
-                config["initialization_noise_type"] = "none"
-            elif value == "default":
-                pass
-            elif isinstance(value, dict):
-                unknown = set(value) - {"magnitude", "type"}
-                if unknown:
-                    raise ValueError(f"initialization_noise: unsupported keys {sorted(unknown)}")
-                if "magnitude" in value:
-                    config["initialization_noise_magnitude"] = float(value["magnitude"])
-                if "type" in value:
-                    config["initialization_noise_type"] = str(value["type"])
-            else:
-                raise ValueError(f"initialization_noise must be 'default', None or a dict, got {value!r}")
-        else:
-            if own is None:
-                own = task_arguments(env_name)
-            if key not in own:
-                raise TypeError(
-                    f"make() got an unexpected keyword argument {key!r} for {env_name}; supported: "
-                    f"{', '.join(SUPPORTED_KWARGS)} and {env_name}'s own: {', '.join(own) or 'none'}"
-                )
-            task_options[key] = _placement_option(value) if key == "placement_initializer" else _plain(value, key)
-    if task_options:
-        config["task_options"] = json.dumps(task_options)
-    return config
+def _native_kwargs(robots: Any, kwargs: dict[str, Any]) -> dict[str, Any]:
+    """:func:`make`'s keyword arguments as the Rust core reads them: ``robots`` folded in
+    and a ``placement_initializer`` object as its settings; every other value as given
+    (lists as lists, dicts as dicts, NumPy values included). Warns about controller config
+    keys robosuite's controllers ignore."""
+    out = dict(kwargs)
+    if robots is not None:
+        out["robots"] = robots
+    if "placement_initializer" in out:
+        out["placement_initializer"] = _placement_option(out["placement_initializer"])
+    configs = out.get("controller_configs")
+    ignored = [] if configs is None else _native.controller_ignored_keys(configs)
+    if ignored:
+        import warnings
+
+        warnings.warn(
+            f"controller_configs: robosuite's controllers ignore {', '.join(ignored)} (not settings "
+            "of their controller type); so does robosuite_rs",
+            stacklevel=3,
+        )
+    return out
 
 
 def _placement_option(value: Any) -> dict[str, Any] | None:
     """``placement_initializer`` as the task's option."""
-    from .utils.placement_samplers import UniformRandomSampler
+    from .utils.placement_samplers import SequentialCompositeSampler, UniformRandomSampler
 
+    if isinstance(value, SequentialCompositeSampler):
+        # robosuite's tasks call the sampler's add_objects, which a composite sampler refuses.
+        value.add_objects([])
     if value is not None and not isinstance(value, UniformRandomSampler):
         raise TypeError(
             "placement_initializer must be None or a robosuite_rs.utils.placement_samplers."
@@ -655,7 +431,7 @@ class RobosuiteEnv:
     def model(self) -> "_TaskModel":
         """robosuite's ``env.model`` (the task's MJCF model) as far as its XML: ``get_xml()``,
         ``root`` / ``worldbody`` (ElementTree elements) and ``save_model(fname)``."""
-        return _TaskModel(self._native.source_xml())
+        return _TaskModel(self._native.source_xml(), self._native.mujoco_objects)
 
     @property
     def timestep(self) -> int:
@@ -699,14 +475,39 @@ class RobosuiteEnv:
         return f"<robosuite_rs.RobosuiteEnv {self.name} horizon={self.horizon}>"
 
 
+class MujocoObject:
+    """One of the task's objects as robosuite's ``MujocoObject`` describes it (an item of
+    ``env.model.mujoco_objects``): ``name``, ``naming_prefix``, ``root_body``, ``joints``,
+    ``contact_geoms``, ``visual_geoms``, ``sites`` (names in the compiled model),
+    ``bottom_offset`` / ``top_offset`` (from the root body, NumPy arrays) and
+    ``horizontal_radius`` (metres)."""
+
+    def __init__(self, info: dict[str, Any]) -> None:
+        self.name: str = info["name"]
+        self.naming_prefix: str = info["naming_prefix"]
+        self.root_body: str = info["root_body"]
+        self.joints: list[str] = list(info["joints"])
+        self.contact_geoms: list[str] = list(info["contact_geoms"])
+        self.visual_geoms: list[str] = list(info["visual_geoms"])
+        self.sites: list[str] = list(info["sites"])
+        self.bottom_offset = np.array(info["bottom_offset"])
+        self.top_offset = np.array(info["top_offset"])
+        self.horizontal_radius: float = float(info["horizontal_radius"])
+
+    def __repr__(self) -> str:
+        return f"<MujocoObject {self.name}>"
+
+
 class _TaskModel:
     """robosuite's ``env.model`` (a ``ManipulationTask``) for what is read from its XML: the
-    scene's MJCF as compiled (robosuite's names; assets by absolute path)."""
+    scene's MJCF as compiled (robosuite's names; assets by absolute path), and its
+    ``mujoco_objects`` (:class:`MujocoObject`)."""
 
-    def __init__(self, xml: str) -> None:
+    def __init__(self, xml: str, objects_json: str = "[]") -> None:
         import xml.etree.ElementTree as ET
 
         self._xml = xml
+        self.mujoco_objects: list[MujocoObject] = [MujocoObject(o) for o in json.loads(objects_json)]
         self.root = ET.fromstring(xml)
         self.worldbody = self.root.find("worldbody")
         self.asset = self.root.find("asset")
@@ -762,10 +563,10 @@ def make(
             (an unknown camera's message lists the model's cameras).
         TypeError: for an unknown keyword argument.
     """
-    config = _config_kwargs(env_name, robots, kwargs)
+    config = _native_kwargs(robots, kwargs)
     convention = served_macro("IMAGE_CONVENTION", "opengl")
     if convention != "opengl":
-        config["image_convention"] = convention
+        config.setdefault("image_convention", convention)
     model = None if model_xml is None else str(model_xml)
     native = _native.make_robosuite(env_name, config, model)
     env = RobosuiteEnv(native)
@@ -807,7 +608,7 @@ def scene_xml(env_name: str, robots: str | list[str] | None = None, **kwargs: An
     Raises:
         ValueError: as :func:`make`.
     """
-    return _native.scene_xml(env_name, _config_kwargs(env_name, robots, kwargs))
+    return _native.scene_xml(env_name, _native_kwargs(robots, kwargs))
 
 
 def _count(name: str, value: Any) -> int:
@@ -937,7 +738,7 @@ def make_vec(
         )
     from .vector import RustVectorEnv
 
-    config = _config_kwargs(env_name, robots, kwargs)
+    config = _native_kwargs(robots, kwargs)
     native = _native.make_robosuite_vec(
         env_name,
         num_envs,
@@ -986,7 +787,7 @@ def make_pool(
     if not 1 <= batch_size <= num_envs:
         raise ValueError(f"batch_size must be in 1..{num_envs}, got {batch_size}")
     steps = _max_steps(max_episode_steps)
-    config = _config_kwargs(env_name, robots, kwargs)
+    config = _native_kwargs(robots, kwargs)
     native = _native.make_robosuite_pool(
         env_name,
         num_envs,

@@ -231,6 +231,72 @@ fn py_to_info_value(key: &str, v: &Bound<'_, PyAny>) -> PyResult<InfoValue> {
     )))
 }
 
+/// A Python value as JSON, for keyword arguments (robosuite's `make(**kwargs)`): `None`,
+/// bools, ints, floats, strs, lists, tuples, dicts with str keys, and NumPy arrays and
+/// scalars (through their `tolist()`).
+///
+/// # Errors
+/// `ValueError` naming the argument (`path`, e.g. `camera_heights[1]`) that holds a
+/// non-finite float, a dict key that is not a str, or a value of another type.
+pub fn py_to_json(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<serde_json::Value> {
+    use serde_json::Value as J;
+    if obj.is_none() {
+        return Ok(J::Null);
+    }
+    if obj.is_instance_of::<PyBool>() {
+        return Ok(J::Bool(obj.extract()?));
+    }
+    if obj.is_instance_of::<PyInt>() {
+        if let Ok(i) = obj.extract::<i64>() {
+            return Ok(J::from(i));
+        }
+        return Ok(J::from(obj.extract::<u64>().map_err(|_| {
+            PyValueError::new_err(format!("invalid argument `{path}`: integer out of range"))
+        })?));
+    }
+    if obj.is_instance_of::<PyFloat>() {
+        let f: f64 = obj.extract()?;
+        return serde_json::Number::from_f64(f)
+            .map(J::Number)
+            .ok_or_else(|| {
+                PyValueError::new_err(format!(
+                    "invalid argument `{path}`: must be a finite number, got {f}"
+                ))
+            });
+    }
+    if let Ok(s) = obj.cast::<PyString>() {
+        return Ok(J::String(s.to_str()?.to_owned()));
+    }
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let mut map = serde_json::Map::new();
+        for (k, v) in d.iter() {
+            let key: String = k.extract().map_err(|_| {
+                PyValueError::new_err(format!("invalid argument `{path}`: dict keys must be strs"))
+            })?;
+            let value = py_to_json(&v, &format!("{path}.{key}"))?;
+            map.insert(key, value);
+        }
+        return Ok(J::Object(map));
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        return obj
+            .try_iter()?
+            .enumerate()
+            .map(|(i, v)| py_to_json(&v?, &format!("{path}[{i}]")))
+            .collect::<PyResult<Vec<_>>>()
+            .map(J::Array);
+    }
+    // NumPy arrays and scalars: their plain Python values.
+    let module = obj.get_type().module()?;
+    if module.to_str()? == "numpy" && obj.hasattr("tolist")? {
+        return py_to_json(&obj.call_method0("tolist")?, path);
+    }
+    Err(PyValueError::new_err(format!(
+        "invalid argument `{path}`: unsupported value of type {}",
+        obj.get_type().name()?
+    )))
+}
+
 /// Any array-like (NumPy array, list, scalar) as an [`ArrayValue`] of its NumPy dtype
 /// (`bool` becomes `int8`, other integer types `int64` by value, other float types
 /// `float64`).

@@ -1,6 +1,6 @@
 //! The extension module `robosuite_rs._native`.
 
-use crate::convert::py_to_info;
+use crate::convert::py_to_json;
 use crate::errors::to_pyerr;
 use crate::pool::PyEnvPool;
 use crate::pyenv::{PyEnv, PyVecEnv};
@@ -12,9 +12,39 @@ use pyo3::types::PyDict;
 use robosuite_env::{EnvConfig, RobosuiteEnv};
 use std::path::PathBuf;
 
-fn config(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<EnvConfig> {
-    let info = kwargs.map(py_to_info).transpose()?.unwrap_or_default();
-    EnvConfig::from_kwargs(&info).map_err(to_pyerr)
+/// robosuite's `make` keyword arguments as JSON (Python values as they are: lists as
+/// lists, dicts as dicts, `None` as null).
+fn kwargs_json(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<gym_core::registry::Kwargs> {
+    let mut out = gym_core::registry::Kwargs::new();
+    for (k, v) in kwargs.into_iter().flat_map(|d| d.iter()) {
+        let key: String = k
+            .extract()
+            .map_err(|_| pyo3::exceptions::PyTypeError::new_err("keyword names must be strs"))?;
+        let value = py_to_json(&v, &key)?;
+        out.insert(key, value);
+    }
+    Ok(out)
+}
+
+/// The configuration of the task `env_name` from robosuite's `make` keyword arguments
+/// (`EnvConfig::from_kwargs`); an argument neither robosuite's nor the task's is a
+/// `TypeError`, as Python's for an unexpected keyword argument.
+fn config(env_name: &str, kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<EnvConfig> {
+    let kwargs = kwargs_json(kwargs)?;
+    EnvConfig::from_kwargs(env_name, &kwargs).map_err(|e| match e {
+        gym_core::Error::UnknownKey { key, .. } => {
+            let own = robosuite_env::make_task(env_name)
+                .map(|t| t.options().keys().cloned().collect::<Vec<_>>().join(", "))
+                .unwrap_or_default();
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "make() got an unexpected keyword argument '{key}' for {env_name}; supported: \
+                 {}; {env_name}'s own: {}",
+                robosuite_env::config::kwarg_names().join(", "),
+                if own.is_empty() { "none" } else { own.as_str() }
+            ))
+        }
+        other => to_pyerr(other),
+    })
 }
 
 fn build(
@@ -32,9 +62,9 @@ fn build(
     }
 }
 
-/// Makes the robosuite task `env_name` with robosuite keyword arguments already mapped to
-/// the Rust configuration keys (see `robosuite_env::config::CONFIG_KEYS`), optionally on
-/// the scene file `model_xml`.
+/// Makes the robosuite task `env_name` with robosuite's keyword arguments (see
+/// `robosuite_env::config::kwarg_names` and the task's own), optionally on the scene file
+/// `model_xml`.
 #[pyfunction]
 #[pyo3(signature = (env_name, kwargs=None, model_xml=None))]
 fn make_robosuite(
@@ -43,7 +73,7 @@ fn make_robosuite(
     kwargs: Option<&Bound<'_, PyDict>>,
     model_xml: Option<PathBuf>,
 ) -> PyResult<PyRobosuiteEnv> {
-    let config = config(kwargs)?;
+    let config = config(env_name, kwargs)?;
     let env = py
         .detach(|| build(env_name, config, model_xml.as_ref()))
         .map_err(to_pyerr)?;
@@ -140,7 +170,7 @@ fn gym_wrapped(
     kwargs: Option<&Bound<'_, PyDict>>,
     options: GymOptions,
 ) -> PyResult<Vec<BoxedEnv>> {
-    let config = config(kwargs)?;
+    let config = config(env_name, kwargs)?;
     let GymOptions {
         keys,
         flatten_obs,
@@ -176,15 +206,14 @@ fn make_registered(
     env_id: &str,
     kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<PyEnv> {
-    let info = kwargs.map(py_to_info).transpose()?.unwrap_or_default();
+    let kwargs = serde_json::Value::Object(kwargs_json(kwargs)?);
     let env = py
-        .detach(|| gym_core::registry::make(env_id, &info))
+        .detach(|| gym_core::registry::make(env_id, &kwargs))
         .map_err(to_pyerr)?;
     Ok(PyEnv::new(env))
 }
 
-/// The MJCF text of the scene the task `env_name` builds with these (mapped) keyword
-/// arguments: a robosuite-style scene file for `make(..., model_xml=path)`.
+/// The MJCF text of the scene the task `env_name` builds with these keyword arguments: a robosuite-style scene file for `make(..., model_xml=path)`.
 #[pyfunction]
 #[pyo3(signature = (env_name, kwargs=None))]
 fn scene_xml(
@@ -192,7 +221,7 @@ fn scene_xml(
     env_name: &str,
     kwargs: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<String> {
-    let config = config(kwargs)?;
+    let config = config(env_name, kwargs)?;
     py.detach(|| robosuite_env::scene_xml(env_name, &config))
         .map_err(to_pyerr)
 }
@@ -237,22 +266,25 @@ fn task_options(env_name: &str) -> PyResult<String> {
     Ok(serde_json::Value::Object(spec.options()).to_string())
 }
 
-/// The keys of a controller config (JSON text) that robosuite's controllers ignore, and so
-/// does this package, as paths (for a warning).
+/// The keys of robosuite's `controller_configs` argument (a config dict or a list of them)
+/// that robosuite's controllers ignore, and so does this package, as paths (for a
+/// warning).
 #[pyfunction]
-fn controller_ignored_keys(config_json: &str) -> PyResult<Vec<String>> {
-    let value: serde_json::Value = serde_json::from_str(config_json)
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("not JSON: {e}")))?;
-    Ok(robosuite_env::controllers::config::ignored_keys(&value))
+fn controller_ignored_keys(configs: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    Ok(match py_to_json(configs, "controller_configs")? {
+        serde_json::Value::Array(list) => list
+            .iter()
+            .flat_map(robosuite_env::controllers::config::ignored_keys)
+            .collect(),
+        one => robosuite_env::controllers::config::ignored_keys(&one),
+    })
 }
 
-/// The keyword arguments the Rust configuration accepts.
+/// robosuite's `make` keyword arguments this build takes besides the tasks' own (the
+/// configuration schema's names, declared in Rust).
 #[pyfunction]
-fn config_keys() -> Vec<String> {
-    robosuite_env::config::CONFIG_KEYS
-        .iter()
-        .map(|s| (*s).to_owned())
-        .collect()
+fn supported_kwargs() -> Vec<&'static str> {
+    robosuite_env::config::kwarg_names().to_vec()
 }
 
 /// robosuite's `load_composite_controller_config(controller, robot)`, as JSON text: the
@@ -318,7 +350,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene_xml, m)?)?;
     m.add_function(wrap_pyfunction!(robosuite_env_names, m)?)?;
     m.add_function(wrap_pyfunction!(task_robot_count, m)?)?;
-    m.add_function(wrap_pyfunction!(config_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(supported_kwargs, m)?)?;
     m.add_function(wrap_pyfunction!(task_options, m)?)?;
     m.add_function(wrap_pyfunction!(controller_ignored_keys, m)?)?;
     m.add_function(wrap_pyfunction!(load_composite_controller_config, m)?)?;

@@ -174,6 +174,16 @@ impl PyRobosuiteEnv {
         Ok(serde_json::Value::Object(self.env()?.task_options().clone()).to_string())
     }
 
+    /// The task's objects (robosuite's `env.model.mujoco_objects`: names, offsets,
+    /// radius), as JSON text.
+    #[getter]
+    fn mujoco_objects(&self) -> PyResult<String> {
+        Ok(
+            serde_json::to_string(&self.env()?.mujoco_objects())
+                .unwrap_or_else(|_| "[]".to_owned()),
+        )
+    }
+
     /// The number of physics substeps of an env step.
     #[getter]
     fn substeps(&self) -> PyResult<usize> {

@@ -466,3 +466,26 @@ def test_robosuites_image_convention_macro_flips_camera_images():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr[-3000:]
     assert "OK" in out.stdout
+
+
+def test_model_mujoco_objects_are_the_tasks_objects() -> None:
+    # robosuite's env.model.mujoco_objects: the task's objects in its order, with names
+    # that exist in the compiled model and the extent placement uses.
+    env = lift()
+    (cube,) = env.model.mujoco_objects
+    assert (cube.name, cube.naming_prefix, cube.root_body, cube.joints) == ("cube", "cube_", "cube_main", ["cube_joint0"])
+    m = env.sim.model
+    assert m.body_name2id(cube.root_body) >= 0
+    assert all(m.geom_name2id(g) >= 0 for g in cube.contact_geoms + cube.visual_geoms)
+    assert all(m.site_name2id(s) >= 0 for s in cube.sites)
+    env.reset(seed=0)
+    # Placed with its bottom z_offset (0.01) above the table top (0.8), before any step.
+    z = env.sim.data.body_xpos[m.body_name2id(cube.root_body)][2] + cube.bottom_offset[2]
+    assert abs(z - 0.81) < 1e-9
+    half = m.geom_size[m.geom_name2id(cube.contact_geoms[0])]
+    assert np.allclose(cube.top_offset, [0, 0, half[2]]) and np.allclose(cube.bottom_offset, [0, 0, -half[2]])
+    # PickPlace: robosuite's visual objects, then the physical ones.
+    pick = suite.make("PickPlace", robots="Panda", has_renderer=False, use_camera_obs=False)
+    names = [o.name for o in pick.model.mujoco_objects]
+    assert names == ["VisualMilk", "VisualBread", "VisualCereal", "VisualCan", "Milk", "Bread", "Cereal", "Can"]
+    assert all(pick.sim.model.body_name2id(o.root_body) >= 0 for o in pick.model.mujoco_objects)

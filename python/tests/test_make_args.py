@@ -160,3 +160,87 @@ def test_base_types_choose_the_robots_mount() -> None:
         suite.make("Lift", base_types="Pedestal", **QUIET)
     with pytest.raises(ValueError, match="one per robot"):
         suite.make("TwoArmLift", base_types=["NullMount"] * 3, **QUIET)
+
+
+def test_one_schema_declared_in_rust_takes_robosuites_values() -> None:
+    # The argument list is exported from the Rust schema; values cross as they are.
+    from robosuite_rs import _native
+
+    assert set(suite.SUPPORTED_KWARGS) == set(_native.supported_kwargs())
+    for name in ("robots", "camera_segmentations", "initialization_noise", "has_renderer", "render_gpu_device_id"):
+        assert name in suite.SUPPORTED_KWARGS
+    env = suite.make(
+        "Lift", robots=np.array(["Panda"]), horizon=np.int64(5), reward_scale=None,
+        initialization_noise={"magnitude": np.float32(0.0), "type": "uniform"}, **QUIET,
+    )
+    assert (env.horizon, env.reward_scale) == (5, None)
+    a, b = env.reset(seed=0), suite.make("Lift", initialization_noise=None, **QUIET).reset(seed=0)
+    assert np.array_equal(a["robot0_joint_pos"], b["robot0_joint_pos"])  # no noise either way
+    # The registry path (gymnasium ids of other Rust envs, Rust's registry) reads lists too.
+    native = _native.make_registered("Lift", {"robots": ["Panda"], "horizon": 3, **QUIET})
+    native.reset(0, None)
+    # Ill-typed values name the argument and the item; nothing is made.
+    with pytest.raises(ValueError, match=r"camera_heights.*\[1\]"):
+        suite.make("Lift", camera_heights=[84, "a"], **QUIET)
+    with pytest.raises(ValueError, match="horizon"):
+        suite.make("Lift", horizon=2.5, **QUIET)
+    with pytest.raises(ValueError, match="reward_scale"):
+        suite.make("Lift", reward_scale=float("inf"), **QUIET)
+    with pytest.raises(TypeError, match="Lift's own: table_full_size"):
+        suite.make("Lift", horizn=5, **QUIET)
+
+
+def test_placement_samplers_sample_as_robosuites() -> None:
+    # robosuite's samplers in Python, over the env's own objects: cubeA in a square, cubeB
+    # on top of it (SequentialCompositeSampler with a reference), set by hand.
+    from robosuite_rs.utils.placement_samplers import (
+        RandomizationError,
+        SequentialCompositeSampler,
+        UniformRandomSampler,
+    )
+
+    env = suite.make("Stack", **QUIET)
+    env.reset(seed=0)
+    cube_a, cube_b = env.model.mujoco_objects
+
+    def composite(seed: int) -> SequentialCompositeSampler:
+        rng = np.random.default_rng(seed)
+        sampler = SequentialCompositeSampler("Stack")
+        sampler.append_sampler(UniformRandomSampler(
+            "A", mujoco_objects=cube_a, x_range=[-0.1, 0.1], y_range=[-0.1, 0.1], rotation=None,
+            ensure_object_boundary_in_range=False, reference_pos=(0, 0, 0.8), z_offset=0.01, rng=rng,
+        ))
+        sampler.append_sampler(UniformRandomSampler(
+            "B", x_range=[0, 0], y_range=[0, 0], rotation=[0.5, 0.5],
+            ensure_object_boundary_in_range=False, ensure_valid_placement=False, rng=rng,
+        ), sample_args={"reference": "cubeA"})
+        sampler.add_objects_to_sampler("B", cube_b)
+        return sampler
+
+    placed = composite(7).sample()
+    (xa, ya, za), quat_a, _ = placed["cubeA"]
+    (xb, yb, zb), quat_b, _ = placed["cubeB"]
+    assert -0.1 <= xa <= 0.1 and -0.1 <= ya <= 0.1
+    assert za == pytest.approx(0.81 - cube_a.bottom_offset[2])
+    assert (xb, yb) == (xa, ya)
+    assert zb == pytest.approx(za + cube_a.top_offset[2] - cube_b.bottom_offset[2])
+    assert np.allclose(quat_b, [np.cos(0.25), 0, 0, np.sin(0.25)]) and np.isclose(np.linalg.norm(quat_a), 1)
+    assert composite(7).sample()["cubeA"][0] == (xa, ya, za)  # same rng seed, same draw
+    for name, (pos, quat, obj) in placed.items():
+        env.sim.data.set_joint_qpos(obj.joints[0], np.concatenate([pos, quat]))
+    env.sim.forward()
+    assert np.allclose(env._get_observations(force_update=True)["cubeB_pos"], [xb, yb, zb])
+    # robosuite's refusals: add_objects on a composite, an object placed twice, no room.
+    with pytest.raises(AttributeError, match="add_objects"):
+        composite(0).add_objects(cube_a)
+    with pytest.raises(AttributeError, match="add_objects"):
+        suite.make("Lift", placement_initializer=SequentialCompositeSampler("s"), **QUIET)
+    with pytest.raises(AssertionError, match="cubeA"):
+        composite(0).add_objects_to_sampler("B", cube_a)
+    crowded = UniformRandomSampler(
+        "c", mujoco_objects=[cube_a, cube_b], x_range=[0, 0], y_range=[0, 0], ensure_object_boundary_in_range=False,
+    )
+    with pytest.raises(RandomizationError):
+        crowded.sample()
+    with pytest.raises(TypeError, match="placement_initializer"):
+        suite.make("Lift", placement_initializer=crowded, **QUIET)  # the task adds its own objects

@@ -9,24 +9,8 @@
 //! robosuite's default `IMAGE_CONVENTION = "opengl"`, top first under `"opencv"`.
 
 use crate::observables::ObsSpec;
-use gym_core::{ArrayValue, DType, Error, InfoValue, RenderMode, Result};
+use gym_core::{ArrayValue, DType, Error, RenderMode, Result};
 use ndarray::{ArrayD, IxDyn};
-
-/// The keyword arguments of [`CameraConfig`] (see [`crate::config::CONFIG_KEYS`]).
-pub const CAMERA_KEYS: &[&str] = &[
-    "use_camera_obs",
-    "has_offscreen_renderer",
-    "camera_names",
-    "camera_heights",
-    "camera_widths",
-    "camera_depths",
-    "camera_segmentations",
-    "render_camera",
-    "render_height",
-    "render_width",
-    "render_mode",
-    "image_convention",
-];
 
 /// The largest camera width or height accepted (robosuite sets no limit; MuJoCo's
 /// offscreen buffer must fit one OpenGL renderbuffer).
@@ -53,7 +37,7 @@ impl Segmentation {
         }
     }
 
-    fn parse(s: &str) -> Result<Self> {
+    pub(crate) fn parse(s: &str) -> Result<Self> {
         match s {
             "instance" => Ok(Self::Instance),
             "class" => Ok(Self::Class),
@@ -262,110 +246,6 @@ impl CameraConfig {
         }
         Ok(())
     }
-
-    /// Sets one keyword argument (see [`CAMERA_KEYS`]): lists as comma-separated text or
-    /// arrays, single values broadcast.
-    ///
-    /// # Errors
-    /// [`Error::InvalidArgument`] for a value of the wrong kind.
-    pub fn set_kwarg(&mut self, key: &str, v: &InfoValue) -> Result<()> {
-        let kind = |want: &str| {
-            Error::invalid_argument(key, format!("expected {want}, got a {}", v.kind()))
-        };
-        match key {
-            "use_camera_obs" | "has_offscreen_renderer" => {
-                let InfoValue::Bool(b) = v else {
-                    return Err(kind("a bool"));
-                };
-                if key == "use_camera_obs" {
-                    self.use_camera_obs = *b;
-                } else {
-                    self.has_offscreen_renderer = *b;
-                }
-            }
-            "camera_names" => match v {
-                InfoValue::Str(s) => self.camera_names = split(s).map(str::to_owned).collect(),
-                _ => return Err(kind("a camera name (or comma-separated names)")),
-            },
-            "camera_heights" => self.camera_heights = sizes(key, v)?,
-            "camera_widths" => self.camera_widths = sizes(key, v)?,
-            "camera_depths" => {
-                self.camera_depths = match v {
-                    InfoValue::Bool(b) => vec![*b],
-                    InfoValue::Str(s) => split(s)
-                        .map(|t| match t {
-                            "True" | "true" | "1" => Ok(true),
-                            "False" | "false" | "0" => Ok(false),
-                            other => Err(Error::invalid_argument(
-                                key,
-                                format!("`{other}` is not a bool"),
-                            )),
-                        })
-                        .collect::<Result<_>>()?,
-                    _ => return Err(kind("a bool (or comma-separated bools)")),
-                }
-            }
-            "camera_segmentations" => match v {
-                // "element" for every camera; "element;instance,class" per camera (`;`
-                // separates cameras, `,` levels); "None" for none.
-                InfoValue::Str(s) if s == "None" || s.is_empty() => {
-                    self.camera_segmentations = Vec::new()
-                }
-                InfoValue::Str(s) => {
-                    self.camera_segmentations = s
-                        .split(';')
-                        .map(|cam| split(cam).map(Segmentation::parse).collect())
-                        .collect::<Result<_>>()?
-                }
-                _ => return Err(kind("segmentation levels as text")),
-            },
-            "render_camera" => match v {
-                InfoValue::Str(s) => self.render_camera = s.clone(),
-                _ => return Err(kind("a camera name")),
-            },
-            "render_height" => self.render_height = single_size(key, v)?,
-            "render_width" => self.render_width = single_size(key, v)?,
-            "render_mode" => match v {
-                InfoValue::Str(s) => {
-                    self.render_mode = match s.as_str() {
-                        "None" | "" => None,
-                        "rgb_array" => Some(RenderMode::RgbArray),
-                        "depth_array" => Some(RenderMode::DepthArray),
-                        "human" => Some(RenderMode::Human),
-                        other => {
-                            return Err(Error::invalid_argument(
-                                key,
-                                format!(
-                                    "unknown render mode `{other}`; valid: rgb_array, depth_array, None"
-                                ),
-                            ));
-                        }
-                    }
-                }
-                _ => return Err(kind("a render mode name")),
-            },
-            "image_convention" => match v {
-                InfoValue::Str(s) if s == "opengl" => {
-                    self.image_convention = ImageConvention::OpenGl
-                }
-                InfoValue::Str(s) if s == "opencv" => {
-                    self.image_convention = ImageConvention::OpenCv
-                }
-                _ => return Err(kind("\"opengl\" or \"opencv\"")),
-            },
-            other => {
-                return Err(Error::UnknownKey {
-                    key: other.to_owned(),
-                    available: CAMERA_KEYS.iter().map(|s| (*s).to_owned()).collect(),
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-fn split(s: &str) -> impl Iterator<Item = &str> {
-    s.split(',').map(str::trim).filter(|t| !t.is_empty())
 }
 
 fn check_size(name: &str, v: usize) -> Result<()> {
@@ -376,39 +256,6 @@ fn check_size(name: &str, v: usize) -> Result<()> {
         ));
     }
     Ok(())
-}
-
-fn single_size(key: &str, v: &InfoValue) -> Result<usize> {
-    match v {
-        InfoValue::Int(i) if *i >= 0 => Ok(*i as usize),
-        other => Err(Error::invalid_argument(
-            key,
-            format!("expected a size in pixels, got {other:?}"),
-        )),
-    }
-}
-
-fn sizes(key: &str, v: &InfoValue) -> Result<Vec<usize>> {
-    let bad = |t: &str| Error::invalid_argument(key, format!("`{t}` is not a size in pixels"));
-    match v {
-        InfoValue::Int(_) => Ok(vec![single_size(key, v)?]),
-        InfoValue::Str(s) => split(s).map(|t| t.parse().map_err(|_| bad(t))).collect(),
-        InfoValue::Array(a) => a
-            .to_f64_vec()
-            .into_iter()
-            .map(|f| {
-                if f >= 0.0 && f.fract() == 0.0 {
-                    Ok(f as usize)
-                } else {
-                    Err(bad(&f.to_string()))
-                }
-            })
-            .collect(),
-        other => Err(Error::invalid_argument(
-            key,
-            format!("expected sizes in pixels, got a {}", other.kind()),
-        )),
-    }
 }
 
 /// The observable specs of `cameras`, in robosuite's order (per camera: image, depth,

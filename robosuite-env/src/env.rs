@@ -108,6 +108,8 @@ pub struct RobosuiteEnv {
     source_xml: Arc<str>,
     /// The task's constructor arguments it was built with.
     task_options: TaskOptions,
+    /// The task's objects (robosuite's `env.model.mujoco_objects`).
+    objects: Vec<MujocoObjectInfo>,
     /// Every observable of the robots and the task, in order (the observation buffer's
     /// layout); those `use_object_obs` leaves out do not exist (see
     /// [`RobosuiteEnv::observable_exists`]).
@@ -137,6 +139,76 @@ pub enum ObservableFlag {
     Enabled,
     /// `active`: returned in observations.
     Active,
+}
+
+/// One of the task's objects as robosuite's `MujocoObject` describes it: names in the
+/// compiled model and the extent placement uses.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct MujocoObjectInfo {
+    /// The object's name (`"cube"`).
+    pub name: String,
+    /// The prefix of every element name (`"cube_"`).
+    pub naming_prefix: String,
+    /// The root body's name (`"cube_main"`).
+    pub root_body: String,
+    /// The joints' names (`["cube_joint0"]`; none for a fixed object).
+    pub joints: Vec<String>,
+    /// The contact geoms' names.
+    pub contact_geoms: Vec<String>,
+    /// The visual geoms' names.
+    pub visual_geoms: Vec<String>,
+    /// The sites' names.
+    pub sites: Vec<String>,
+    /// From the root body to the object's bottom (robosuite's `bottom_offset`).
+    pub bottom_offset: [f64; 3],
+    /// From the root body to the object's top (robosuite's `top_offset`).
+    pub top_offset: [f64; 3],
+    /// The largest horizontal distance from the root body to the object's outline.
+    pub horizontal_radius: f64,
+    /// For generated boxes and cylinders, whose size resets may draw anew: the shape and
+    /// the geom whose size gives the extent.
+    #[serde(skip)]
+    primitive: Option<(crate::models::objects::Shape, usize)>,
+}
+
+impl MujocoObjectInfo {
+    fn of(o: &crate::models::objects::ObjectModel, model: &MjModel) -> Self {
+        let primitive = o.shape.and_then(|shape| {
+            let geom = o.contact_geoms().into_iter().next()?;
+            Some((shape, crate::sim::geom_id(model, &geom).ok()?))
+        });
+        Self {
+            name: o.name.clone(),
+            naming_prefix: format!("{}_", o.name),
+            root_body: o.root_body(),
+            joints: o.joints(),
+            contact_geoms: o.contact_geoms(),
+            visual_geoms: o.visual_geoms(),
+            sites: o.sites(),
+            bottom_offset: o.bottom_offset,
+            top_offset: o.top_offset,
+            horizontal_radius: o.horizontal_radius,
+            primitive,
+        }
+    }
+
+    /// This object with the extent of its generated shape as `model` has it now
+    /// (robosuite's `BoxObject` / `CylinderObject` rules).
+    fn current(&self, model: &MjModel) -> Self {
+        use crate::models::objects::Shape;
+        let mut out = self.clone();
+        if let Some((shape, geom)) = self.primitive {
+            let size = model.geom_size()[geom];
+            let (radius, half_height) = match shape {
+                Shape::Box(_) => (size[0].hypot(size[1]), size[2]),
+                Shape::Cylinder(_) => (size[0], size[1]),
+            };
+            out.horizontal_radius = radius;
+            out.bottom_offset = [0.0, 0.0, -half_height];
+            out.top_offset = [0.0, 0.0, half_height];
+        }
+        out
+    }
 }
 
 /// The robots and task scene composed for a configuration, before compiling.
@@ -349,6 +421,12 @@ impl RobosuiteEnv {
             })
             .collect::<Result<Vec<_>>>()?;
         let task = spec.bind(&composed.task_scene, &model, &robots)?;
+        let objects = composed
+            .task_scene
+            .objects
+            .iter()
+            .map(|o| MujocoObjectInfo::of(o, &model))
+            .collect();
 
         // robosuite's order: every robot's observables, then the task's; `use_object_obs =
         // false` leaves out the task's object observables (and those robosuite creates only
@@ -431,6 +509,7 @@ impl RobosuiteEnv {
             cameras,
             source_xml,
             task_options,
+            objects,
             obs_specs,
             obs_flags,
             #[cfg(feature = "render")]
@@ -937,6 +1016,14 @@ impl RobosuiteEnv {
         self.task.clear_observation_cache();
         self.sim.forward()?;
         self.begin_episode()
+    }
+
+    /// The task's objects in robosuite's order (its `env.model.mujoco_objects`: the
+    /// visual objects, then the physical ones, for the tasks that have both).
+    /// Generated boxes and cylinders have the size the last reset drew.
+    pub fn mujoco_objects(&self) -> Vec<MujocoObjectInfo> {
+        let model = self.sim.model();
+        self.objects.iter().map(|o| o.current(model)).collect()
     }
 
     /// The MJCF text the model was compiled from.

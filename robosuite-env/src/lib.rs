@@ -50,7 +50,9 @@ pub mod tasks;
 pub use config::{EnvConfig, EnvConfiguration};
 #[cfg(feature = "render")]
 pub use env::CameraFrame;
-pub use env::{EnvSnapshot, ModelSource, ObservableFlag, ObservableInfo, RobosuiteEnv};
+pub use env::{
+    EnvSnapshot, ModelSource, MujocoObjectInfo, ObservableFlag, ObservableInfo, RobosuiteEnv,
+};
 pub use registry::{
     ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,
 };

@@ -110,14 +110,14 @@ pub fn scene_xml(name: &str, config: &EnvConfig) -> Result<String> {
 }
 
 /// Registers every environment of this crate in [`gym_core::registry`], so that
-/// `gym_core::registry::make("Lift", &kwargs)` works (keyword arguments: see
+/// `gym_core::registry::make("Lift", &kwargs)` works (robosuite's keyword arguments: see
 /// [`EnvConfig::from_kwargs`]). Calling it again replaces the entries.
 pub fn register_envs() {
     for &name in ENV_NAMES {
         register(EnvSpec {
             id: name.to_owned(),
             factory: Arc::new(move |kwargs| {
-                let config = EnvConfig::from_kwargs(kwargs)?;
+                let config = EnvConfig::from_kwargs(name, kwargs)?;
                 Ok(make_with(name, config)?.boxed())
             }),
             max_episode_steps: None,

@@ -6,7 +6,7 @@
 mod common;
 
 use common::get;
-use gym_core::{Env, Error, Info, Space};
+use gym_core::{Env, Error, Space};
 use ndarray::{Array1, ArrayD};
 use robosuite_env::assets::Assets;
 use robosuite_env::controllers::config::{
@@ -200,12 +200,13 @@ fn the_issue_example_basic_config_works_on_a_single_arm_robot() {
     let mut env = lift("Panda", parse(value.clone()).unwrap()).unwrap();
     assert_eq!(env.action_space().shape(), Some(&[7][..]));
     env.reset(Some(0), None).unwrap();
-    // The same through the keyword path (JSON text, as the Python package passes it).
-    let kwargs = Info::new().with("controller_configs", value.to_string());
-    let config = EnvConfig::from_kwargs(&kwargs).unwrap();
+    // The same through the keyword path (robosuite's dict, as the Python package passes it).
+    let kwargs = serde_json::json!({ "controller_configs": value });
+    let config = EnvConfig::from_kwargs("Lift", kwargs.as_object().unwrap()).unwrap();
     assert!(make_with("Lift", config).is_ok());
     // And by controller name.
-    let config = EnvConfig::from_kwargs(&Info::new().with("controller", "JOINT_VELOCITY")).unwrap();
+    let kwargs = serde_json::json!({"controller": "JOINT_VELOCITY"});
+    let config = EnvConfig::from_kwargs("Lift", kwargs.as_object().unwrap()).unwrap();
     let env = make_with("Lift", config).unwrap();
     assert_eq!(env.robots()[0].arm().controller().name(), "JOINT_VELOCITY");
 }
@@ -347,13 +348,14 @@ fn bad_configs_are_typed_errors_naming_the_key() {
         make_with("Lift", two),
         Err(Error::InvalidArgument { .. })
     ));
-    // Keyword errors: not JSON, an unknown controller name.
+    // Keyword errors: not a dict, an unknown controller name.
+    let kwargs = |v: serde_json::Value| EnvConfig::from_kwargs("Lift", v.as_object().unwrap());
     assert!(matches!(
-        EnvConfig::from_kwargs(&Info::new().with("controller_configs", "{type: OSC")),
+        kwargs(serde_json::json!({"controller_configs": "{type: OSC"})),
         Err(Error::InvalidArgument { .. })
     ));
     assert!(matches!(
-        EnvConfig::from_kwargs(&Info::new().with("controller", "OSC")),
+        kwargs(serde_json::json!({"controller": "OSC"})),
         Err(Error::InvalidArgument { .. })
     ));
 }

@@ -8,6 +8,7 @@ use robosuite_env::sim::{Sim, check_mujoco_version};
 use robosuite_env::{
     EnvConfig, InitNoise, RobosuiteEnv, make, make_from_scene_xml, make_with, scene_xml,
 };
+use serde_json::json;
 
 /// robosuite 1.5.2's Lift observation keys, shapes and dtypes, in order (transcribed from
 /// `robosuite-1.5.2-observations.json`, entry "Lift").
@@ -499,21 +500,18 @@ fn configuration_errors_list_valid_values() {
     );
 
     // Keyword arguments (the registry path).
-    let kwargs = Info::new()
-        .with("horizon", 7i64)
-        .with("reward_shaping", true)
-        .with("seed", 3i64);
-    let c = EnvConfig::from_kwargs(&kwargs).unwrap();
+    let kwargs = json!({"horizon": 7, "reward_shaping": true, "seed": 3});
+    let c = EnvConfig::from_kwargs("Lift", kwargs.as_object().unwrap()).unwrap();
     assert_eq!(
         (c.horizon, c.reward_shaping, c.seed),
         (7, Some(true), Some(3))
     );
     assert!(matches!(
-        EnvConfig::from_kwargs(&Info::new().with("horizn", 7i64)),
+        EnvConfig::from_kwargs("Lift", json!({"horizn": 7}).as_object().unwrap()),
         Err(Error::UnknownKey { .. })
     ));
     assert!(matches!(
-        EnvConfig::from_kwargs(&Info::new().with("horizon", "x")),
+        EnvConfig::from_kwargs("Lift", json!({"horizon": "x"}).as_object().unwrap()),
         Err(Error::InvalidArgument { .. })
     ));
 }
@@ -521,14 +519,14 @@ fn configuration_errors_list_valid_values() {
 #[test]
 fn registry_makes_boxed_envs() {
     robosuite_env::register_envs();
-    let mut env = gym_core::registry::make("Lift", &Info::new().with("horizon", 2i64)).unwrap();
+    let mut env = gym_core::registry::make("Lift", &json!({"horizon": 2})).unwrap();
     let (obs, _) = env.reset(Some(0), None).unwrap();
     assert!(env.observation_space().contains(&obs));
     let a = env.action_space().sample(&mut gym_core::rng_from_seed(0));
     assert!(!env.step(&a).unwrap().truncated);
     assert!(env.step(&a).unwrap().truncated);
     assert!(matches!(
-        gym_core::registry::make("Nope", &Info::new()),
+        gym_core::registry::make("Nope", &json!({})),
         Err(Error::UnknownEnv { .. })
     ));
 }

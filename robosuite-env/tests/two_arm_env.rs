@@ -6,7 +6,7 @@ mod common;
 
 use common::fixtures::{config_for, load};
 use common::get;
-use gym_core::{DType, Env, Error, Info, Space, Value};
+use gym_core::{DType, Env, Error, Space, Value};
 use ndarray::{ArrayD, IxDyn};
 use robosuite_env::sim::{body_id, geom_id, joint_id};
 use robosuite_env::{EnvConfig, EnvConfiguration, RobosuiteEnv, make, make_with};
@@ -252,10 +252,8 @@ fn mixed_pairs_and_per_arm_controllers_work() {
     assert_eq!(get(&obs, "robot1_joint_pos").len(), 6);
     assert_eq!(env.action_dim(), 7 + 7);
     assert!(!env.step(&zeros(14)).unwrap().done());
-    let kwargs = Info::new()
-        .with("robots", "Sawyer,Panda")
-        .with("controller", "JOINT_VELOCITY");
-    let config = EnvConfig::from_kwargs(&kwargs).unwrap();
+    let kwargs = serde_json::json!({"robots": ["Sawyer", "Panda"], "controller": "JOINT_VELOCITY"});
+    let config = EnvConfig::from_kwargs("TwoArmHandover", kwargs.as_object().unwrap()).unwrap();
     let mut env = make_with("TwoArmHandover", config).unwrap();
     assert_eq!(env.action_dim(), 2 * (7 + 1));
     env.reset(Some(0), None).unwrap();
@@ -548,15 +546,17 @@ fn bad_robot_set_ups_are_typed_errors_listing_what_is_valid() {
         reason.contains("opposed") && reason.contains("parallel"),
         "{reason}"
     );
-    let kwargs = Info::new().with("env_configuration", "diagonal");
+    let kwargs = serde_json::json!({"env_configuration": "diagonal"});
     assert!(matches!(
-        EnvConfig::from_kwargs(&kwargs),
+        EnvConfig::from_kwargs("TwoArmLift", kwargs.as_object().unwrap()),
         Err(Error::InvalidArgument { .. })
     ));
     // robosuite's older names still work.
-    let kwargs = Info::new().with("env_configuration", "single-arm-parallel");
+    let kwargs = serde_json::json!({"env_configuration": "single-arm-parallel"});
     assert_eq!(
-        EnvConfig::from_kwargs(&kwargs).unwrap().env_configuration,
+        EnvConfig::from_kwargs("TwoArmLift", kwargs.as_object().unwrap())
+            .unwrap()
+            .env_configuration,
         EnvConfiguration::Parallel
     );
     // TwoArmPegInHole's arms carry the peg and the plate: robosuite asserts no gripper.

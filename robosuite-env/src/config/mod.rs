@@ -1,14 +1,15 @@
 //! Environment configuration (robosuite's constructor arguments) with validation.
 
-use crate::assets::Assets;
 pub use crate::cameras::{CameraConfig, ImageConvention, Segmentation};
 use crate::controllers::ControllerConfig;
-use crate::controllers::config::load_part_controller_config;
 use crate::models::grippers::gripper_info;
 use crate::models::robots::{GripperChoice, robot_info};
-use crate::robots::{InitNoise, NoiseKind};
+use crate::robots::InitNoise;
 use crate::tasks::TaskOptions;
-use gym_core::{Error, Info, InfoValue, Result};
+use gym_core::{Error, Result};
+
+mod kwargs;
+pub use kwargs::kwarg_names;
 
 /// robosuite's environment arguments that this crate supports.
 ///
@@ -150,39 +151,6 @@ impl Default for EnvConfig {
         }
     }
 }
-
-/// The keyword arguments [`EnvConfig::from_kwargs`] accepts.
-pub const CONFIG_KEYS: &[&str] = &[
-    "robots",
-    "gripper_types",
-    "horizon",
-    "control_freq",
-    "reward_scale",
-    "reward_shaping",
-    "ignore_done",
-    "use_object_obs",
-    "seed",
-    "initialization_noise_magnitude",
-    "initialization_noise_type",
-    "controller_configs",
-    "controller",
-    "env_configuration",
-    "lite_physics",
-    "task_options",
-    "base_types",
-    "use_camera_obs",
-    "has_offscreen_renderer",
-    "camera_names",
-    "camera_heights",
-    "camera_widths",
-    "camera_depths",
-    "camera_segmentations",
-    "render_camera",
-    "render_height",
-    "render_width",
-    "render_mode",
-    "image_convention",
-];
 
 /// The most physics substeps one env step may run: 5 s of simulated time per env step at
 /// robosuite's 2 ms timestep (`control_freq` ≥ 0.2 Hz), about a second of computing for the
@@ -455,189 +423,5 @@ impl EnvConfig {
         }
         self.initialization_noise.validate()?;
         self.cameras.validate()
-    }
-
-    /// A configuration from keyword arguments (the registry's `make(id, kwargs)`), starting
-    /// from the defaults. Keys: see [`CONFIG_KEYS`].
-    ///
-    /// # Errors
-    /// [`Error::UnknownKey`] for an unknown key; [`Error::InvalidArgument`] for a value of
-    /// the wrong kind or out of range.
-    pub fn from_kwargs(kwargs: &Info) -> Result<Self> {
-        let mut c = Self::default();
-        let kind = |key: &str, want: &str, got: &InfoValue| {
-            Error::invalid_argument(key, format!("expected {want}, got a {}", got.kind()))
-        };
-        let float = |key: &str, v: &InfoValue| match v {
-            InfoValue::Float(f) => Ok(*f),
-            InfoValue::Int(i) => Ok(*i as f64),
-            other => Err(kind(key, "a number", other)),
-        };
-        let boolean = |key: &str, v: &InfoValue| match v {
-            InfoValue::Bool(b) => Ok(*b),
-            other => Err(kind(key, "a bool", other)),
-        };
-        let unsigned = |key: &str, v: &InfoValue| match v {
-            InfoValue::Int(i) if *i >= 0 => Ok(*i as u64),
-            InfoValue::Int(i) => Err(Error::invalid_argument(
-                key,
-                format!("must be >= 0, got {i}"),
-            )),
-            other => Err(kind(key, "a non-negative integer", other)),
-        };
-        for (key, v) in kwargs.iter() {
-            match key {
-                "robots" => match v {
-                    InfoValue::Str(s) => {
-                        c.robots = s.split(',').map(|r| r.trim().to_owned()).collect()
-                    }
-                    other => {
-                        return Err(kind(key, "a robot name (or comma-separated names)", other));
-                    }
-                },
-                "gripper_types" => match v {
-                    InfoValue::Str(s) => {
-                        c.gripper_types = s
-                            .split(',')
-                            .map(|g| match g.trim() {
-                                "default" => GripperChoice::Default,
-                                "None" | "none" => GripperChoice::None,
-                                name => GripperChoice::Named(name.to_owned()),
-                            })
-                            .collect()
-                    }
-                    other => {
-                        return Err(kind(
-                            key,
-                            "a gripper name, \"default\" or \"None\" (or comma-separated, one per robot)",
-                            other,
-                        ));
-                    }
-                },
-                "horizon" => c.horizon = unsigned(key, v)?,
-                "control_freq" => c.control_freq = float(key, v)?,
-                "reward_scale" => {
-                    c.reward_scale = match v {
-                        InfoValue::Str(s) if s == "None" || s == "none" => None,
-                        other => Some(float(key, other)?),
-                    }
-                }
-                "reward_shaping" => c.reward_shaping = Some(boolean(key, v)?),
-                "ignore_done" => c.ignore_done = boolean(key, v)?,
-                "lite_physics" => c.lite_physics = boolean(key, v)?,
-                "base_types" => match v {
-                    InfoValue::Str(s) => {
-                        c.base_types = s
-                            .split(',')
-                            .map(|b| match b.trim() {
-                                "default" => None,
-                                name => Some(name.to_owned()),
-                            })
-                            .collect()
-                    }
-                    other => {
-                        return Err(kind(
-                            key,
-                            "a base name or \"default\" (or comma-separated, one per robot)",
-                            other,
-                        ));
-                    }
-                },
-                "task_options" => match v {
-                    InfoValue::Str(text) => {
-                        c.task_options = serde_json::from_str(text).map_err(|e| {
-                            Error::invalid_argument(key, format!("not a JSON object: {e}"))
-                        })?
-                    }
-                    other => return Err(kind(key, "a JSON object as text", other)),
-                },
-                "use_object_obs" => c.use_object_obs = boolean(key, v)?,
-                "seed" => c.seed = Some(unsigned(key, v)?),
-                "initialization_noise_magnitude" => {
-                    c.initialization_noise.magnitude = float(key, v)?
-                }
-                "initialization_noise_type" => match v {
-                    InfoValue::Str(s) => {
-                        c.initialization_noise = match s.as_str() {
-                            "gaussian" => InitNoise {
-                                kind: NoiseKind::Gaussian,
-                                ..c.initialization_noise
-                            },
-                            "uniform" => InitNoise {
-                                kind: NoiseKind::Uniform,
-                                ..c.initialization_noise
-                            },
-                            "none" | "None" => InitNoise::none(),
-                            other => {
-                                return Err(Error::invalid_argument(
-                                    key,
-                                    format!(
-                                        "unknown noise type `{other}`; valid: gaussian, uniform, none"
-                                    ),
-                                ));
-                            }
-                        }
-                    }
-                    other => return Err(kind(key, "\"gaussian\", \"uniform\" or \"none\"", other)),
-                },
-                "controller_configs" => match v {
-                    InfoValue::Str(s) => c.controller_configs = parse_controller_configs(s)?,
-                    other => {
-                        return Err(kind(
-                            key,
-                            "robosuite's controller config (a dict, or a list of one per robot) as JSON text",
-                            other,
-                        ));
-                    }
-                },
-                "controller" => match v {
-                    InfoValue::Str(name) => {
-                        let part = load_part_controller_config(&Assets::locate()?, name)?;
-                        c.controller_configs =
-                            vec![ControllerConfig::from_value(&part, "controller_configs")?];
-                    }
-                    other => {
-                        return Err(kind(
-                            key,
-                            "a controller type such as \"OSC_POSITION\"",
-                            other,
-                        ));
-                    }
-                },
-                "env_configuration" => match v {
-                    InfoValue::Str(s) => c.env_configuration = EnvConfiguration::parse(s)?,
-                    other => {
-                        return Err(kind(key, "a configuration name such as \"opposed\"", other));
-                    }
-                },
-                k if crate::cameras::CAMERA_KEYS.contains(&k) => c.cameras.set_kwarg(k, v)?,
-                other => {
-                    return Err(Error::UnknownKey {
-                        key: other.to_owned(),
-                        available: CONFIG_KEYS.iter().map(|s| (*s).to_owned()).collect(),
-                    });
-                }
-            }
-        }
-        c.validate()?;
-        Ok(c)
-    }
-}
-
-/// `controller_configs` as JSON text: one config (composite or part) or a list of them.
-fn parse_controller_configs(text: &str) -> Result<Vec<ControllerConfig>> {
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
-        Error::invalid_argument("controller_configs", format!("not valid JSON: {e}"))
-    })?;
-    match &value {
-        serde_json::Value::Array(list) => list
-            .iter()
-            .enumerate()
-            .map(|(i, v)| ControllerConfig::from_value(v, &format!("controller_configs[{i}]")))
-            .collect(),
-        single => Ok(vec![ControllerConfig::from_value(
-            single,
-            "controller_configs",
-        )?]),
     }
 }

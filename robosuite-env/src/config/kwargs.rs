@@ -1,0 +1,636 @@
+//! robosuite's `make` keyword arguments, declared once.
+//!
+//! [`Kwargs`] is the schema: every argument robosuite's `suite.make` takes that is not a
+//! task's own, by robosuite's name, with robosuite's value types (a name or a list of
+//! names, a dict, `None`), deserialized with serde from JSON values. Python's `make`, the
+//! Gymnasium ids, the vector envs, the pool and Rust's [`gym_core::registry`] all read
+//! their keyword arguments through [`EnvConfig::from_kwargs`]; [`kwarg_names`] is the
+//! list they export. The tasks' own arguments (Lift's `table_full_size`, Door's
+//! `use_latch`, ...) are the keys left over, checked against the task
+//! ([`TaskSpec::options`](crate::tasks::TaskSpec::options)).
+
+use super::{EnvConfig, EnvConfiguration};
+use crate::cameras::{ImageConvention, Segmentation};
+use crate::controllers::ControllerConfig;
+use crate::controllers::config::load_part_controller_config;
+use crate::models::robots::GripperChoice;
+use crate::robots::{InitNoise, NoiseKind};
+use gym_core::{Error, RenderMode, Result};
+use serde::de::{DeserializeOwned, Error as _};
+use serde::{Deserialize, Deserializer};
+use serde_json::{Map, Value};
+
+/// robosuite's `make` arguments common to every task (see the module docs). Absent
+/// arguments keep [`EnvConfig::default`]'s values, except `has_offscreen_renderer`, whose
+/// default is robosuite's (`True`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Kwargs {
+    /// A robot name or one per robot (robosuite's `_input2list`); `None`: a Panda each.
+    #[serde(default, deserialize_with = "one_or_many")]
+    robots: Option<Vec<String>>,
+    env_configuration: Option<String>,
+    /// A gripper name, `"default"` or `None` (no gripper), or one per robot.
+    #[serde(default, deserialize_with = "one_or_many")]
+    gripper_types: Option<Vec<Option<String>>>,
+    /// A base name or `"default"`, or one per robot.
+    #[serde(default, deserialize_with = "one_or_many")]
+    base_types: Option<Vec<Option<String>>>,
+    /// robosuite's `mount_types` (robosuite 1.4's name): `"default"` only.
+    #[serde(default, deserialize_with = "one_or_many")]
+    mount_types: Option<Vec<String>>,
+    /// A composite or part config dict, or a list of one per robot.
+    controller_configs: Option<Value>,
+    /// A part controller type (`"OSC_POSITION"`) for every robot: a shortcut for
+    /// `controller_configs=load_part_controller_config(default_controller=...)`.
+    controller: Option<String>,
+    /// `"default"`, `None` or `{"magnitude": m, "type": "gaussian" | "uniform"}`.
+    #[serde(default, deserialize_with = "present")]
+    initialization_noise: Option<Value>,
+    horizon: Option<u64>,
+    control_freq: Option<f64>,
+    /// A number, or `None` for unnormalised rewards.
+    #[serde(default, deserialize_with = "present")]
+    reward_scale: Option<Option<f64>>,
+    reward_shaping: Option<bool>,
+    ignore_done: Option<bool>,
+    use_object_obs: Option<bool>,
+    seed: Option<u64>,
+    lite_physics: Option<bool>,
+    use_camera_obs: Option<bool>,
+    has_offscreen_renderer: Option<bool>,
+    #[serde(default, deserialize_with = "one_or_many")]
+    camera_names: Option<Vec<String>>,
+    #[serde(default, deserialize_with = "one_or_many")]
+    camera_heights: Option<Vec<usize>>,
+    #[serde(default, deserialize_with = "one_or_many")]
+    camera_widths: Option<Vec<usize>>,
+    /// A bool or one per camera; `None` is `False` (robomimic passes it).
+    #[serde(default, deserialize_with = "one_or_many")]
+    camera_depths: Option<Vec<Option<bool>>>,
+    /// `None`, a level, levels for every camera, or one list (or `None`) per camera.
+    #[serde(default, deserialize_with = "present")]
+    camera_segmentations: Option<Value>,
+    /// A camera name; `None` (robosuite's free camera) keeps the default `frontview`.
+    render_camera: Option<String>,
+    /// Gymnasium's render mode: `"rgb_array"`, `"depth_array"` or `None`.
+    #[serde(default, deserialize_with = "present")]
+    render_mode: Option<Option<String>>,
+    render_height: Option<usize>,
+    render_width: Option<usize>,
+    /// robosuite's `macros.IMAGE_CONVENTION`: `"opengl"` or `"opencv"`.
+    image_convention: Option<String>,
+    /// robosuite's on-screen viewer: `False` only.
+    has_renderer: Option<bool>,
+    /// robosuite's viewer kind (`"mjviewer"`, `"mujoco"`): no effect without a viewer.
+    #[allow(dead_code)] // taken for robosuite's signature; nothing reads it
+    renderer: Option<String>,
+    /// robosuite's viewer settings: `None` only.
+    #[serde(default, deserialize_with = "present")]
+    renderer_config: Option<Value>,
+    /// `False` only.
+    render_collision_mesh: Option<bool>,
+    /// `True` only.
+    render_visual_mesh: Option<bool>,
+    /// The GPU robosuite renders offscreen on (`-1`: any); frames here are drawn on the
+    /// first EGL device that opens.
+    render_gpu_device_id: Option<i64>,
+    /// robosuite's model reloading on reset: no effect (resets here never recompile).
+    #[allow(dead_code)] // taken for robosuite's signature; nothing reads it
+    hard_reset: Option<bool>,
+}
+
+/// Every keyword argument [`EnvConfig::from_kwargs`] takes besides the tasks' own, in the
+/// order of the schema.
+pub fn kwarg_names() -> &'static [&'static str] {
+    serde_aux::serde_introspection::serde_introspect::<Kwargs>()
+}
+
+/// `T`, present (so `None` in the input is `Some(None)` for `Option<Option<_>>`).
+fn present<'de, D: Deserializer<'de>, T: Deserialize<'de>>(
+    d: D,
+) -> std::result::Result<Option<T>, D::Error> {
+    T::deserialize(d).map(Some)
+}
+
+/// One value or a list of them (robosuite's `_input2list`), as a list.
+fn one_or_many<'de, D: Deserializer<'de>, T: DeserializeOwned>(
+    d: D,
+) -> std::result::Result<Option<Vec<T>>, D::Error> {
+    match Value::deserialize(d)? {
+        Value::Array(items) => items
+            .into_iter()
+            .enumerate()
+            .map(|(i, v)| {
+                serde_json::from_value(v).map_err(|e| D::Error::custom(format!("[{i}]: {e}")))
+            })
+            .collect::<std::result::Result<_, _>>()
+            .map(Some),
+        one => serde_json::from_value(one)
+            .map(|v| Some(vec![v]))
+            .map_err(|e| D::Error::custom(format!("{e} (or a list of them)"))),
+    }
+}
+
+impl EnvConfig {
+    /// A configuration from robosuite's `make` keyword arguments for the task `env_name`:
+    /// the arguments of [`kwarg_names`] with robosuite's value types (`robots="Panda"` or
+    /// `["Panda", "Sawyer"]`, `initialization_noise=None`, a `controller_configs` dict, ...)
+    /// and the task's own arguments, which become [`EnvConfig::task_options`].
+    ///
+    /// ```
+    /// use robosuite_env::EnvConfig;
+    /// let kwargs = serde_json::json!({"robots": ["Sawyer"], "horizon": 200, "use_latch": false});
+    /// let config = EnvConfig::from_kwargs("Door", kwargs.as_object().unwrap())?;
+    /// assert_eq!((config.robots[0].as_str(), config.horizon), ("Sawyer", 200));
+    /// assert_eq!(config.task_options["use_latch"], false);
+    /// # Ok::<(), gym_core::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`Error::UnknownEnv`] for an unknown task; [`Error::UnknownKey`] for an argument
+    /// that is neither robosuite's nor the task's (listing both);
+    /// [`Error::InvalidArgument`] naming the argument (and item) of the wrong type or out of
+    /// range, or a robosuite setting this build does not have (an on-screen viewer).
+    pub fn from_kwargs(env_name: &str, kwargs: &Map<String, Value>) -> Result<Self> {
+        let names = kwarg_names();
+        let mut own = Map::new();
+        let mut task_options = Map::new();
+        for (key, value) in kwargs {
+            if names.contains(&key.as_str()) {
+                own.insert(key.clone(), value.clone());
+            } else {
+                task_options.insert(key.clone(), value.clone());
+            }
+        }
+        if !task_options.is_empty() {
+            let task = crate::registry::make_task(env_name)?.options();
+            if let Some(unknown) = task_options.keys().find(|k| !task.contains_key(*k)) {
+                return Err(Error::UnknownKey {
+                    key: unknown.clone(),
+                    available: names
+                        .iter()
+                        .map(|s| (*s).to_owned())
+                        .chain(task.keys().cloned())
+                        .collect(),
+                });
+            }
+        }
+        let kwargs: Kwargs = serde_path_to_error::deserialize(Value::Object(own)).map_err(|e| {
+            let path = e.path().to_string();
+            let name = path.split(['.', '[']).next().unwrap_or_default().to_owned();
+            let inner = e.into_inner().to_string();
+            let reason = match path.strip_prefix(name.as_str()) {
+                Some(rest) if !rest.is_empty() => format!("{rest}: {inner}"),
+                _ => inner,
+            };
+            Error::invalid_argument(
+                if name.is_empty() || name == "." {
+                    "kwargs".into()
+                } else {
+                    name
+                },
+                reason,
+            )
+        })?;
+        let mut config = kwargs.into_config()?;
+        config.task_options = task_options;
+        config.validate()?;
+        Ok(config)
+    }
+}
+
+impl Kwargs {
+    fn into_config(self) -> Result<EnvConfig> {
+        check_compat(&self)?;
+        let mut c = EnvConfig::default();
+        c.cameras.has_offscreen_renderer = true;
+        if let Some(robots) = self.robots {
+            c.robots = robots;
+        }
+        if let Some(name) = &self.env_configuration {
+            c.env_configuration = EnvConfiguration::parse(name)?;
+        }
+        if let Some(grippers) = self.gripper_types {
+            c.gripper_types = grippers
+                .into_iter()
+                .map(|g| match g.as_deref() {
+                    None => GripperChoice::None,
+                    Some("default") => GripperChoice::Default,
+                    Some(name) => GripperChoice::Named(name.to_owned()),
+                })
+                .collect();
+        }
+        if let Some(bases) = self.base_types {
+            c.base_types = bases
+                .into_iter()
+                .map(|b| b.filter(|name| name != "default"))
+                .collect();
+        }
+        if let Some(value) = &self.controller_configs {
+            c.controller_configs = controller_configs(value)?;
+        }
+        if let Some(kind) = &self.controller {
+            let assets = crate::assets::Assets::locate()?;
+            let part = load_part_controller_config(&assets, kind)?;
+            c.controller_configs = vec![ControllerConfig::from_value(&part, "controller_configs")?];
+        }
+        if let Some(noise) = &self.initialization_noise {
+            c.initialization_noise = initialization_noise(noise)?;
+        }
+        c.horizon = self.horizon.unwrap_or(c.horizon);
+        c.control_freq = self.control_freq.unwrap_or(c.control_freq);
+        c.reward_scale = self.reward_scale.unwrap_or(c.reward_scale);
+        c.reward_shaping = self.reward_shaping.or(c.reward_shaping);
+        c.ignore_done = self.ignore_done.unwrap_or(c.ignore_done);
+        c.use_object_obs = self.use_object_obs.unwrap_or(c.use_object_obs);
+        c.seed = self.seed;
+        c.lite_physics = self.lite_physics.unwrap_or(c.lite_physics);
+        let cams = &mut c.cameras;
+        cams.use_camera_obs = self.use_camera_obs.unwrap_or(cams.use_camera_obs);
+        cams.has_offscreen_renderer = self
+            .has_offscreen_renderer
+            .unwrap_or(cams.has_offscreen_renderer);
+        if let Some(names) = self.camera_names {
+            cams.camera_names = names;
+        }
+        if let Some(h) = self.camera_heights {
+            cams.camera_heights = h;
+        }
+        if let Some(w) = self.camera_widths {
+            cams.camera_widths = w;
+        }
+        if let Some(depths) = self.camera_depths {
+            cams.camera_depths = depths.into_iter().map(|d| d.unwrap_or(false)).collect();
+        }
+        if let Some(segs) = &self.camera_segmentations {
+            cams.camera_segmentations = segmentations(segs)?;
+        }
+        if let Some(camera) = self.render_camera {
+            cams.render_camera = camera;
+        }
+        if let Some(mode) = self.render_mode {
+            cams.render_mode = mode.as_deref().map(render_mode).transpose()?;
+        }
+        cams.render_height = self.render_height.unwrap_or(cams.render_height);
+        cams.render_width = self.render_width.unwrap_or(cams.render_width);
+        if let Some(convention) = self.image_convention.as_deref() {
+            cams.image_convention = match convention {
+                "opengl" => ImageConvention::OpenGl,
+                "opencv" => ImageConvention::OpenCv,
+                other => {
+                    return Err(Error::invalid_argument(
+                        "image_convention",
+                        format!("unknown convention `{other}`; valid: opengl, opencv"),
+                    ));
+                }
+            };
+        }
+        Ok(c)
+    }
+}
+
+/// robosuite's arguments of its viewer and GPU choice that are taken only with the values
+/// this build honours.
+fn check_compat(k: &Kwargs) -> Result<()> {
+    if k.has_renderer == Some(true) {
+        return Err(Error::invalid_argument(
+            "has_renderer",
+            "True is not supported: no on-screen viewer in this build; use \
+             has_offscreen_renderer=True, use_camera_obs=True or render_mode=\"rgb_array\"",
+        ));
+    }
+    let fixed = [
+        (
+            "render_collision_mesh",
+            k.render_collision_mesh == Some(true),
+            "False",
+        ),
+        (
+            "render_visual_mesh",
+            k.render_visual_mesh == Some(false),
+            "True",
+        ),
+        (
+            "renderer_config",
+            matches!(&k.renderer_config, Some(v) if !v.is_null()),
+            "None",
+        ),
+        (
+            "mount_types",
+            k.mount_types.iter().flatten().any(|m| m != "default"),
+            "\"default\" (robosuite 1.5 names mounts in base_types)",
+        ),
+    ];
+    for (name, refused, valid) in fixed {
+        if refused {
+            return Err(Error::invalid_argument(
+                name,
+                format!("only {valid} is supported by this build"),
+            ));
+        }
+    }
+    if let Some(id) = k.render_gpu_device_id
+        && id < -1
+    {
+        return Err(Error::invalid_argument(
+            "render_gpu_device_id",
+            format!("must be an int >= -1 (-1: any device), got {id}"),
+        ));
+    }
+    Ok(())
+}
+
+/// `controller_configs`: one config (composite or part) or a list of them (`None`
+/// entries: that robot's default is not expressible, so a list must be all dicts).
+fn controller_configs(value: &Value) -> Result<Vec<ControllerConfig>> {
+    match value {
+        Value::Null => Ok(Vec::new()),
+        Value::Array(list) => list
+            .iter()
+            .enumerate()
+            .map(|(i, v)| ControllerConfig::from_value(v, &format!("controller_configs[{i}]")))
+            .collect(),
+        one => Ok(vec![ControllerConfig::from_value(
+            one,
+            "controller_configs",
+        )?]),
+    }
+}
+
+/// robosuite's `initialization_noise`: `"default"`, `None` or a dict.
+fn initialization_noise(value: &Value) -> Result<InitNoise> {
+    let bad = |why: String| Error::invalid_argument("initialization_noise", why);
+    match value {
+        Value::Null => Ok(InitNoise::none()),
+        Value::String(s) if s == "default" => Ok(InitNoise::default()),
+        Value::Object(map) => {
+            let mut noise = InitNoise::default();
+            for (key, v) in map {
+                match key.as_str() {
+                    "magnitude" => {
+                        noise.magnitude = v
+                            .as_f64()
+                            .ok_or_else(|| bad(format!("magnitude must be a number, got {v}")))?
+                    }
+                    "type" => {
+                        noise.kind = match v.as_str() {
+                            Some("gaussian") => NoiseKind::Gaussian,
+                            Some("uniform") => NoiseKind::Uniform,
+                            _ => {
+                                return Err(bad(format!(
+                                    "unknown noise type {v}; valid: \"gaussian\", \"uniform\""
+                                )));
+                            }
+                        }
+                    }
+                    other => {
+                        return Err(bad(format!(
+                            "unsupported key `{other}`; valid: magnitude, type"
+                        )));
+                    }
+                }
+            }
+            Ok(noise)
+        }
+        other => Err(bad(format!(
+            "must be \"default\", None or a dict with magnitude and type, got {other}"
+        ))),
+    }
+}
+
+/// robosuite's `camera_segmentations`: `None`, a level for every camera, a list of levels
+/// for every camera, or a nested list with one list (or `None`) per camera.
+fn segmentations(value: &Value) -> Result<Vec<Vec<Segmentation>>> {
+    let bad = || {
+        Error::invalid_argument(
+            "camera_segmentations",
+            format!(
+                "must be None, a level (\"instance\", \"class\", \"element\"), a list of levels, \
+                 or one list (or None) per camera, got {value}"
+            ),
+        )
+    };
+    let level = |v: &Value| v.as_str().ok_or_else(bad).and_then(Segmentation::parse);
+    match value {
+        Value::Null => Ok(Vec::new()),
+        Value::String(_) => Ok(vec![vec![level(value)?]]),
+        Value::Array(items) if items.iter().any(Value::is_array) => items
+            .iter()
+            .map(|cam| match cam {
+                Value::Null => Ok(Vec::new()),
+                Value::Array(levels) => levels.iter().map(level).collect(),
+                one => Ok(vec![level(one)?]),
+            })
+            .collect(),
+        Value::Array(items) => {
+            let levels = items
+                .iter()
+                .filter(|v| !v.is_null())
+                .map(level)
+                .collect::<Result<Vec<_>>>()?;
+            Ok(if levels.is_empty() {
+                Vec::new()
+            } else {
+                vec![levels]
+            })
+        }
+        _ => Err(bad()),
+    }
+}
+
+/// Gymnasium's render mode by name (`"human"` is refused when the config is validated).
+fn render_mode(name: &str) -> Result<RenderMode> {
+    match name {
+        "rgb_array" => Ok(RenderMode::RgbArray),
+        "depth_array" => Ok(RenderMode::DepthArray),
+        "human" => Ok(RenderMode::Human),
+        other => Err(Error::invalid_argument(
+            "render_mode",
+            format!("unknown render mode `{other}`; valid: rgb_array, depth_array, None"),
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn config(env: &str, kwargs: Value) -> Result<EnvConfig> {
+        EnvConfig::from_kwargs(env, kwargs.as_object().expect("an object"))
+    }
+
+    fn invalid(env: &str, kwargs: Value) -> (String, String) {
+        match config(env, kwargs) {
+            Err(Error::InvalidArgument { name, reason }) => (name, reason),
+            other => panic!("expected InvalidArgument, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn robosuites_values_as_they_are() {
+        let c = config(
+            "TwoArmLift",
+            json!({
+                "robots": ["Sawyer", "Panda"],
+                "gripper_types": ["default", null],
+                "camera_names": ["agentview", "birdview"],
+                "camera_heights": [84, 128],
+                "camera_widths": 64,
+                "camera_depths": null,
+                "camera_segmentations": [["element", "class"], null],
+                "initialization_noise": {"magnitude": 0.1, "type": "uniform"},
+                "reward_scale": null,
+                "render_camera": null,
+                "seed": 4,
+            }),
+        )
+        .unwrap();
+        assert_eq!(c.robots, ["Sawyer", "Panda"]);
+        assert_eq!(
+            c.gripper_types,
+            [GripperChoice::Default, GripperChoice::None]
+        );
+        assert_eq!(c.cameras.camera_heights, [84, 128]);
+        assert_eq!(c.cameras.camera_widths, [64]);
+        assert_eq!(c.cameras.camera_depths, [false]);
+        assert_eq!(
+            c.cameras.camera_segmentations,
+            [vec![Segmentation::Element, Segmentation::Class], vec![]]
+        );
+        assert_eq!(
+            c.initialization_noise,
+            InitNoise {
+                magnitude: 0.1,
+                kind: NoiseKind::Uniform
+            }
+        );
+        assert_eq!((c.reward_scale, c.seed), (None, Some(4)));
+        assert_eq!(c.cameras.render_camera, "frontview");
+        // One value for a list argument; robosuite's defaults where absent.
+        let c = config(
+            "Lift",
+            json!({"robots": "IIWA", "camera_segmentations": "instance"}),
+        )
+        .unwrap();
+        assert_eq!(c.robots, ["IIWA"]);
+        assert_eq!(
+            c.cameras.camera_segmentations,
+            [vec![Segmentation::Instance]]
+        );
+        assert_eq!(c.reward_scale, Some(1.0));
+        assert!(c.cameras.has_offscreen_renderer, "robosuite's default");
+        assert_eq!(c.initialization_noise, InitNoise::default());
+        let none = config("Lift", json!({"initialization_noise": null})).unwrap();
+        assert_eq!(none.initialization_noise, InitNoise::none());
+    }
+
+    #[test]
+    fn the_tasks_own_arguments_are_task_options() {
+        let c = config("Door", json!({"use_latch": false, "horizon": 9})).unwrap();
+        assert_eq!(c.task_options["use_latch"], false);
+        assert_eq!(c.horizon, 9);
+        match config("Door", json!({"table_full_size": [1, 1, 1]})) {
+            Err(Error::UnknownKey { key, available }) => {
+                assert_eq!(key, "table_full_size");
+                assert!(available.iter().any(|k| k == "use_latch"), "{available:?}");
+                assert!(
+                    available.iter().any(|k| k == "camera_names"),
+                    "{available:?}"
+                );
+            }
+            other => panic!("expected UnknownKey, got {other:?}"),
+        }
+        assert!(matches!(
+            config("Nope", json!({"use_latch": true})),
+            Err(Error::UnknownEnv { .. })
+        ));
+    }
+
+    #[test]
+    fn ill_typed_values_name_the_argument_and_item() {
+        let (name, reason) = invalid("Lift", json!({"horizon": "x"}));
+        assert_eq!(name, "horizon");
+        assert!(reason.contains("invalid type"), "{reason}");
+        let (name, reason) = invalid("Lift", json!({"camera_heights": [84, "a"]}));
+        assert_eq!(name, "camera_heights");
+        assert!(reason.contains("[1]"), "{reason}");
+        let (name, _) = invalid("Lift", json!({"robots": 3}));
+        assert_eq!(name, "robots");
+        let (name, reason) = invalid("Lift", json!({"initialization_noise": {"kind": "x"}}));
+        assert_eq!(name, "initialization_noise");
+        assert!(reason.contains("magnitude, type"), "{reason}");
+        let (name, _) = invalid("Lift", json!({"camera_segmentations": ["pixel"]}));
+        assert_eq!(name, "camera_segmentations");
+        let (name, reason) = invalid("Lift", json!({"render_mode": "ansi"}));
+        assert_eq!(name, "render_mode");
+        assert!(reason.contains("rgb_array"), "{reason}");
+        let (name, _) = invalid("Lift", json!({"image_convention": "directx"}));
+        assert_eq!(name, "image_convention");
+    }
+
+    #[test]
+    fn robosuites_viewer_arguments_only_with_what_this_build_honours() {
+        let ok = json!({
+            "has_renderer": false, "renderer": "mjviewer", "renderer_config": null,
+            "render_collision_mesh": false, "render_visual_mesh": true,
+            "render_gpu_device_id": 0, "hard_reset": false, "mount_types": "default",
+        });
+        assert!(config("Lift", ok).is_ok());
+        for (bad, key) in [
+            (json!({"has_renderer": true}), "has_renderer"),
+            (
+                json!({"render_collision_mesh": true}),
+                "render_collision_mesh",
+            ),
+            (json!({"renderer_config": {"cam_id": 0}}), "renderer_config"),
+            (json!({"mount_types": ["RethinkMount"]}), "mount_types"),
+            (json!({"render_gpu_device_id": -2}), "render_gpu_device_id"),
+        ] {
+            assert_eq!(invalid("Lift", bad).0, key);
+        }
+    }
+
+    #[test]
+    fn the_exported_names_are_the_schemas() {
+        let names = kwarg_names();
+        for key in [
+            "robots",
+            "controller_configs",
+            "camera_segmentations",
+            "has_renderer",
+        ] {
+            assert!(names.contains(&key), "{key}");
+        }
+        // Every exported name is taken (a value of the right type for each, `null` where
+        // the argument allows it).
+        for &key in names {
+            let value = match key {
+                "robots" | "camera_names" => json!("Panda"),
+                "env_configuration" | "mount_types" | "initialization_noise" => json!("default"),
+                "controller" => json!("OSC_POSITION"),
+                "render_camera" => json!("frontview"),
+                "image_convention" => json!("opengl"),
+                "renderer" => json!("mujoco"),
+                "horizon" | "seed" | "render_height" | "render_width" | "camera_heights"
+                | "camera_widths" => json!(64),
+                "control_freq" | "reward_scale" => json!(20.0),
+                "render_gpu_device_id" => json!(-1),
+                "render_visual_mesh" | "has_offscreen_renderer" => json!(true),
+                k if k.starts_with("use_")
+                    || k.starts_with("has_")
+                    || k.starts_with("reward_")
+                    || ["ignore_done", "lite_physics", "hard_reset", "camera_depths"]
+                        .contains(&k)
+                    || k == "render_collision_mesh" =>
+                {
+                    json!(false)
+                }
+                _ => Value::Null,
+            };
+            let kwargs = json!({ key: value });
+            assert!(config("Lift", kwargs).is_ok(), "{key}");
+        }
+    }
+}
