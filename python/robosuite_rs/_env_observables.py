@@ -248,6 +248,9 @@ class EnvObservables:
         self.fast = self.aligned
         self._in_step = False
         self._pass: dict[str, Any] | None = None
+        # Bumped by every change of the observables' settings (modify, add, a new model),
+        # for those that cache what they derive from them (GymWrapper's key plan).
+        self.version = 0
 
     # --- native values ------------------------------------------------------------------
     def _complete(self, values: Any, wanted: list[str]) -> Any:
@@ -508,6 +511,7 @@ class EnvObservables:
                 o.set_enabled(bool(modifier))
             else:
                 o.set_active(bool(modifier))
+            self.version += 1
             self.fast = False
             self.refresh()
             return
@@ -535,6 +539,7 @@ class EnvObservables:
             o.set_delayer(modifier)
         else:
             o.set_sampling_rate(modifier)
+        self.version += 1
         self.fast = False
         self.refresh()
 
@@ -600,6 +605,7 @@ class EnvObservables:
         self.materialize()
         self.map[observable.name] = observable
         self.added.add(observable.name)
+        self.version += 1
         self.fast = False
 
     def native_replaced(self) -> None:
@@ -608,6 +614,7 @@ class EnvObservables:
         self.dt = float(self.native.model_timestep)
         self.substeps = int(self.native.substeps)
         self.aligned = samples_at_step_ends(self.period, self.dt, self.substeps)
+        self.version += 1
         if not self.aligned:
             self.materialize()
             self.fast = False
