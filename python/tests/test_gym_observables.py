@@ -225,3 +225,101 @@ def test_bad_keys() -> None:
         GymWrapper(env, keys="cube_pos")
     with pytest.raises(TypeError):
         GymWrapper(object())  # type: ignore[arg-type]
+
+
+# --- pickling / deepcopy keeps the customisations ---------------------------------------
+def shift(x: np.ndarray) -> np.ndarray:
+    return np.asarray(x) + 0.25
+
+
+def halve(x: np.ndarray) -> np.ndarray:
+    return np.asarray(x) * 0.5
+
+
+def fixed_delay() -> float:
+    return 0.012
+
+
+def customise(env: suite.RobosuiteEnv) -> None:
+    env.modify_observable("cube_pos", "corrupter", shift)
+    env.modify_observable("gripper_to_cube_pos", "filter", halve)
+    env.modify_observable("robot0_eef_pos", "delayer", fixed_delay)
+    env.modify_observable("cube_quat", "sampling_rate", 7)
+    env.modify_observable("robot0_joint_vel", "active", False)
+    env.modify_observable("robot0_joint_acc", "enabled", False)
+    env.add_observable(Observable("eef_height", eef_height, sampling_rate=10))
+
+
+@pytest.mark.parametrize("how", ["pickle", "deepcopy"])
+def test_copies_keep_observable_customisations_and_continue_identically(how: str) -> None:
+    env = make(horizon=50)
+    customise(env)
+    env.reset(seed=9)
+    acts = [a.astype(np.float32) for a in actions(12, seed=5)]
+    for a in acts[:5]:
+        env.step(a)
+    twin = pickle.loads(pickle.dumps(env)) if how == "pickle" else copy.deepcopy(env)
+    assert twin.observation_keys() == env.observation_keys()
+    assert "eef_height" in twin.observation_keys() and "robot0_joint_vel" not in twin.observation_keys()
+    assert twin.enabled_observables == env.enabled_observables
+    o, t = env._observables, twin._observables
+    assert t["cube_pos"]._corrupter(np.zeros(3))[0] == 0.25
+    assert 1 / t["cube_quat"]._sampling_timestep == pytest.approx(7)
+    assert t["robot0_eef_pos"]._delayer() == 0.012
+    assert t["cube_pos"]._sensor is twin._obsv.sensors["cube_pos"]  # the copy's own sensor
+    assert not twin._obsv.fast
+    for a in acts[5:]:
+        x, y = env.step(a)[0], twin.step(a)[0]
+        assert list(x) == list(y)
+        for k in x:
+            assert np.array_equal(x[k], y[k]), k
+    assert o["cube_pos"] is not t["cube_pos"]
+
+
+def test_pickling_an_unpicklable_callable_names_the_observable() -> None:
+    env = make()
+    env.modify_observable("cube_pos", "corrupter", lambda x: x + 1.0)
+    env.reset(seed=0)
+    with pytest.raises(pickle.PicklingError, match="observable 'cube_pos': its corrupter"):
+        pickle.dumps(env)
+    twin = copy.deepcopy(env)  # deepcopy keeps the lambda
+    a = np.zeros(7)
+    assert np.array_equal(env.step(a)[0]["cube_pos"], twin.step(a)[0]["cube_pos"])
+    with pytest.raises(pickle.PicklingError, match="cube_pos"):
+        pickle.dumps(GymWrapper(env))
+
+
+def test_flags_alone_keep_the_fast_path_in_the_copy() -> None:
+    env = make()
+    env.modify_observable("cube_pos", "active", False)
+    env.reset(seed=1)
+    env.step(np.zeros(7))
+    assert env._obsv.fast
+    twin = pickle.loads(pickle.dumps(env))
+    assert twin._obsv.fast and "cube_pos" not in twin.observation_keys()
+    x, y = env.step(np.zeros(7))[0], twin.step(np.zeros(7))[0]
+    assert list(x) == list(y) and all(np.array_equal(x[k], y[k]) for k in x)
+
+
+def test_a_sensor_swapped_for_another_own_sensor_is_the_copys_own() -> None:
+    env = make(hard_reset=False)  # robosuite's reset puts the own sensors back otherwise
+    env.modify_observable("cube_pos", "sensor", env._observables["robot0_eef_pos"]._sensor)
+    env.reset(seed=2)
+    twin = copy.deepcopy(env)
+    assert twin._observables["cube_pos"]._sensor is twin._obsv.sensors["robot0_eef_pos"]
+    y = twin.step(np.zeros(7))[0]
+    assert np.array_equal(y["cube_pos"], twin._native.all_observations()["robot0_eef_pos"])
+
+
+def test_gym_wrapper_copies_keep_keys_and_observables() -> None:
+    env = make()
+    customise(env)
+    g = GymWrapper(env, keys=["cube_pos", "eef_height", "robot0_proprio-state"])
+    g.reset(seed=3)
+    g.step(np.zeros(7))
+    for copier in (lambda w: pickle.loads(pickle.dumps(w)), copy.deepcopy):
+        twin = copier(g)
+        assert twin.keys == g.keys and twin.observation_space == g.observation_space
+        a = np.full(7, 0.1, np.float32)
+        assert np.array_equal(g.step(a)[0], twin.step(a)[0])
+        g = twin
