@@ -323,15 +323,18 @@ class RobosuiteEnv:
         """Pickling and ``copy.deepcopy``: the configuration plus the whole run-time state
         (simulator, controllers, task, episode counter, RNG), so that the copy continues
         bit-identically. A ``model_xml`` scene is re-read from its path. Observables
-        changed by ``modify_observable`` / ``add_observable`` are not carried over (the copy's
-        are as made).
+        changed by ``modify_observable`` / ``add_observable`` are carried over with their
+        clocks, values and ``obs_cache`` (their callables pickled as Python pickles them;
+        ``copy.deepcopy`` keeps functions as they are).
 
         Raises:
             TypeError: for an env not made by :func:`make`.
+            pickle.PicklingError: (when pickling) for an observable's callable that cannot
+                be pickled; the message names the observable.
         """
         if self._make_args is None:
             raise TypeError("only envs made by robosuite_rs.make can be pickled or copied")
-        return (_restore_env, (self._make_args, self._native.save_env_state()))
+        return (_restore_env, (self._make_args, self._native.save_env_state(), self._obsv.save()))
 
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
@@ -592,12 +595,15 @@ def _controller_config_dicts(given: Any, robots: Any, env: RobosuiteEnv) -> list
     return [c if isinstance(c, dict) else None for c in items]
 
 
-def _restore_env(make_args: tuple[str, dict[str, Any], str | None], state: str) -> "RobosuiteEnv":
-    """An env made with ``make_args`` and given the run-time ``state`` (for ``pickle``)."""
+def _restore_env(make_args: tuple[str, dict[str, Any], str | None], state: str, observables: Any = None) -> "RobosuiteEnv":
+    """An env made with ``make_args`` and given the run-time ``state`` and the
+    ``observables`` (``EnvObservables.save()``; ``None`` in older pickles) (for ``pickle``)."""
     native = _native.make_robosuite(*make_args)
     native.load_env_state(state)
     env = RobosuiteEnv(native)
     env._make_args = make_args
+    if observables is not None:
+        env._obsv.load(observables)
     return env
 
 

@@ -24,8 +24,10 @@ sampled at another substep or disabled), as robosuite computes them.
 
 from __future__ import annotations
 
+import copy
 import math
 import numbers
+import pickle
 import re
 import weakref
 from collections import OrderedDict
@@ -248,6 +250,9 @@ class EnvObservables:
         self.fast = self.aligned
         self._in_step = False
         self._pass: dict[str, Any] | None = None
+        # Bumped by every change of the observables' settings (modify, add, a new model),
+        # for those that cache what they derive from them (GymWrapper's key plan).
+        self.version = 0
 
     # --- native values ------------------------------------------------------------------
     def _complete(self, values: Any, wanted: list[str]) -> Any:
@@ -508,6 +513,7 @@ class EnvObservables:
                 o.set_enabled(bool(modifier))
             else:
                 o.set_active(bool(modifier))
+            self.version += 1
             self.fast = False
             self.refresh()
             return
@@ -535,6 +541,7 @@ class EnvObservables:
             o.set_delayer(modifier)
         else:
             o.set_sampling_rate(modifier)
+        self.version += 1
         self.fast = False
         self.refresh()
 
@@ -600,6 +607,7 @@ class EnvObservables:
         self.materialize()
         self.map[observable.name] = observable
         self.added.add(observable.name)
+        self.version += 1
         self.fast = False
 
     def native_replaced(self) -> None:
@@ -608,6 +616,7 @@ class EnvObservables:
         self.dt = float(self.native.model_timestep)
         self.substeps = int(self.native.substeps)
         self.aligned = samples_at_step_ends(self.period, self.dt, self.substeps)
+        self.version += 1
         if not self.aligned:
             self.materialize()
             self.fast = False
@@ -619,6 +628,126 @@ class EnvObservables:
                 self.native.modify_observable(n, "active", ob._active)
         if not self.fast:
             self.after_reset(self.native.observation_spec())
+
+
+    # --- pickling -------------------------------------------------------------------------
+    def save(self) -> "SavedObservables":
+        """What a copy of the env needs to continue with these observables: each own
+        observable's flags; unless the env runs the fast way, also every setting, clock,
+        value and ``obs_cache`` entry, and the added observables."""
+        flags = [(n, self.map[n]._enabled, self.map[n]._active) for n in self.sensors]
+        state: dict[str, Any] = {"hard_reset": self.hard_reset, "flags": flags, "slow": None}
+        if not self.fast:
+            own = []
+            for n in self.sensors:
+                o = self.map[n]
+                own.append((n, {
+                    "sensor": None if o._sensor is self.sensors[n] else _BuiltinRef.of(o._sensor),
+                    "shape": o._data_shape,
+                    "corrupter": o._corrupter,
+                    "filter": o._filter,
+                    "delayer": o._delayer,
+                    "sampling_timestep": o._sampling_timestep,
+                    "clock": (o._time_since_last_sample, o._sampled, o._current_delay),
+                    "value": o._current_observed_value,
+                }))
+            added = []
+            for n in self.added:
+                o = self.map[n]
+                fields = {k: _BuiltinRef.of(v) for k, v in vars(o).items()}
+                added.append((n, type(o), fields))
+            added.sort(key=lambda item: list(self.map).index(item[0]))
+            state["slow"] = {"own": own, "added": added, "cache": dict(self.cache)}
+        return SavedObservables(state)
+
+    def load(self, saved: "SavedObservables") -> None:
+        """Applies :meth:`save`'s state to the observables of a fresh env of the same
+        configuration (its native state already loaded)."""
+        state = saved.state
+        self.hard_reset = bool(state["hard_reset"])
+        for n, enabled, active in state["flags"]:
+            o = self.map[n]
+            for attribute, value, current in (("enabled", enabled, o._enabled), ("active", active, o._active)):
+                if value != current:
+                    self.native.modify_observable(n, attribute, bool(value))
+            o._enabled, o._active = bool(enabled), bool(active)
+        slow = state["slow"]
+        if slow is not None:
+            for n, a in slow["own"]:
+                o = self.map[n]
+                o._sensor = self.sensors[n] if a["sensor"] is None else a["sensor"].resolve(self)
+                o._set_shape(a["shape"])
+                o._corrupter, o._filter, o._delayer = a["corrupter"], a["filter"], a["delayer"]
+                o._sampling_timestep = a["sampling_timestep"]
+                o._time_since_last_sample, o._sampled, o._current_delay = a["clock"]
+                o._current_observed_value = a["value"]
+            for n, cls, fields in slow["added"]:
+                o = cls.__new__(cls)
+                o.__dict__.update({k: v.resolve(self) if isinstance(v, _BuiltinRef) else v for k, v in fields.items()})
+                self.map[n] = o
+                self.added.add(n)
+            self.cache = dict(slow["cache"])
+            self.fast = False
+        self.version += 1
+
+
+class _BuiltinRef:
+    """An env's own sensor (``BuiltinSensor``) in a saved state, by name: the copy's own
+    sensor of that name."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    @staticmethod
+    def of(value: Any) -> Any:
+        return _BuiltinRef(value.__name__) if isinstance(value, BuiltinSensor) else value
+
+    def resolve(self, owner: EnvObservables) -> BuiltinSensor:
+        return owner.sensors[self.name]
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_BuiltinRef, (self.name,))
+
+
+class SavedObservables:
+    """:meth:`EnvObservables.save`'s state. ``copy.deepcopy`` copies it as usual (functions
+    are kept as they are); ``pickle`` first checks each setting and names the observable
+    whose callable (or value) cannot be pickled."""
+
+    __slots__ = ("state",)
+
+    def __init__(self, state: dict[str, Any]) -> None:
+        self.state = state
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> "SavedObservables":
+        return SavedObservables(copy.deepcopy(self.state, memo))
+
+    def _items(self) -> Any:
+        """``(observable, attribute, value)`` of everything saved beyond plain flags."""
+        slow = self.state["slow"]
+        if slow is None:
+            return
+        for n, a in slow["own"]:
+            for k, v in a.items():
+                yield n, k, v
+        for n, _cls, fields in slow["added"]:
+            for k, v in fields.items():
+                yield n, k.lstrip("_"), v
+        for n, v in slow["cache"].items():
+            yield n, "obs_cache value", v
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        for name, attribute, value in self._items():
+            try:
+                pickle.dumps(value)
+            except Exception as e:
+                raise pickle.PicklingError(
+                    f"cannot pickle the env: observable {name!r}: its {attribute} {value!r} cannot be "
+                    f"pickled ({type(e).__name__}: {e}); use a module-level function, or copy.deepcopy"
+                ) from e
+        return (SavedObservables, (self.state,))
 
 
 def _clock_groups(observables: list[Observable]) -> list[list[Any]]:
