@@ -143,7 +143,9 @@ class RobosuiteEnv:
         self._sim: Any = None
         self._robots: Any = None
         self._ep_meta: dict[str, Any] = {}
-        self._xml_processors: list[Any] = [self.edit_model_xml]
+        # The user's processors, run after edit_model_xml (a list without the bound method,
+        # so an env is freed when its last reference goes, without waiting for the GC).
+        self._xml_processors: list[Any] = []
         self._controller_configs: list[dict[str, Any] | None] = []
         self._obsv = EnvObservables(native)
 
@@ -216,7 +218,7 @@ class RobosuiteEnv:
         """
         if not isinstance(xml_string, str):
             raise TypeError(f"xml_string must be a str, got {type(xml_string).__name__}")
-        xml = xml_string
+        xml = self.edit_model_xml(xml_string)
         for processor in self._xml_processors:
             xml = processor(xml)
             if not isinstance(xml, str):

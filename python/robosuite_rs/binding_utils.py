@@ -335,6 +335,20 @@ class MjData:
         self._set(self._data.qvel, self._model.get_joint_qvel_addr(name), name, value)
 
 
+class MjRenderContextOffscreen:
+    """robosuite's offscreen render context (``sim._render_context_offscreen``) for what
+    users set on it: ``cam``, a ``mujoco.MjvCamera`` that starts on fixed camera 0 and that
+    :meth:`MjSim.render` updates as robosuite's does (a camera name makes it that fixed
+    camera, ``"free"`` MuJoCo's free camera, whose ``lookat``, ``distance``, ``azimuth``
+    and ``elevation`` are then drawn). Frames are drawn by the environment's own renderer."""
+
+    def __init__(self, device_id: int = -1) -> None:
+        self.device_id = device_id
+        self.cam = mujoco.MjvCamera()
+        self.cam.fixedcamid = 0
+        self.cam.type = mujoco.mjtCamera.mjCAMERA_FIXED
+
+
 class MjSim:
     """robosuite's ``MjSim`` for one environment: ``model`` and ``data`` over the
     environment's own memory; ``forward``, ``step``, ``reset`` and ``render`` run in the
@@ -346,6 +360,7 @@ class MjSim:
         model, data = native.sim_objects()
         self.model = MjModel(model, native.get_xml)
         self.data = MjData(data, self.model)
+        self._render_context_offscreen = MjRenderContextOffscreen()
 
     def reset(self) -> None:
         """``mj_resetData``."""
@@ -413,25 +428,34 @@ class MjSim:
     ) -> Any:
         """A frame of ``camera_name`` at ``width × height``, rows bottom first (OpenGL's
         order, as robosuite): uint8 H×W×3, or ``(rgb, depth)`` with ``depth``; with
-        ``segmentation`` an int32 H×W×2 image of ``(object type, object id)``. Without
-        ``camera_name``, as robosuite: the camera of the previous call (camera 0 at first).
+        ``segmentation`` an int32 H×W×2 image of ``(object type, object id)``.
+        ``camera_name="free"`` draws MuJoCo's free camera as set on
+        ``sim._render_context_offscreen.cam``. Without ``camera_name``, as robosuite: the
+        render context's camera (the previous call's; fixed camera 0 at first).
 
         Raises:
-            ValueError: for an unknown camera, a missing or bad size, or a mode other
-                than ``"offscreen"``.
+            ValueError: for an unknown camera, a missing or bad size, a free camera with
+                non-finite values or a distance <= 0, or a mode other than ``"offscreen"``.
         """
         if mode != "offscreen":
             raise ValueError(f"only mode='offscreen' is supported, got {mode!r}")
         if width is None or height is None:
             raise ValueError("render needs width and height")
-        # robosuite's render context keeps its camera between calls: without a name it draws
-        # from the last camera named (camera 0 at first).
-        camera = getattr(self, "_render_camera", 0) if camera_name is None else self.model.camera_name2id(camera_name)
-        if camera < 0:
-            raise ValueError(f"render draws fixed cameras ({self.model.camera_names}); the free camera is not offered")
-        frame = self._native.render_camera(camera, int(width), int(height), bool(depth), bool(segmentation))
-        self._render_camera = camera
-        return frame
+        cam = self._render_context_offscreen.cam
+        if camera_name is not None:
+            camera_id = self.model.camera_name2id(camera_name)
+            free = camera_id == -1
+            cam.type = mujoco.mjtCamera.mjCAMERA_FREE if free else mujoco.mjtCamera.mjCAMERA_FIXED
+            cam.fixedcamid = camera_id
+        if cam.type == mujoco.mjtCamera.mjCAMERA_FREE:
+            view = (tuple(float(v) for v in cam.lookat), float(cam.distance), float(cam.azimuth), float(cam.elevation))
+            return self._native.render_camera(0, int(width), int(height), bool(depth), bool(segmentation), view)
+        if cam.type != mujoco.mjtCamera.mjCAMERA_FIXED or cam.fixedcamid < 0:
+            raise ValueError(
+                f"render draws fixed cameras ({self.model.camera_names}) or the free camera; the render "
+                f"context's camera is of type {cam.type} with id {cam.fixedcamid}"
+            )
+        return self._native.render_camera(int(cam.fixedcamid), int(width), int(height), bool(depth), bool(segmentation))
 
     def free(self) -> None:
         """Nothing to free: the environment owns the simulation."""

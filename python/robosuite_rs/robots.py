@@ -5,6 +5,7 @@ with robosuite's attribute names (``name``, ``dof``, ``action_dim``, ``action_li
 
 from __future__ import annotations
 
+import weakref
 from collections import OrderedDict
 from typing import Any
 
@@ -116,8 +117,17 @@ class CompositeController:
 class Robot:
     """A robot of the env (robosuite's ``env.robots[i]``)."""
 
+    @property
+    def _env(self) -> Any:
+        env = self._env_ref()
+        if env is None:
+            raise ReferenceError(f"robot {self.name!r}: its env was freed (keep a reference to the env)")
+        return env
+
     def __init__(self, env: Any, info: dict[str, Any], model: Any, controller_config: dict[str, Any] | None) -> None:
-        self._env = env
+        # The env holds its robots; a weak reference back lets the env be freed as soon as
+        # its last user reference goes (no reference cycle for the GC to find).
+        self._env_ref = weakref.ref(env)
         index = info["index"]
         self.name = info["name"]
         self.robot_type = self.name

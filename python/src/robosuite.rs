@@ -590,9 +590,11 @@ impl PyRobosuiteEnv {
     }
 
     /// robosuite's `sim.render(width, height, camera_name, depth, segmentation)` for fixed
-    /// camera `camera`: `rgb` (H×W×3 uint8, bottom row first), or `(rgb, depth)`; with
+    /// camera `camera`, or with `free=(lookat, distance, azimuth, elevation)` for MuJoCo's
+    /// free camera: `rgb` (H×W×3 uint8, bottom row first), or `(rgb, depth)`; with
     /// `segmentation` the image is H×W×2 int32 `(object type, object id)`.
-    #[pyo3(signature = (camera, width, height, depth=false, segmentation=false))]
+    #[pyo3(signature = (camera, width, height, depth=false, segmentation=false, free=None))]
+    #[allow(clippy::too_many_arguments)]
     fn render_camera<'py>(
         &self,
         py: Python<'py>,
@@ -601,7 +603,18 @@ impl PyRobosuiteEnv {
         height: usize,
         depth: bool,
         segmentation: bool,
+        free: Option<([f64; 3], f64, f64, f64)>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        use robosuite_env::render::{FreeCamera, View};
+        let camera = match free {
+            None => View::Fixed(camera),
+            Some((lookat, distance, azimuth, elevation)) => View::Free(FreeCamera {
+                lookat,
+                distance,
+                azimuth,
+                elevation,
+            }),
+        };
         let frame = py
             .detach(|| {
                 self.lock()?

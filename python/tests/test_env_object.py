@@ -173,8 +173,24 @@ def test_sim_render_camera_depth_and_segmentation():
     other.reset()
     first = other.sim.model.camera_id2name(0)
     np.testing.assert_array_equal(other.sim.render(40, 30), other.sim.render(40, 30, camera_name=first))
+
+    # MuJoCo's free camera ("free", id -1): robosuite's render context camera, as set on it.
+    cam = env.sim._render_context_offscreen.cam
+    assert cam.type == mujoco.mjtCamera.mjCAMERA_FIXED
+    free = env.sim.render(64, 48, camera_name="free")
+    assert cam.type == mujoco.mjtCamera.mjCAMERA_FREE and free.std() > 0
+    assert not np.array_equal(free, rgb)
+    np.testing.assert_array_equal(env.sim.render(64, 48), free)  # the context keeps the free camera
+    cam.distance = 4.0  # further away: the scene covers fewer pixels
+    far = env.sim.render(64, 48)
+    assert not np.array_equal(far, free)
+    cam.distance = 2.0
+    np.testing.assert_array_equal(env.sim.render(64, 48), free)
+    cam.distance = 0.0
     with pytest.raises(ValueError, match="free camera"):
-        env.sim.render(64, 48, camera_name="free")
+        env.sim.render(64, 48)
+    np.testing.assert_array_equal(env.get_state(), before)
+    np.testing.assert_array_equal(env.sim.render(64, 48, camera_name="agentview"), rgb)  # back to fixed
 
 
 # --- the XML round trip ------------------------------------------------------------------
@@ -472,13 +488,13 @@ def test_model_mujoco_objects_are_the_tasks_objects() -> None:
     # robosuite's env.model.mujoco_objects: the task's objects in its order, with names
     # that exist in the compiled model and the extent placement uses.
     env = lift()
+    env.reset(seed=0)  # a reset draws the cube's size anew (robosuite: a new model, new objects)
     (cube,) = env.model.mujoco_objects
     assert (cube.name, cube.naming_prefix, cube.root_body, cube.joints) == ("cube", "cube_", "cube_main", ["cube_joint0"])
     m = env.sim.model
     assert m.body_name2id(cube.root_body) >= 0
     assert all(m.geom_name2id(g) >= 0 for g in cube.contact_geoms + cube.visual_geoms)
     assert all(m.site_name2id(s) >= 0 for s in cube.sites)
-    env.reset(seed=0)
     # Placed with its bottom z_offset (0.01) above the table top (0.8), before any step.
     z = env.sim.data.body_xpos[m.body_name2id(cube.root_body)][2] + cube.bottom_offset[2]
     assert abs(z - 0.81) < 1e-9
@@ -489,3 +505,30 @@ def test_model_mujoco_objects_are_the_tasks_objects() -> None:
     names = [o.name for o in pick.model.mujoco_objects]
     assert names == ["VisualMilk", "VisualBread", "VisualCereal", "VisualCan", "Milk", "Bread", "Cereal", "Can"]
     assert all(pick.sim.model.body_name2id(o.root_body) >= 0 for o in pick.model.mujoco_objects)
+
+
+def test_an_env_is_freed_with_its_last_reference() -> None:
+    # No reference cycles through env.sim, env.robots, env.model, rendering, observables
+    # or the GymWrapper: the env (and its simulation's memory) goes with its last
+    # reference, without waiting for Python's cycle collector.
+    import weakref
+
+    from robosuite_rs.observables import create_gaussian_noise_corrupter
+
+    gc.collect()
+    gc.disable()
+    try:
+        env = lift()
+        env.reset(seed=0)
+        _ = (env.sim.data.qpos, env.robots[0].dof, env.model.mujoco_objects, env.sim.render(16, 16, camera_name="agentview"))
+        env.modify_observable("cube_pos", "corrupter", create_gaussian_noise_corrupter(0.0, 0.01))
+        gym_env = GymWrapper(env)
+        gym_env.reset(seed=0)
+        robot = env.robots[0]
+        ref = weakref.ref(env)
+        del env, gym_env, _
+        assert ref() is None
+        with pytest.raises(ReferenceError, match="env was freed"):
+            robot._joint_positions  # noqa: B018 (reads the env)
+    finally:
+        gc.enable()

@@ -239,7 +239,7 @@ impl CameraRig {
         }
         #[cfg(feature = "render")]
         {
-            use crate::render::{Outputs, Request};
+            use crate::render::{Outputs, Request, View};
             let mut frames = self.frames.iter_mut();
             // Requests are made one at a time from the frames: nothing is allocated.
             let requests = self.cameras.iter().map(|(c, id)| {
@@ -265,7 +265,7 @@ impl CameraRig {
                     out.segmentation = a.as_slice_mut();
                 }
                 Request {
-                    camera: *id,
+                    camera: View::Fixed(*id),
                     width: c.width,
                     height: c.height,
                     out,
@@ -344,13 +344,13 @@ impl CameraRig {
         };
         #[cfg(feature = "render")]
         {
-            use crate::render::{Outputs, Request};
+            use crate::render::{Outputs, Request, View};
             let (camera, width, height) = self.render_camera;
             let frame = match mode {
                 RenderMode::DepthArray => {
                     let mut depth = ndarray::Array2::<f32>::zeros((height, width));
                     let mut req = [Request {
-                        camera,
+                        camera: View::Fixed(camera),
                         width,
                         height,
                         out: Outputs {
@@ -365,7 +365,7 @@ impl CameraRig {
                 _ => {
                     let mut rgb = ndarray::Array3::<u8>::zeros((height, width, 3));
                     let mut req = [Request {
-                        camera,
+                        camera: View::Fixed(camera),
                         width,
                         height,
                         out: Outputs {

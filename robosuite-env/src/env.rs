@@ -1138,7 +1138,7 @@ impl RobosuiteEnv {
     }
 
     /// robosuite's `sim.render(width, height, camera_name=..., depth=..., segmentation=...)`:
-    /// a frame of camera `camera` (a fixed camera's id) at any size up to
+    /// a frame of `camera` (a fixed camera by id, or MuJoCo's free camera) at any size up to
     /// [`crate::render::MAX_SIZE`], drawn with the env's own offscreen renderer for free
     /// rendering (made on first use, grown when a larger frame is asked for), whether or not
     /// the env has camera observations.
@@ -1150,7 +1150,7 @@ impl RobosuiteEnv {
     #[cfg(feature = "render")]
     pub fn render_camera(
         &mut self,
-        camera: usize,
+        camera: impl Into<crate::render::View>,
         width: usize,
         height: usize,
         depth: bool,
@@ -1160,11 +1160,14 @@ impl RobosuiteEnv {
         if self.phase == Phase::Closed {
             return Err(Error::Closed);
         }
+        let camera = camera.into();
         let ncam = self.sim.model().ffi().ncam.max(0) as usize;
-        if camera >= ncam {
+        if let crate::render::View::Fixed(id) = camera
+            && id >= ncam
+        {
             return Err(Error::invalid_argument(
                 "camera",
-                format!("camera id {camera} out of range (the model has {ncam} cameras)"),
+                format!("camera id {id} out of range (the model has {ncam} cameras)"),
             ));
         }
         let fits = self

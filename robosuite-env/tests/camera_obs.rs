@@ -486,3 +486,55 @@ fn stack_cubes_are_two_instances_of_one_class() {
     }
     assert_eq!(seen, [true, true], "both cubes in view");
 }
+
+#[test]
+fn render_camera_draws_fixed_cameras_and_the_free_camera() {
+    use robosuite_env::render::{FreeCamera, View};
+    let mut env = lift(CameraConfig::default()).unwrap();
+    env.reset(Some(0), None).unwrap();
+    let fixed = env.render_camera(0, 32, 24, true, false).unwrap();
+    assert_eq!(
+        (fixed.rgb.len(), fixed.depth.as_ref().map(Vec::len)),
+        (32 * 24 * 3, Some(32 * 24))
+    );
+    let free = env
+        .render_camera(View::Free(FreeCamera::default()), 32, 24, false, false)
+        .unwrap();
+    assert_ne!(free.rgb, fixed.rgb);
+    let again = env
+        .render_camera(View::Free(FreeCamera::default()), 32, 24, false, false)
+        .unwrap();
+    assert_eq!(
+        free.rgb, again.rgb,
+        "the same free camera gives the same frame"
+    );
+    let far = FreeCamera {
+        distance: 4.0,
+        ..FreeCamera::default()
+    };
+    assert_ne!(
+        env.render_camera(View::Free(far), 32, 24, false, false)
+            .unwrap()
+            .rgb,
+        free.rgb
+    );
+    for bad in [
+        FreeCamera {
+            distance: 0.0,
+            ..FreeCamera::default()
+        },
+        FreeCamera {
+            lookat: [f64::NAN, 0.0, 0.0],
+            ..FreeCamera::default()
+        },
+    ] {
+        assert!(matches!(
+            env.render_camera(View::Free(bad), 32, 24, false, false),
+            Err(Error::InvalidArgument { .. })
+        ));
+    }
+    assert!(matches!(
+        env.render_camera(10_000, 32, 24, false, false),
+        Err(Error::InvalidArgument { .. })
+    ));
+}

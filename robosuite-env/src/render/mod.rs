@@ -211,11 +211,26 @@ struct Pass<'p> {
 /// Checks one request against the model and the offscreen buffer of `size`.
 fn check(size: (usize, usize), data: &Data, r: &Request<'_>) -> Result<()> {
     let ncam = data.model().ffi().ncam as usize;
-    if r.camera >= ncam {
-        return Err(Error::invalid_argument(
-            "camera",
-            format!("camera id {} out of range (the model has {ncam})", r.camera),
-        ));
+    match r.camera {
+        View::Fixed(id) if id >= ncam => {
+            return Err(Error::invalid_argument(
+                "camera",
+                format!("camera id {id} out of range (the model has {ncam})"),
+            ));
+        }
+        View::Free(c)
+            if !(c.lookat.iter().all(|v| v.is_finite())
+                && c.distance.is_finite()
+                && c.distance > 0.0
+                && c.azimuth.is_finite()
+                && c.elevation.is_finite()) =>
+        {
+            return Err(Error::invalid_argument(
+                "camera",
+                format!("the free camera needs finite values and a distance > 0, got {c:?}"),
+            ));
+        }
+        _ => {}
     }
     if r.width == 0 || r.height == 0 || r.width > size.0 || r.height > size.1 {
         return Err(Error::invalid_argument(
@@ -255,10 +270,20 @@ impl Pass<'_> {
             seg_ids,
         } = self;
         let context: &MjrContext = context;
-        let mut camera = MjvCamera::new_fixed(r.camera);
+        let mut camera = match r.camera {
+            View::Fixed(id) => MjvCamera::new_fixed(id),
+            View::Free(c) => MjvCamera {
+                type_: mujoco_rs::mujoco_c::mjtCamera::mjCAMERA_FREE as i32,
+                lookat: c.lookat,
+                distance: c.distance,
+                azimuth: c.azimuth,
+                elevation: c.elevation,
+                ..MjvCamera::default()
+            },
+        };
         let (m, d) = data.raw_mut();
         let (opt, pert): (&MjvOption, &MjvPerturb) = (option, perturb);
-        // SAFETY: `check` put the fixed camera id in range; the scene was made for this
+        // SAFETY: `check` put a fixed camera id in range (a free camera reads no id); the scene was made for this
         // model (`OffscreenRenderer::new`), `perturb.select` is 0 (the world body); MuJoCo
         // writes only the scene and the data's visualisation fields.
         unsafe {
@@ -302,11 +327,52 @@ impl Pass<'_> {
     }
 }
 
+/// The camera a request draws from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum View {
+    /// A fixed camera of the model, by id.
+    Fixed(usize),
+    /// MuJoCo's free camera (robosuite's camera id `-1`).
+    Free(FreeCamera),
+}
+
+impl From<usize> for View {
+    fn from(id: usize) -> Self {
+        Self::Fixed(id)
+    }
+}
+
+/// MuJoCo's free camera: it looks at `lookat` from `distance` metres, turned by `azimuth`
+/// and `elevation` degrees (`mjvCamera`'s fields).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeCamera {
+    /// The point looked at.
+    pub lookat: [f64; 3],
+    /// Distance from the point, metres (> 0).
+    pub distance: f64,
+    /// Azimuth, degrees.
+    pub azimuth: f64,
+    /// Elevation, degrees.
+    pub elevation: f64,
+}
+
+impl Default for FreeCamera {
+    /// `mjv_defaultCamera`'s (what robosuite's render context draws for camera id `-1`).
+    fn default() -> Self {
+        Self {
+            lookat: [0.0; 3],
+            distance: 2.0,
+            azimuth: 90.0,
+            elevation: -45.0,
+        }
+    }
+}
+
 /// One camera to draw and where its pixels go.
 #[derive(Debug)]
 pub struct Request<'a> {
-    /// The fixed camera's id in the model.
-    pub camera: usize,
+    /// The camera.
+    pub camera: View,
     /// Width in pixels.
     pub width: usize,
     /// Height in pixels.
