@@ -55,7 +55,8 @@ def install_as_robosuite() -> types.ModuleType:
     """Registers this package as ``robosuite`` in ``sys.modules``: ``import robosuite``,
     ``robosuite.make``, ``robosuite.utils.transform_utils``, ``robosuite.utils.camera_utils``,
     ``robosuite.utils.binding_utils``, ``robosuite.wrappers.GymWrapper``,
-    ``robosuite.controllers``, ``robosuite.robots``, ``robosuite.macros`` then give ours.
+    ``robosuite.controllers``, ``robosuite.robots``, ``robosuite.models.robots``,
+    ``robosuite.macros`` then give ours.
     Returns the ``robosuite`` module. Calling it again changes nothing.
 
     Raises:
@@ -68,7 +69,7 @@ def install_as_robosuite() -> types.ModuleType:
         raise RuntimeError("robosuite is imported already; call install_as_robosuite() before importing it")
 
     import robosuite_rs as rs
-    from . import binding_utils, robots, wrappers
+    from . import binding_utils, models, robots, wrappers
     from .utils import camera_utils, placement_samplers, transform_utils
 
     macros = _module(
@@ -128,6 +129,12 @@ def install_as_robosuite() -> types.ModuleType:
         {"ALL_ENVIRONMENTS": rs.ALL_ENVIRONMENTS},
         package=True,
     )
+    models_mod = _module(
+        "robosuite.models",
+        "robosuite's models (the robot model classes).",
+        {"robots": models.robots},
+        package=True,
+    )
     robosuite = _module(
         "robosuite",
         "robosuite 1.5.2's API served by robosuite-rs (robosuite_rs.install_as_robosuite()).",
@@ -148,11 +155,13 @@ def install_as_robosuite() -> types.ModuleType:
             "utils": utils,
             "wrappers": wrappers_mod,
             "environments": environments,
+            "models": models_mod,
         },
         package=True,
     )
-    for module in (robosuite, macros, controllers, robots_mod, utils, wrappers_mod, environments):
+    for module in (robosuite, macros, controllers, robots_mod, utils, wrappers_mod, environments, models_mod):
         sys.modules[module.__name__] = module
+    sys.modules["robosuite.models.robots"] = models.robots
     sys.modules["robosuite.utils.transform_utils"] = transform_utils
     sys.modules["robosuite.utils.placement_samplers"] = placement_samplers
     sys.modules["robosuite.utils.camera_utils"] = camera_utils

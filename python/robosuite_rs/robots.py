@@ -11,19 +11,13 @@ from typing import Any
 
 import numpy as np
 
+from . import _native
+from .models.robots import RobotModel, create_robot
+
 __all__ = ["Robot", "RobotModel", "GripperModel", "PartController", "CompositeController", "ROBOT_CLASS_MAPPING"]
 
 #: robosuite's robot classes by robot name (the robots this build provides).
-ROBOT_CLASS_MAPPING: dict[str, str] = {
-    "Baxter": "FixedBaseRobot",
-    "IIWA": "FixedBaseRobot",
-    "Jaco": "FixedBaseRobot",
-    "Kinova3": "FixedBaseRobot",
-    "Panda": "FixedBaseRobot",
-    "Sawyer": "FixedBaseRobot",
-    "UR5e": "FixedBaseRobot",
-    "XArm7": "FixedBaseRobot",
-}
+ROBOT_CLASS_MAPPING: dict[str, str] = {name: "FixedBaseRobot" for name in sorted(_native.robot_names())}
 
 # robosuite's part controller class names by type.
 _CONTROLLER_CLASSES = {
@@ -38,25 +32,6 @@ _CONTROLLER_CLASSES = {
 
 def _names(model: Any, kind: str, ids: list[int]) -> list[str]:
     return [getattr(model, f"{kind}_id2name")(i) for i in ids]
-
-
-class RobotModel:
-    """robosuite's ``robot.robot_model``: the robot's names in the compiled scene."""
-
-    def __init__(self, name: str, index: int, joints: list[str], actuators: list[str]) -> None:
-        self.name = name
-        self.idn = index
-        self.naming_prefix = f"robot{index}_"
-        self.joints = joints
-        self.actuators = actuators
-
-    @property
-    def dof(self) -> int:
-        """The number of arm joints."""
-        return len(self.joints)
-
-    def __repr__(self) -> str:
-        return f"<RobotModel {self.name} prefix={self.naming_prefix!r}>"
 
 
 class GripperModel:
@@ -140,7 +115,11 @@ class Robot:
         jnt_qposadr = list(model.jnt_qposadr)
         joints = [model.joint_id2name(jnt_qposadr.index(a)) for a in self._joint_qpos]
         arm_actuators = [i for a in info["arms"] for i in a["actuators"]]
-        self.robot_model = RobotModel(self.name, index, joints, _names(model, "actuator", arm_actuators))
+        #: robosuite's ``robot_model`` (a :mod:`robosuite_rs.models.robots` model), with the
+        #: env's compiled names.
+        self.robot_model: RobotModel = create_robot(self.name, idn=index)
+        self.robot_model.joints = joints
+        self.robot_model.actuators = _names(model, "actuator", arm_actuators)
         #: robosuite's joint bookkeeping: the robot's (arm) joint names, ids, qpos and dof
         #: addresses.
         self.robot_joints = list(joints)

@@ -324,6 +324,24 @@ fn load_part_controller_config(
     value.map(|v| v.to_string()).map_err(to_pyerr)
 }
 
+/// robosuite's robot model `name` on its own as robot `idn` (`robosuite.models.robots.
+/// <name>(idn)`: names, figures and MJCF), as JSON text.
+#[pyfunction]
+#[pyo3(signature = (name, idn=0))]
+fn describe_robot(name: &str, idn: usize) -> PyResult<String> {
+    let assets = robosuite_env::assets::Assets::locate().map_err(to_pyerr)?;
+    let description =
+        robosuite_env::models::robots::describe_robot(&assets, name, idn).map_err(to_pyerr)?;
+    serde_json::to_string(&description)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
+}
+
+/// The robots this build provides (robosuite's names).
+#[pyfunction]
+fn robot_names() -> Vec<&'static str> {
+    robosuite_env::models::robots::robot_names()
+}
+
 /// robosuite's arm part controllers.
 #[pyfunction]
 fn part_controller_types() -> Vec<String> {
@@ -356,6 +374,8 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load_composite_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(load_part_controller_config, m)?)?;
     m.add_function(wrap_pyfunction!(part_controller_types, m)?)?;
+    m.add_function(wrap_pyfunction!(describe_robot, m)?)?;
+    m.add_function(wrap_pyfunction!(robot_names, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -88,3 +88,37 @@ def test_states_give_robosuites_observations(case):
         if not single:
             assert env.reward() == pytest.approx(f["rewards"][step], abs=1e-6)
             assert env._check_success() == f["successes"][step]
+
+
+@pytest.mark.parametrize("robot", ["Panda", "Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"])
+def test_robot_models_are_robosuites(robot):
+    # robosuite.models.robots.<Robot>(): the robot's own names and its prepared joints equal
+    # those of the scene robosuite 1.5.2 saved (its robot0_ elements and their joint
+    # settings), and init_qpos is robosuite's (the recorded reset without noise).
+    import xml.etree.ElementTree as ET
+
+    from robosuite_rs.models import robots
+
+    model = robots.create_robot(robot, idn=0)
+    assert type(model).__name__ == robot and isinstance(model, robots.ManipulatorModel)
+    f = json.loads((FIXTURES / f"Lift-{robot}.json").read_text())
+    theirs = ET.fromstring(gzip.decompress((FIXTURES / f"Lift-{robot}.xml.gz").read_bytes()).decode())
+    for kind, ours in (("joint", model.joints), ("actuator", model.actuators), ("body", model.bodies)):
+        assert ours == [n for n in f["names"][kind] if n.startswith("robot0_")], kind
+    assert model.naming_prefix == "robot0_" and model.root_body == "robot0_base"
+    assert model.dof == len(model.joints) == len(model.init_qpos)
+    joints = {j.get("name"): j for j in ET.fromstring(model.get_xml()).iter("joint")}
+    for saved in theirs.iter("joint"):
+        name = saved.get("name", "")
+        if name.startswith("robot0_"):
+            for attrib in ("damping", "armature", "frictionloss"):
+                assert float(joints[name].get(attrib)) == pytest.approx(float(saved.get(attrib, 0.0)), rel=1e-6), (name, attrib)
+    env = suite.make("Lift", robots=robot, initialization_noise=None, has_offscreen_renderer=False)
+    env.reset(seed=0)
+    assert np.allclose(env.robots[0]._joint_positions, model.init_qpos)
+    assert env.robots[0].robot_model.joints == model.joints
+    assert model.base_xpos_offset["table"](0.8) == pytest.approx([-0.56, 0, 0])
+    with pytest.raises(Exception, match="not found"):
+        robots.create_robot("R2D2")
+    with pytest.raises(ValueError, match="idn"):
+        robots.Panda(idn=-1)

@@ -301,29 +301,7 @@ impl RobotModel {
                 ),
             ));
         }
-        let mut xml = XmlModel::load(
-            &assets.file(info.file)?,
-            &format!("robot{idn}_"),
-            ROBOT_COLLISION_COLOR,
-        )?;
-        let dof = xml.names.joints.len();
-        if dof != info.init_qpos.len() {
-            return Err(Error::model(format!(
-                "{} has {dof} joints in {}, but {} initial positions",
-                info.name,
-                info.file,
-                info.init_qpos.len()
-            )));
-        }
-        let frictionloss = vec![0.1; dof];
-        let damping = vec![0.1; dof];
-        let armature: Vec<f64> = (0..dof).map(|i| 5.0 / (i + 1) as f64).collect();
-        set_joint_attribute(&mut xml, "frictionloss", &frictionloss, false)?;
-        set_joint_attribute(&mut xml, "damping", &damping, false)?;
-        set_joint_attribute(&mut xml, "armature", &armature, false)?;
-        if let Some(values) = info.damping {
-            set_joint_attribute(&mut xml, "damping", values, true)?;
-        }
+        let xml = load_prepared(assets, info, idn)?;
         let mut model = Self {
             xml,
             info,
@@ -459,4 +437,126 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+/// robot `info`'s file as robot `idn`, prepared as robosuite's `ManipulatorModel` prepares
+/// it (prefixed names, robosuite's joint friction, damping and armature), before a mount
+/// or grippers are added.
+fn load_prepared(assets: &Assets, info: RobotInfo, idn: usize) -> Result<XmlModel> {
+    let mut xml = XmlModel::load(
+        &assets.file(info.file)?,
+        &format!("robot{idn}_"),
+        ROBOT_COLLISION_COLOR,
+    )?;
+    let dof = xml.names.joints.len();
+    if dof != info.init_qpos.len() {
+        return Err(Error::model(format!(
+            "{} has {dof} joints in {}, but {} initial positions",
+            info.name,
+            info.file,
+            info.init_qpos.len()
+        )));
+    }
+    let frictionloss = vec![0.1; dof];
+    let damping = vec![0.1; dof];
+    let armature: Vec<f64> = (0..dof).map(|i| 5.0 / (i + 1) as f64).collect();
+    set_joint_attribute(&mut xml, "frictionloss", &frictionloss, false)?;
+    set_joint_attribute(&mut xml, "damping", &damping, false)?;
+    set_joint_attribute(&mut xml, "armature", &armature, false)?;
+    if let Some(values) = info.damping {
+        set_joint_attribute(&mut xml, "damping", values, true)?;
+    }
+    Ok(xml)
+}
+
+/// A robot model as robosuite's `RobotModel` describes it on its own (`robosuite.models.
+/// robots.Panda(idn)`: the robot's file prepared, before a task adds a mount and
+/// grippers): its names, figures and MJCF.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RobotDescription {
+    /// robosuite's robot name.
+    pub name: &'static str,
+    /// The robot's index.
+    pub idn: usize,
+    /// The prefix of every element name (`robot0_`).
+    pub naming_prefix: String,
+    /// robosuite's `arm_type`: `"single"` or `"bimanual"`.
+    pub arm_type: &'static str,
+    /// The arms (`["right"]`, `["right", "left"]`).
+    pub arms: &'static [&'static str],
+    /// The root body, prefixed.
+    pub root_body: String,
+    /// The body each arm's gripper attaches to, prefixed (robosuite's `eef_name`).
+    pub eef_name: Vec<String>,
+    /// Every body, prefixed, the root body first.
+    pub bodies: Vec<String>,
+    /// The joints, prefixed.
+    pub joints: Vec<String>,
+    /// The actuators, prefixed.
+    pub actuators: Vec<String>,
+    /// The sites, prefixed.
+    pub sites: Vec<String>,
+    /// The contact geoms, prefixed.
+    pub contact_geoms: Vec<String>,
+    /// The visual geoms, prefixed.
+    pub visual_geoms: Vec<String>,
+    /// The joints' rest positions.
+    pub init_qpos: &'static [f64],
+    /// The default gripper per arm (robosuite's class names).
+    pub default_grippers: &'static [&'static str],
+    /// The default base (mount) class name.
+    pub default_base: &'static str,
+    /// Where the robot stands in the bins and empty arenas, and the x of its offset at a
+    /// table (minus half the table's length).
+    pub base_xpos_offset: ([f64; 3], [f64; 3], f64),
+    /// From the root body to the robot's top.
+    pub top_offset: [f64; 3],
+    /// The robot's horizontal radius.
+    pub horizontal_radius: f64,
+    /// The root body's position in the file (robosuite's `bottom_offset` without a mount).
+    pub base_offset: [f64; 3],
+    /// The prepared MJCF.
+    pub xml: String,
+}
+
+/// robosuite's robot model `name` on its own as robot `idn` (see [`RobotDescription`]).
+///
+/// # Errors
+/// [`Error::InvalidArgument`] for an unknown robot (listing the robots); [`Error::Model`]
+/// when its file is missing or malformed.
+pub fn describe_robot(assets: &Assets, name: &str, idn: usize) -> Result<RobotDescription> {
+    let info = robot_info(name)?;
+    let xml = load_prepared(assets, info, idn)?;
+    let names = |list: &[String]| xml.names_of(list);
+    Ok(RobotDescription {
+        name: info.name,
+        idn,
+        naming_prefix: xml.prefix.clone(),
+        arm_type: if info.arms.len() > 1 {
+            "bimanual"
+        } else {
+            "single"
+        },
+        arms: info.arms,
+        root_body: xml.root_body(),
+        eef_name: info.eef_bodies.iter().map(|b| xml.name(b)).collect(),
+        bodies: names(&xml.names.bodies),
+        joints: names(&xml.names.joints),
+        actuators: names(&xml.names.actuators),
+        sites: names(&xml.names.sites),
+        contact_geoms: names(&xml.names.contact_geoms),
+        visual_geoms: names(&xml.names.visual_geoms),
+        init_qpos: info.init_qpos,
+        default_grippers: info.default_grippers,
+        default_base: info.default_mount.name,
+        base_xpos_offset: (
+            info.base_offsets.bins,
+            info.base_offsets.empty,
+            info.base_offsets.table_x,
+        ),
+        top_offset: info.top_offset,
+        horizontal_radius: info.horizontal_radius,
+        base_offset: xml.base_offset,
+        xml: xml.doc.to_xml(),
+    })
 }
