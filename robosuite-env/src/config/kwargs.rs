@@ -326,7 +326,7 @@ fn check_compat(k: &Kwargs) -> Result<()> {
         if refused {
             return Err(Error::invalid_argument(
                 name,
-                format!("only {valid} is supported by this build"),
+                format!("this value is not supported by this build; valid: {valid}"),
             ));
         }
     }
@@ -522,6 +522,17 @@ mod tests {
         assert_eq!(c.reward_scale, Some(1.0));
         assert!(c.cameras.has_offscreen_renderer, "robosuite's default");
         assert_eq!(c.initialization_noise, InitNoise::default());
+        // One gripper for every robot, as robosuite's `_input2list` broadcasts it.
+        let two = config(
+            "TwoArmLift",
+            json!({"robots": ["Panda", "Panda"], "gripper_types": "RethinkGripper"}),
+        )
+        .unwrap();
+        let rethink = GripperChoice::Named("RethinkGripper".into());
+        assert_eq!(
+            (two.gripper_choice(0, 0), two.gripper_choice(1, 0)),
+            (rethink.clone(), rethink)
+        );
         let none = config("Lift", json!({"initialization_noise": null})).unwrap();
         assert_eq!(none.initialization_noise, InitNoise::none());
     }

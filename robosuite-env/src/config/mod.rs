@@ -27,7 +27,7 @@ pub struct EnvConfig {
     /// default): a Panda for each robot the task needs.
     pub robots: Vec<String>,
     /// Grippers, one choice per robot applied to each of its arms (robosuite's
-    /// `gripper_types`); empty: every robot's default gripper.
+    /// `gripper_types`), or one for every robot; empty: every robot's default gripper.
     pub gripper_types: Vec<GripperChoice>,
     /// robosuite's `controller_configs`: empty for each robot's default
     /// (`default_{robot}.json`: `OSC_POSE`), one config for every robot, or one per robot.
@@ -195,9 +195,13 @@ impl EnvConfig {
         self
     }
 
-    /// The gripper choice for arm `arm` of robot `robot`.
+    /// The gripper choice for arm `arm` of robot `robot` (one choice applies to every
+    /// robot, as robosuite's `_input2list` broadcasts it).
     pub fn gripper_choice(&self, robot: usize, _arm: usize) -> GripperChoice {
-        self.gripper_types.get(robot).cloned().unwrap_or_default()
+        match self.gripper_types.as_slice() {
+            [one] => one.clone(),
+            many => many.get(robot).cloned().unwrap_or_default(),
+        }
     }
 
     /// Robot `robot`'s base (see [`EnvConfig::base_types`]): `None` for its default.
@@ -369,13 +373,13 @@ impl EnvConfig {
             robot_info(r)?;
         }
         if !self.robots.is_empty()
-            && !self.gripper_types.is_empty()
+            && self.gripper_types.len() > 1
             && self.gripper_types.len() != self.robots.len()
         {
             return Err(Error::invalid_argument(
                 "gripper_types",
                 format!(
-                    "give one gripper choice per robot ({}), got {}",
+                    "give one gripper choice for every robot or one per robot ({}), got {}",
                     self.robots.len(),
                     self.gripper_types.len()
                 ),
