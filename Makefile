@@ -50,7 +50,7 @@ bench-sb3: prerequisites
 	ROBOSUITE_RS_SETUP_ONLY=1 bash python/scripts/test_rl.sh
 	.venv-rl/bin/python python/scripts/bench_sb3.py --json bench-sb3.json
 
-# The fuzz suite at length (README, "Fuzzing"): 256 proptest cases per Rust property and 300
+# The fuzz suite at length (docs/reliability.md, "Fuzzing"): 256 proptest cases per Rust property and 300
 # Hypothesis examples per Python property; `make test` runs the same suite briefly.
 fuzz: prerequisites
 	FUZZ_CASES=256 $(CARGO) test --release -p robosuite-env --test fuzz
