@@ -1,13 +1,12 @@
 //! The PickPlace family: observation layouts, placement, single-object modes, hand-set
 //! reward / success, a scripted policy, task states and the MuJoCo arena.
 
-mod common;
 
-use common::object_tasks::{
+use crate::common::object_tasks::{
     PlacePolicy, arena_use, assert_spread, assert_task_states_rejected, assert_variant_layouts,
     body_pos, probe_actions, random_episodes, set_free_joint,
 };
-use common::{action, assert_scripted_successes, assert_snapshot_replays, get};
+use crate::common::{action, assert_scripted_successes, assert_snapshot_replays, get};
 use gym_core::{Env, Error};
 use robosuite_env::tasks::common::ObjectMode;
 use robosuite_env::tasks::{PICK_PLACE_OBJECTS, PickPlaceSpec};

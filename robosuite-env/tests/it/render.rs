@@ -38,7 +38,7 @@ fn draw(
         seg: vec![0; w * h],
     };
     let mut requests = [Request {
-        camera: id,
+        camera: id.into(),
         width: w,
         height: h,
         out: Outputs {
@@ -115,7 +115,7 @@ fn refuses_bad_requests_without_drawing() {
     let mut renderer = OffscreenRenderer::new(sim.model(), 32, 32).unwrap();
     let mut rgb = vec![7u8; 64 * 64 * 3];
     let mut too_big = [Request {
-        camera: 0,
+        camera: 0.into(),
         width: 64,
         height: 64,
         out: Outputs {
@@ -126,7 +126,7 @@ fn refuses_bad_requests_without_drawing() {
     assert!(renderer.render(sim.data_mut(), &mut too_big).is_err());
     assert!(rgb.iter().all(|v| *v == 7));
     let mut bad_camera = [Request {
-        camera: 10_000,
+        camera: 10_000.into(),
         width: 8,
         height: 8,
         out: Outputs::default(),

@@ -1,8 +1,7 @@
 //! Lift: observation layout, seeding, episode mechanics, reward / success, state, errors.
 
-mod common;
 
-use common::{action, get, zero};
+use crate::common::{action, get, zero};
 use gym_core::{DType, Env, Error, Info, Space, Value};
 use robosuite_env::sim::{Sim, check_mujoco_version};
 use robosuite_env::{

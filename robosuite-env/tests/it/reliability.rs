@@ -2,9 +2,8 @@
 //! steps, divergence, bad states and mis-sized sensors give typed errors, and every
 //! rejected call leaves the env as it was.
 
-mod common;
 
-use common::zero;
+use crate::common::zero;
 use gym_core::{Env, Error};
 use robosuite_env::config::MAX_SUBSTEPS;
 use robosuite_env::sim::MAX_STATE_MAGNITUDE;
@@ -155,7 +154,7 @@ fn a_saved_state_continues_bit_identically_in_a_new_env() {
     let config = EnvConfig::default().with_seed(5);
     let mut env = make_with("Lift", config.clone()).unwrap();
     env.reset(None, None).unwrap();
-    let a = common::action([0.3, -0.2, 0.1, 0.0, 0.05, -0.1, 1.0]);
+    let a = crate::common::action([0.3, -0.2, 0.1, 0.0, 0.05, -0.1, 1.0]);
     for _ in 0..3 {
         let _ = env.step(&a).unwrap();
     }

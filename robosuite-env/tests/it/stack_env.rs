@@ -1,9 +1,8 @@
 //! Stack: observation layout, placement, reward and success on hand-set states, a scripted
 //! policy, state round trips.
 
-mod common;
 
-use common::{
+use crate::common::{
     action, assert_observation_layout, assert_snapshot_replays, dist3, finger_yaw, get, move_to,
     wrap_to_quarter, yaw_of,
 };
@@ -216,7 +215,7 @@ fn scripted_stack(env: &mut RobosuiteEnv, seed: u64) -> (bool, usize) {
 #[test]
 fn scripted_policy_stacks_the_cubes() {
     let mut env = stack(EnvConfig::default().with_horizon(300));
-    common::assert_scripted_successes("Stack", &mut env, 4, 3, scripted_stack);
+    crate::common::assert_scripted_successes("Stack", &mut env, 4, 3, scripted_stack);
 }
 
 #[test]

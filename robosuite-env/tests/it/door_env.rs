@@ -1,9 +1,8 @@
 //! Door: observation layout, the door placed through the model, reward and success on
 //! hand-set states, the latch, a scripted policy that opens the door, state round trips.
 
-mod common;
 
-use common::{
+use crate::common::{
     action, assert_observation_layout, assert_snapshot_replays, finger_yaw, get, wrap_half,
 };
 use gym_core::{DType, Env, Error, Space, rng_from_seed};
@@ -168,7 +167,7 @@ fn the_latch_holds_the_door_until_the_handle_turns() {
     s[1 + 11 + 9] = 2.0; // hinge velocity
     env.set_state(&s).unwrap();
     for _ in 0..10 {
-        let _ = env.step(&common::zero()).unwrap();
+        let _ = env.step(&crate::common::zero()).unwrap();
     }
     let latched = env.get_state()[HINGE];
     assert!(latched < 0.05, "the latched door opened to {latched}");
@@ -178,7 +177,7 @@ fn the_latch_holds_the_door_until_the_handle_turns() {
     s[LATCH] = 1.2;
     s[1 + 11 + 9] = 2.0;
     env.set_state(&s).unwrap();
-    let _ = env.step(&common::zero()).unwrap();
+    let _ = env.step(&crate::common::zero()).unwrap();
     let free = env.get_state()[HINGE];
     assert!(free > latched + 0.02, "the unlatched door stayed at {free}");
 }
@@ -233,14 +232,14 @@ fn scripted_door(env: &mut RobosuiteEnv, seed: u64) -> (bool, usize) {
             0.0
         };
         let step = env
-            .step(&common::move_to(&eef, target, 10.0, yaw_err, 1.0))
+            .step(&crate::common::move_to(&eef, target, 10.0, yaw_err, 1.0))
             .unwrap();
         obs = step.observation;
         if step.info.get_bool("success") == Some(true) {
             return (true, t + 1);
         }
         n += 1;
-        let d = common::dist3(target, &eef);
+        let d = crate::common::dist3(target, &eef);
         let next = match phase {
             0 => d < 0.006 || n > 90,
             1 => d < 0.006 || n > 30,
@@ -259,7 +258,7 @@ fn scripted_door(env: &mut RobosuiteEnv, seed: u64) -> (bool, usize) {
 #[test]
 fn scripted_policy_opens_the_door() {
     let mut env = door(EnvConfig::default().with_horizon(300));
-    common::assert_scripted_successes("Door", &mut env, 3, 2, scripted_door);
+    crate::common::assert_scripted_successes("Door", &mut env, 3, 2, scripted_door);
 }
 
 #[test]

@@ -1,13 +1,12 @@
 //! The NutAssembly family: observation layouts, placement, single-object modes, hand-set
 //! reward / success, a scripted policy, task states and the MuJoCo arena.
 
-mod common;
 
-use common::object_tasks::{
+use crate::common::object_tasks::{
     PlacePolicy, arena_use, assert_spread, assert_task_states_rejected, assert_variant_layouts,
     body_pos, probe_actions, random_episodes, set_free_joint,
 };
-use common::{
+use crate::common::{
     action, assert_scripted_successes, assert_snapshot_replays, finger_yaw, get, wrap_half, yaw_of,
 };
 use gym_core::{DictValue, Env, Error};

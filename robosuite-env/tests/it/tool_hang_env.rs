@@ -1,9 +1,8 @@
 //! ToolHang: observation layout, placement, the frame and tool checks on hand-set states,
 //! reward, task state, a scripted grasp of the tool, and scenes supplied as XML.
 
-mod common;
 
-use common::{action, get, wrap_half, zero};
+use crate::common::{action, get, wrap_half, zero};
 use gym_core::{DType, Env, Error, Space, Value};
 use robosuite_env::sim::{body_id, geom_id, site_id};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_from_scene_xml, make_with, scene_xml};
@@ -374,7 +373,7 @@ fn scripted_grasp_lifts_the_tool() {
         // The tool's x axis (its grip) and the hand's y axis (the fingers' closing axis).
         let bar_yaw =
             (2.0 * (q[0] * q[1] + q[3] * q[2])).atan2(1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]));
-        let err = wrap_half(bar_yaw + PI / 2.0 - common::finger_yaw(&obs));
+        let err = wrap_half(bar_yaw + PI / 2.0 - crate::common::finger_yaw(&obs));
         t += 1;
         let (target, grip) = match phase {
             0 => ([tool[0], tool[1], tool[2] + 0.2], -1.0),
@@ -382,7 +381,7 @@ fn scripted_grasp_lifts_the_tool() {
             2 => ([eef[0], eef[1], eef[2]], 1.0),
             _ => ([start[0], start[1], start[2] + 0.1], 1.0),
         };
-        let d = common::dist3(target, &eef);
+        let d = crate::common::dist3(target, &eef);
         let turn = if phase < 2 {
             (err * 4.0).clamp(-1.0, 1.0)
         } else {

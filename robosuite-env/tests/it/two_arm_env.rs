@@ -2,10 +2,9 @@
 //! against robosuite's probes, robot set-ups (`env_configuration`, mixed pairs, per-arm
 //! controllers), hand-set states, per-reset sizes, scripted success and bad input.
 
-mod common;
 
-use common::fixtures::{config_for, load};
-use common::get;
+use crate::common::fixtures::{config_for, load};
+use crate::common::get;
 use gym_core::{DType, Env, Error, Space, Value};
 use ndarray::{ArrayD, IxDyn};
 use robosuite_env::sim::{body_id, geom_id, joint_id};

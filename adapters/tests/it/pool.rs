@@ -2,10 +2,9 @@
 //! single environment would with the same seed and actions, whatever batches it lands in;
 //! NextStep autoreset; typed errors for misuse; panics are errors, not hangs.
 
-mod common;
 
 use adapters::{ThreadEnvPool, ThreadOptions};
-use common::{WalkEnv, a32};
+use crate::common::{WalkEnv, a32};
 use gym_core::{Env, Error, Info};
 use ndarray::{ArrayD, Axis, IxDyn};
 use std::collections::HashSet;

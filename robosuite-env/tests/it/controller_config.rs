@@ -3,9 +3,8 @@
 //! robosuite's action layout, and bad configs are typed errors naming the key, raised when
 //! the env is made.
 
-mod common;
 
-use common::get;
+use crate::common::get;
 use gym_core::{Env, Error, Space};
 use ndarray::{Array1, ArrayD};
 use robosuite_env::assets::Assets;

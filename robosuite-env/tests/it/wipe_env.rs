@@ -1,10 +1,9 @@
 //! Wipe: the wiping tool, the marker walk, observations (and their one-step lag), reward,
 //! success, early termination, configuration and state round trips.
 
-mod common;
 
-use common::fixtures::{env_for, load, values};
-use common::{assert_observation_layout, assert_snapshot_replays, get};
+use crate::common::fixtures::{env_for, load, values};
+use crate::common::{assert_observation_layout, assert_snapshot_replays, get};
 use gym_core::{DType, Env, Error};
 use ndarray::{ArrayD, IxDyn};
 use robosuite_env::models::robots::GripperChoice;
@@ -99,7 +98,7 @@ fn sizes_and_observations_match_robosuite() {
     assert!((0..3).all(|k| g2c[k] == centroid[k] - eef[k]));
     // A 7-dim action is refused; a 6-dim one steps.
     assert!(matches!(
-        env.step(&common::zero()),
+        env.step(&crate::common::zero()),
         Err(Error::InvalidAction(_))
     ));
     let step = env.step(&act([0.0; 6])).unwrap();

@@ -1,11 +1,10 @@
 //! Vector environments: Gymnasium's autoreset traces, masks, seeds, infos, equivalence with
 //! single environments, and failure handling (toy environments only).
 
-mod common;
 
 use adapters::vector::VectorInfoValue;
 use adapters::{AutoresetMode, BatchSpace, Seeds, SyncVectorEnv, ThreadVectorEnv, VectorEnv};
-use common::{CountEnv, DictEnv, DiscreteEnv, WalkEnv, a32};
+use crate::common::{CountEnv, DictEnv, DiscreteEnv, WalkEnv, a32};
 use gym_core::{ArrayValue, Env, Error, Info, InfoValue, Space, Value};
 use ndarray::{ArrayD, Axis, IxDyn, arr1, arr2};
 
@@ -472,8 +471,8 @@ fn a_panicking_env_on_the_calling_thread_is_an_error() {
 #[test]
 fn close_closes_sub_environments_and_drop_joins() {
     let mut v = SyncVectorEnv::new(vec![
-        common::script_f32(&[&[0.0]], &[0.0]),
-        common::script_f32(&[&[0.0]], &[0.0]),
+        crate::common::script_f32(&[&[0.0]], &[0.0]),
+        crate::common::script_f32(&[&[0.0]], &[0.0]),
     ])
     .unwrap();
     v.close();

@@ -4,9 +4,8 @@
 //! ones are typed errors. `placement_initializer`, `lite_physics`, `base_types` (scenes
 //! recorded by `scripts/record_bases.py`) and the env step taken one substep at a time.
 
-mod common;
 
-use common::get;
+use crate::common::get;
 use gym_core::{Env, Error};
 use ndarray::ArrayD;
 use robosuite_env::sim::{body_id, geom_id, joint_id};

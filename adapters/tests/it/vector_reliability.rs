@@ -2,10 +2,9 @@
 //! exactly and is checked as a whole before any environment steps, so a rejected call
 //! changes nothing; a forked child gets a clear error, never a hang.
 
-mod common;
 
 use adapters::{SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv};
-use common::WalkEnv;
+use crate::common::WalkEnv;
 use gym_core::Error;
 use ndarray::{Array2, ArrayD};
 use std::time::{Duration, Instant};

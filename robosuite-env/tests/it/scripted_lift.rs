@@ -1,6 +1,5 @@
 //! A scripted policy (reach above the cube, descend, close, lift) solves Lift.
 
-mod common;
 
 use gym_core::Env;
 use robosuite_env::{EnvConfig, make_with};
@@ -11,7 +10,7 @@ fn scripted_policy_lifts_the_cube_on_most_seeds() {
     let mut successes = 0;
     let mut report = Vec::new();
     for seed in 0..5 {
-        let (ok, steps) = common::scripted_lift(&mut env, seed, 250).unwrap();
+        let (ok, steps) = crate::common::scripted_lift(&mut env, seed, 250).unwrap();
         report.push((seed, ok, steps));
         successes += usize::from(ok);
     }
@@ -36,15 +35,15 @@ fn grasp_adds_the_shaped_bonus() {
     let mut phase = 0;
     let mut n = 0;
     for _ in 0..200 {
-        let eef = common::get(&obs, "robot0_eef_pos");
-        let cube = common::get(&obs, "cube_pos");
+        let eef = crate::common::get(&obs, "robot0_eef_pos");
+        let cube = crate::common::get(&obs, "cube_pos");
         let (target, grip) = match phase {
             0 => ([cube[0], cube[1], cube[2] + 0.08], -1.0),
             1 => ([cube[0], cube[1], cube[2] - 0.005], -1.0),
             _ => ([eef[0], eef[1], eef[2] + 0.004], 1.0),
         };
         let err: Vec<f64> = (0..3).map(|i| target[i] - eef[i]).collect();
-        let a = common::action([
+        let a = crate::common::action([
             (err[0] * 10.0).clamp(-1.0, 1.0),
             (err[1] * 10.0).clamp(-1.0, 1.0),
             (err[2] * 10.0).clamp(-1.0, 1.0),
@@ -55,7 +54,7 @@ fn grasp_adds_the_shaped_bonus() {
         ]);
         let step = env.step(&a).unwrap();
         obs = step.observation;
-        let g2c = common::get(&obs, "gripper_to_cube_pos");
+        let g2c = crate::common::get(&obs, "gripper_to_cube_pos");
         let d = g2c.iter().map(|v| v * v).sum::<f64>().sqrt();
         let bonus = step.reward - (1.0 - (10.0 * d).tanh());
         if step.info.get_bool("success") != Some(true) {
