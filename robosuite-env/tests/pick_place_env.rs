@@ -306,7 +306,7 @@ fn world_pose_in_gripper_is_enabled_inactive_and_the_inverse_gripper_pose() {
             .step(&action([0.3, -0.2, 0.1, 0.0, 0.0, 0.1, -1.0]))
             .unwrap();
         assert!(obs.get("world_pose_in_gripper").is_none());
-        assert!(step.obs.get("world_pose_in_gripper").is_none());
+        assert!(step.observation.get("world_pose_in_gripper").is_none());
         let all = e.all_observations();
         let (p, q) = (get(&all, "robot0_eef_pos"), get(&all, "robot0_eef_quat"));
         let pose = get(&all, "world_pose_in_gripper");
