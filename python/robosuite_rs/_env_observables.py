@@ -17,9 +17,13 @@ Two ways to step:
   value of their key from one native observation pass at that substep.
 
 robosuite's sensors that read other observables' values from ``obs_cache`` (joint
-cos/sin, gripper-to-object vectors and alike) are computed from ``obs_cache`` here too
-whenever those inputs differ from the simulator's current values (corrupted, delayed,
-sampled at another substep or disabled), as robosuite computes them.
+cos/sin, gripper-to-object vectors, the world pose in the gripper frame and the object
+poses relative to it, Wipe's centroid, TwoArmPegInHole's ``peg_to_hole``, ``t`` and ``d``)
+are computed from ``obs_cache`` here too, with robosuite's code, whenever those inputs
+differ from the values the native sensor read (corrupted, delayed, sampled at another
+substep or disabled); robosuite's sensors that write other entries of ``obs_cache``
+(``{obj}_to_{pf}eef_pos`` its relative quaternion, ``wipe_radius`` the centroid,
+``angle`` ``t`` and ``d``) write them here too.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from typing import Any, Callable
 import numpy as np
 
 from .compat import served_macro
+from .utils import transform_utils as T
 from .observables import NO_CORRUPTION, NO_DELAY, NO_FILTER, Observable, ObservableError
 
 ATTRIBUTES = ("sensor", "corrupter", "filter", "delayer", "sampling_rate", "enabled", "active")
@@ -120,6 +125,36 @@ def _same(a: Any, b: Any) -> bool:
 
 
 # --- robosuite's sensors that read other observables from obs_cache --------------------
+class CacheRule:
+    """How robosuite computes one of the env's observables from ``obs_cache``.
+
+    ``keys``: the cache entries it reads; the native value is served when each holds the
+    value the native sensor read (those in ``before``: the previous native observation
+    pass's, as robosuite's relative-pose sensors run before the object poses they read are
+    sampled again; the others: the current pass's), else ``compute(obs_cache)``, robosuite's
+    sensor, which also writes what robosuite's writes into the cache. ``writes``: the cache
+    entries robosuite's sensor writes besides its own, set to the native pass's values when
+    the native value is served. ``feeders``: the observables whose sensors write entries
+    this one reads (the native value assumes they ran just before, in the same pass).
+    ``exact``: ``compute`` gives the native value from the native inputs (robosuite's
+    gripper-frame poses, computed in float32 as robosuite does, do not).
+    """
+
+    __slots__ = ("keys", "before", "compute", "writes", "feeders", "exact")
+
+    def __init__(
+        self,
+        keys: tuple[str, ...],
+        compute: Callable[[dict[str, Any]], Any] | None,
+        before: tuple[str, ...] = (),
+        writes: tuple[str, ...] = (),
+        feeders: tuple[str, ...] = (),
+        exact: bool = True,
+    ) -> None:
+        self.keys, self.compute, self.before = keys, compute, before
+        self.writes, self.feeders, self.exact = writes, feeders, exact
+
+
 def _difference(a: str, b: str) -> Callable[[dict[str, Any]], np.ndarray]:
     def value(cache: dict[str, Any]) -> np.ndarray:
         return cache[a] - cache[b] if a in cache and b in cache else np.zeros(3)
@@ -130,6 +165,51 @@ def _difference(a: str, b: str) -> Callable[[dict[str, Any]], np.ndarray]:
 def _elementwise(fn: Callable[[Any], Any], key: str, size: int) -> Callable[[dict[str, Any]], np.ndarray]:
     def value(cache: dict[str, Any]) -> np.ndarray:
         return fn(cache[key]) if key in cache else np.zeros(size)
+
+    return value
+
+
+def _cached(key: str, default: Callable[[], Any]) -> Callable[[dict[str, Any]], Any]:
+    """robosuite's sensors that return another sensor's cache entry."""
+
+    def value(cache: dict[str, Any]) -> Any:
+        return cache[key] if key in cache else default()
+
+    return value
+
+
+def _world_pose_in_gripper(pos: str, quat: str) -> Callable[[dict[str, Any]], np.ndarray]:
+    """robosuite's ``_get_world_pose_in_gripper_sensor``."""
+
+    def value(cache: dict[str, Any]) -> np.ndarray:
+        if pos in cache and quat in cache:
+            return T.pose_inv(T.pose2mat((cache[pos], cache[quat])))
+        return np.eye(4)
+
+    return value
+
+
+def _rel_obj_eef(obj: str, world_pose: str, quat_key: str) -> Callable[[dict[str, Any]], np.ndarray]:
+    """robosuite's ``_get_rel_obj_eef_sensor``: the object's position in the gripper frame;
+    writes the relative quaternion into the cache."""
+
+    def value(cache: dict[str, Any]) -> np.ndarray:
+        if any(name not in cache for name in (f"{obj}_pos", f"{obj}_quat", world_pose)):
+            return np.zeros(3)
+        obj_pose = T.pose2mat((cache[f"{obj}_pos"], cache[f"{obj}_quat"]))
+        rel_pose = T.pose_in_A_to_pose_in_B(obj_pose, cache[world_pose])
+        rel_pos, rel_quat = T.mat2pose(rel_pose)
+        cache[quat_key] = rel_quat
+        return rel_pos
+
+    return value
+
+
+def _peg_to_hole(body_xpos: Callable[[str], np.ndarray]) -> Callable[[dict[str, Any]], np.ndarray]:
+    """TwoArmPegInHole's ``peg_to_hole``: the cached hole position minus the peg body's."""
+
+    def value(cache: dict[str, Any]) -> np.ndarray:
+        return cache["hole_pos"] - body_xpos("peg_main") if "hole_pos" in cache else np.zeros(3)
 
     return value
 
@@ -149,20 +229,52 @@ _OBJ_EEF = (
 )
 
 
-def cache_rules(specs: list[tuple[str, tuple[int, ...]]]) -> dict[str, tuple[tuple[str, ...], Callable[[dict[str, Any]], Any]]]:
-    """For each of the env's observables that robosuite computes from ``obs_cache``: the
-    keys it reads and robosuite's computation."""
+_WORLD_POSE = re.compile(r"^world_pose_in_(?P<arm>(right_|left_)?)gripper$")
+_REL_POS = re.compile(r"^(?P<obj>.+)_to_robot0_(?P<arm>(right_|left_)?)eef_pos$")
+
+
+def cache_rules(
+    specs: list[tuple[str, tuple[int, ...]]], body_xpos: Callable[[str], np.ndarray] | None = None
+) -> dict[str, CacheRule]:
+    """For each of the env's observables that robosuite computes from ``obs_cache`` (or
+    whose sensor writes other cache entries): its :class:`CacheRule`. ``body_xpos(object)``
+    gives a body's position now (TwoArmPegInHole's peg, ``peg_main``)."""
     names = {name for name, _ in specs}
-    rules: dict[str, tuple[tuple[str, ...], Callable[[dict[str, Any]], Any]]] = {}
+    rules: dict[str, CacheRule] = {}
     for name, shape in specs:
         size = int(np.prod(shape)) if shape else 1
         for suffix, fn in (("_joint_pos_cos", np.cos), ("_joint_pos_sin", np.sin)):
             if name.endswith(suffix):
                 key = name[: -len(suffix)] + "_joint_pos"
                 if key in names:
-                    rules[name] = ((key,), _elementwise(fn, key, size))
+                    rules[name] = CacheRule((key,), _elementwise(fn, key, size))
         if name == "cubeA_to_cubeB" and {"cubeA_pos", "cubeB_pos"} <= names:
-            rules[name] = (("cubeB_pos", "cubeA_pos"), _difference("cubeB_pos", "cubeA_pos"))
+            rules[name] = CacheRule(("cubeB_pos", "cubeA_pos"), _difference("cubeB_pos", "cubeA_pos"))
+        m = _WORLD_POSE.match(name)
+        if m is not None:
+            pos, quat = f"robot0_{m['arm']}eef_pos", f"robot0_{m['arm']}eef_quat"
+            if {pos, quat} <= names:
+                rules[name] = CacheRule((pos, quat), _world_pose_in_gripper(pos, quat), exact=False)
+        m = _REL_POS.match(name)
+        world_pose = f"world_pose_in_{m['arm']}gripper" if m is not None else ""
+        if m is not None and world_pose in names:
+            obj, quat_key = m["obj"], name[: -len("pos")] + "quat"
+            inputs = (f"{obj}_pos", f"{obj}_quat")
+            if set(inputs) <= names and quat_key in names:
+                compute = _rel_obj_eef(obj, world_pose, quat_key)
+                rules[name] = CacheRule((*inputs, world_pose), compute, before=inputs, writes=(quat_key,), exact=False)
+                rules[quat_key] = CacheRule((quat_key,), _cached(quat_key, lambda: np.zeros(4)), feeders=(name,))
+        if name == "wipe_radius" and "wipe_centroid" in names:
+            rules[name] = CacheRule((), None, writes=("wipe_centroid",), exact=False)
+            rules["wipe_centroid"] = CacheRule(
+                ("wipe_centroid",), _cached("wipe_centroid", lambda: np.zeros(3)), feeders=(name,)
+            )
+        if name == "angle" and {"t", "d"} <= names and "hole_pos" in names:
+            rules[name] = CacheRule((), None, writes=("t", "d"), exact=False)
+            for key in ("t", "d"):
+                rules[key] = CacheRule((key,), _cached(key, lambda: 0.0), feeders=(name,))
+        if name == "peg_to_hole" and "hole_pos" in names and body_xpos is not None:
+            rules[name] = CacheRule(("hole_pos",), _peg_to_hole(body_xpos))
         for pattern, obj_key, robot_group in _OBJ_EEF:
             m = pattern.match(name)
             if m is None:
@@ -178,7 +290,7 @@ def cache_rules(specs: list[tuple[str, tuple[int, ...]]]) -> dict[str, tuple[tup
                 eefs = [f"robot{i}_{arm}eef_pos"] + ([f"robot0_{('right_', 'left_')[i]}eef_pos"] if not arm else [])
             eef = next((e for e in eefs if e in names), None)
             if eef is not None and obj in names:
-                rules[name] = ((obj, eef), _difference(obj, eef))
+                rules[name] = CacheRule((obj, eef), _difference(obj, eef))
             break
     return rules
 
@@ -241,7 +353,17 @@ class EnvObservables:
             o = EnvObservable._prebuilt(name, s, self.rate, tuple(shape), bool(enabled), bool(active))
             o._owner = weakref.ref(self)
             self.map[name] = o
-        self.rules = cache_rules([(name, self.shapes[name]) for name in self.sensors])
+        me = weakref.ref(self)  # no reference cycle through the rules
+        self.cache_rules = cache_rules(
+            [(name, self.shapes[name]) for name in self.sensors], lambda obj: me()._body_xpos(obj)
+        )
+        # (keys, compute) of the rules whose computation gives the native value from the
+        # native inputs
+        self.rules = {n: (r.keys, r.compute) for n, r in self.cache_rules.items() if r.exact}
+        # Rules reading values of the previous native pass (relative poses): that pass's
+        # values are kept (``_prev``) when the next one is made.
+        self._needs_prev = any(rule.before for rule in self.cache_rules.values())
+        self._prev: Any = None
         self.cache: dict[str, Any] = {}
         self.added: set[str] = set()
         # fast: see the module docstring; while it holds the Observable objects' clocks and
@@ -274,20 +396,40 @@ class EnvObservables:
         update one pass per substep (made on first use), else the last observation."""
         if self._in_step:
             if self._pass is None:
+                self._prev = self.native.all_observations() if self._needs_prev else None
                 self._pass = self._complete(self.native.update_observations(), self._enabled_builtins())
             return self._pass
         return self.native.observation_spec()
 
     def builtin_value(self, name: str, obs_cache: dict[str, Any]) -> Any:
         values = self.pass_values()
-        rule = self.rules.get(name)
+        rule = self.cache_rules.get(name)
         if rule is not None:
-            keys, compute = rule
-            if not all(k in obs_cache and _same(obs_cache[k], values.get(k)) for k in keys):
-                return compute(obs_cache)
+            if not self._reads_native_inputs(rule, obs_cache, values):
+                return rule.compute(obs_cache)
+            if rule.writes:
+                values = self._complete(values, list(rule.writes))
+                for k in rule.writes:
+                    obs_cache[k] = np.array(values[k])
         if name not in values:
             values = self._complete(values, [name])
         return np.array(values[name])
+
+    def _reads_native_inputs(self, rule: CacheRule, obs_cache: dict[str, Any], values: Any) -> bool:
+        """Whether ``obs_cache`` holds the inputs the native sensor read (see
+        :class:`CacheRule`)."""
+        for k in rule.keys:
+            ref = self._prev if k in rule.before else values
+            if k not in obs_cache or ref is None or not _same(obs_cache[k], ref.get(k)):
+                return False
+        return True
+
+    def _body_xpos(self, body: str) -> np.ndarray:
+        """The current position of body ``body`` (as the simulator has it now)."""
+        import mujoco
+
+        model, data = self.native.sim_objects()
+        return np.array(data.xpos[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)])
 
     # --- clocks -------------------------------------------------------------------------
     def _steady(self) -> tuple[float, bool]:
@@ -328,8 +470,8 @@ class EnvObservables:
             ):
                 return False
             if o._enabled:
-                rule = self.rules.get(n)
-                if rule is not None and not all(self.map[k]._enabled for k in rule[0]):
+                rule = self.cache_rules.get(n)
+                if rule is not None and not all(self.map[k]._enabled for k in (*rule.keys, *rule.feeders)):
                     return False
         return True
 
@@ -364,7 +506,7 @@ class EnvObservables:
         """robosuite's ``_update_observables(force=True)``: every enabled observable
         samples now (``values``: the native observation pass to read, if one was just
         made)."""
-        self._in_step, self._pass = True, None
+        self._in_step, self._pass, self._prev = True, None, None
         if values is not None:
             self._pass = self._complete(values, self._enabled_builtins())
         try:

@@ -269,6 +269,7 @@ pub fn camera_specs(cameras: &[CameraObs]) -> Vec<ObsSpec> {
             dtype,
             modality: "image".to_owned(),
             needs_object_obs: false,
+            active: true,
         };
         out.push(spec(format!("{}_image", c.name), 3, DType::U8));
         if c.depth {

@@ -453,8 +453,12 @@ impl RobosuiteEnv {
         obs_specs.extend(task_specs);
         let use_object_obs = config.use_object_obs;
         let exists = |s: &ObsSpec| use_object_obs || !s.needs_object_obs;
-        let obs_flags = obs_specs.iter().map(|s| (exists(s), exists(s))).collect();
-        let layout = ObsLayout::new(obs_specs.clone(), exists);
+        // Enabled when it exists; active when it exists and robosuite makes it active.
+        let obs_flags = obs_specs
+            .iter()
+            .map(|s| (exists(s), exists(s) && s.active))
+            .collect();
+        let layout = ObsLayout::new(obs_specs.clone(), |s| exists(s) && s.active);
         let obs_space = layout.space()?;
 
         let mut action_splits = Vec::new();

@@ -123,6 +123,24 @@ pub fn quat2mat_f32(q_xyzw: [f64; 4]) -> Matrix3<f64> {
     )
 }
 
+/// robosuite's `T.pose_inv(T.pose2mat((pos, quat)))` for an `xyzw` quaternion: the inverse
+/// of the pose, as a row-major 4x4 float64 matrix. As robosuite: `pose2mat` rounds the
+/// rotation ([`quat2mat_f32`]) and the position to float32; `pose_inv` transposes the
+/// rotation and computes `-Rᵀ p` in float64.
+pub fn pose_inv_of(pos: [f64; 3], q_xyzw: [f64; 4]) -> [f64; 16] {
+    let r = quat2mat_f32(q_xyzw);
+    let p = pos.map(|v| f64::from(v as f32));
+    let mut out = [0.0; 16];
+    for i in 0..3 {
+        // Row i of Rᵀ: column i of the float32 rotation.
+        let row = [0, 1, 2].map(|k| f64::from(r[(k, i)] as f32));
+        out[4 * i..4 * i + 3].copy_from_slice(&row);
+        out[4 * i + 3] = -(row[0] * p[0] + row[1] * p[1] + row[2] * p[2]);
+    }
+    out[15] = 1.0;
+    out
+}
+
 /// A rotation matrix to an `xyzw` unit quaternion with `w >= 0` (robosuite's `mat2quat`
 /// convention), computed in float64.
 pub fn mat2quat(m: &Matrix3<f64>) -> [f64; 4] {

@@ -30,6 +30,10 @@ pub struct ObsSpec {
     /// and task observables robosuite creates inside its `use_object_obs` branch, such as
     /// Wipe's `robot0_contact`).
     pub needs_object_obs: bool,
+    /// Whether the env returns it in observations as made (robosuite's `active`; `false`
+    /// for robosuite's `Observable(..., active=False)`, such as `world_pose_in_gripper`,
+    /// which is computed and cached but left out of the observation dict).
+    pub active: bool,
 }
 
 impl ObsSpec {
@@ -87,6 +91,7 @@ impl<C> Observable<C> {
                 dtype,
                 modality: modality.to_owned(),
                 needs_object_obs: modality == "object",
+                active: true,
             },
             read: Arc::new(read),
         }
@@ -97,6 +102,14 @@ impl<C> Observable<C> {
     #[must_use]
     pub fn only_with_object_obs(mut self) -> Self {
         self.spec.needs_object_obs = true;
+        self
+    }
+
+    /// The observable, inactive as made (robosuite's `active=False`): enabled and read in
+    /// every observation pass, but not in the observation dict until activated.
+    #[must_use]
+    pub fn inactive(mut self) -> Self {
+        self.spec.active = false;
         self
     }
 
@@ -385,6 +398,7 @@ mod tests {
             dtype,
             modality: modality.into(),
             needs_object_obs: modality == "object",
+            active: true,
         }
     }
 

@@ -3,7 +3,7 @@
 
 use super::RewardConfig;
 use crate::assets::Assets;
-use crate::math::{conj, mat_from_row_major, mat2quat, quat_mul, quat_rotate, xyzw};
+use crate::math::{conj, mat_from_row_major, mat2quat, pose_inv_of, quat_mul, quat_rotate, xyzw};
 use crate::models::objects::{CustomMaterial, ObjectModel};
 use crate::observables::Observable;
 use crate::robots::{Gripper, Robot};
@@ -286,6 +286,28 @@ impl ObjectSensors {
             rel_q = rel_q.map(|v| -v);
         }
         (rel_p, xyzw(rel_q))
+    }
+
+    /// robosuite's `world_pose_in_gripper`: the world's pose in the gripper frame (grip-site
+    /// position, hand-body orientation), `T.pose_inv(T.pose2mat((eef_pos, eef_quat)))`.
+    fn world_pose(&self, sim: &Sim) -> [f64; 16] {
+        let d = sim.data();
+        pose_inv_of(d.site_xpos()[self.eef_site], xyzw(d.xquat()[self.eef_body]))
+    }
+
+    /// robosuite's `world_pose_in_gripper` observable (a 4x4 float64 matrix, modality
+    /// `object`), enabled and inactive as robosuite makes it: read in every observation
+    /// pass (robosuite's relative-pose sensors read it from the observation cache) but not
+    /// in the observation dict. `get` finds the sensors in the task.
+    pub fn world_pose_observable<T: 'static>(get: fn(&T) -> &ObjectSensors) -> Observable<T> {
+        Observable::new(
+            "world_pose_in_gripper",
+            &[4, 4],
+            DType::F64,
+            "object",
+            move |t: &T, sim, out| out.copy_from_slice(&get(t).world_pose(sim)),
+        )
+        .inactive()
     }
 
     /// The four observables of object `i` named `name`, in robosuite's order:

@@ -1,7 +1,7 @@
 //! robosuite's `NutAssembly` family: fit the square nut on the square peg and the round nut
 //! on the round peg (`environments/manipulation/nut_assembly.py`).
 
-use super::common::{ObjectMode, dist, eef_pos};
+use super::common::{ObjectMode, ObjectSensors, dist, eef_pos};
 use super::lift::place_single_robot;
 use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
@@ -230,12 +230,18 @@ impl TaskSpec for NutAssemblySpec {
             table: body_id(model, "table")?,
             observables: Vec::new(),
         };
-        task.observables = task.nuts.observables(
-            |t: &NutAssembly| t.nuts.sensors(),
-            |t: &NutAssembly| t.nuts.active(),
-            &NUTS,
-            "nut",
-        );
+        // robosuite's order: the inactive world pose first, then the nuts'.
+        task.observables =
+            std::iter::once(ObjectSensors::world_pose_observable(|t: &NutAssembly| {
+                t.nuts.sensors()
+            }))
+            .chain(task.nuts.observables(
+                |t: &NutAssembly| t.nuts.sensors(),
+                |t: &NutAssembly| t.nuts.active(),
+                &NUTS,
+                "nut",
+            ))
+            .collect();
         Ok(Box::new(task))
     }
 }

@@ -1,7 +1,7 @@
 //! robosuite's `PickPlace` family: move grocery objects from one bin into their quadrant
 //! of the other (`environments/manipulation/pick_place.py`).
 
-use super::common::{ObjectMode, dist, eef_pos};
+use super::common::{ObjectMode, ObjectSensors, dist, eef_pos};
 use super::lift::place_single_robot;
 use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
@@ -330,12 +330,18 @@ impl TaskSpec for PickPlaceSpec {
             bins: [body_id(model, "bin1")?, body_id(model, "bin2")?],
             observables: Vec::new(),
         };
-        task.observables = task.objects.observables(
-            |t: &PickPlace| t.objects.sensors(),
-            |t: &PickPlace| t.objects.active(),
-            &PICK_PLACE_OBJECTS,
-            "obj",
-        );
+        // robosuite's order: the inactive world pose first, then the objects'.
+        task.observables =
+            std::iter::once(ObjectSensors::world_pose_observable(|t: &PickPlace| {
+                t.objects.sensors()
+            }))
+            .chain(task.objects.observables(
+                |t: &PickPlace| t.objects.sensors(),
+                |t: &PickPlace| t.objects.active(),
+                &PICK_PLACE_OBJECTS,
+                "obj",
+            ))
+            .collect();
         Ok(Box::new(task))
     }
 }

@@ -216,7 +216,10 @@ impl TaskSpec for ToolHangSpec {
             ),
             observables: Vec::new(),
         };
-        let mut observables = Vec::new();
+        // robosuite's order: the inactive world pose first, then the objects'.
+        let mut observables = vec![ObjectSensors::world_pose_observable(|t: &ToolHang| {
+            &t.sensors
+        })];
         for (i, name) in ["base", "frame", "tool"].iter().enumerate() {
             observables.extend(ObjectSensors::observables(
                 |t: &ToolHang| &t.sensors,

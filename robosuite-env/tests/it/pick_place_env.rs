@@ -274,3 +274,73 @@ fn the_mujoco_arena_suffices_for_long_random_rollouts() {
         assert!(used < reserved / 4, "{name}: {used} of {reserved} bytes");
     }
 }
+
+/// robosuite's `world_pose_in_gripper` (PickPlace, NutAssembly, ToolHang): the first task
+/// observable, a 4x4 float64 `object` observable, enabled and inactive; its value (in every
+/// observation pass) is the inverse of the gripper pose `(eef_pos, eef_quat)`.
+#[test]
+fn world_pose_in_gripper_is_enabled_inactive_and_the_inverse_gripper_pose() {
+    use robosuite_env::ObservableFlag;
+    for task in ["PickPlaceCan", "NutAssemblyRound", "ToolHang"] {
+        let mut e = env(task, EnvConfig::default());
+        let infos = e.observables();
+        let first_task = infos
+            .iter()
+            .position(|o| !o.spec.key.starts_with("robot0_"))
+            .unwrap();
+        let o = &infos[first_task];
+        assert_eq!(o.spec.key, "world_pose_in_gripper", "{task}");
+        assert_eq!(
+            (o.spec.shape.as_slice(), o.spec.modality.as_str()),
+            (&[4, 4][..], "object")
+        );
+        assert!(o.enabled && !o.active, "{task}");
+        let (obs, _) = e.reset(Some(1), None).unwrap();
+        assert!(
+            !e.observation_keys()
+                .iter()
+                .any(|k| k.starts_with("world_pose"))
+        );
+        let step = e
+            .step(&action([0.3, -0.2, 0.1, 0.0, 0.0, 0.1, -1.0]))
+            .unwrap();
+        assert!(obs.get("world_pose_in_gripper").is_none());
+        assert!(step.observation.get("world_pose_in_gripper").is_none());
+        let all = e.all_observations();
+        let (p, q) = (get(&all, "robot0_eef_pos"), get(&all, "robot0_eef_quat"));
+        let pose = get(&all, "world_pose_in_gripper");
+        // R from the xyzw quaternion; the pose is [Rᵀ, -Rᵀp; 0 1] (float32-rounded as robosuite)
+        let (x, y, z, w) = (q[0], q[1], q[2], q[3]);
+        let r = [
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - z * w),
+                2.0 * (x * z + y * w),
+            ],
+            [
+                2.0 * (x * y + z * w),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - x * w),
+            ],
+            [
+                2.0 * (x * z - y * w),
+                2.0 * (y * z + x * w),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
+        ];
+        for i in 0..3 {
+            let t = -(0..3).map(|k| r[k][i] * p[k]).sum::<f64>();
+            for j in 0..3 {
+                assert!(
+                    (pose[4 * i + j] - r[j][i]).abs() < 1e-6,
+                    "{task} R[{i}][{j}]"
+                );
+            }
+            assert!((pose[4 * i + 3] - t).abs() < 1e-6, "{task} t[{i}]");
+        }
+        assert_eq!(pose[12..], [0.0, 0.0, 0.0, 1.0]);
+        e.modify_observable("world_pose_in_gripper", ObservableFlag::Active, true)
+            .unwrap();
+        assert_eq!(get(&e.observation(), "world_pose_in_gripper"), pose);
+    }
+}
