@@ -1,7 +1,7 @@
 """Records robosuite 1.5.2's scenes with each fixed base (`base_types`) on the tasks that
 honour the argument (robosuite 1.5.2's Lift and Wipe pass "default" whatever is given):
 body names and counts, geom count, the robot base's position and the total mass, for
-robosuite-env/tests/task_options.rs.
+robosuite-env/tests/it/task_options.rs.
 
     .bench-venv/robosuite/bin/python scripts/record_bases.py
 """

@@ -1,5 +1,5 @@
 """Records robosuite 1.5.2's task constructor arguments (those beyond its common env
-arguments) with their defaults, for robosuite-env/tests/task_options.rs.
+arguments) with their defaults, for robosuite-env/tests/it/task_options.rs.
 
 Run with robosuite 1.5.2 installed (the scratch venv of docs/fidelity.md):
 
