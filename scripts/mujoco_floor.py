@@ -19,6 +19,9 @@ import json
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fixture_json  # noqa: E402  (scripts/fixture_json.py: the fixtures' layout)
+
 os.environ.setdefault("MUJOCO_GL", "disable")
 if os.environ.get("PYTHONHASHSEED") != "0":
     # As record_robosuite.py: robosuite's single-object mode 1 draws from a set of names.
@@ -94,9 +97,7 @@ def main():
         for i, r in enumerate(fixture["rollouts"]):
             r["floor"] = floor(fixture, i)
             print(f"{os.path.basename(path)} {r['kind']}: {r['floor']}")
-        with open(path, "w") as f:
-            json.dump(fixture, f, separators=(",", ":"))
-            f.write("\n")
+        fixture_json.dump(fixture, path)
 
 
 if __name__ == "__main__":

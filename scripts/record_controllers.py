@@ -44,6 +44,9 @@ import json
 import os
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fixture_json  # noqa: E402  (scripts/fixture_json.py: the fixtures' layout)
+
 os.environ.setdefault("MUJOCO_GL", "disable")
 
 import mujoco  # noqa: E402
@@ -309,9 +312,7 @@ def record(robot, out):
             "OSC_POSE linear base": zero_action_drift(robot, osc_linear),
         }
     path = os.path.join(out, f"{robot}.json")
-    with open(path, "w") as f:
-        json.dump(data, f, separators=(",", ":"))
-        f.write("\n")
+    fixture_json.dump(data, path)
     print(f"{robot}: {len(data['cases'])} cases -> {path} ({os.path.getsize(path) // 1024} KiB)")
 
 
@@ -335,9 +336,7 @@ def floor(robot, out):
             for k in ("joint_pos", "eef_pos", "gripper_qpos")
         }
         case["floor_mujoco"] = mujoco.__version__
-    with open(path, "w") as f:
-        json.dump(data, f, separators=(",", ":"))
-        f.write("\n")
+    fixture_json.dump(data, path)
     worst = max(max(c["floor"].values()) for c in data["cases"])
     print(f"{robot}: floors written (largest {worst:.2e}) -> {path}")
 

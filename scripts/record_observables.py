@@ -32,6 +32,10 @@ import io
 import json
 import math
 import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fixture_json  # noqa: E402  (scripts/fixture_json.py: the fixtures' layout)
 
 os.environ.setdefault("MUJOCO_GL", "disable")
 
@@ -159,9 +163,7 @@ def main():
         "records": records,
     }
     os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    with open(args.out, "w") as f:
-        json.dump(fixture, f, separators=(",", ":"))
-        f.write("\n")
+    fixture_json.dump(fixture, args.out)
     print(f"wrote {args.out}: {len(records)} operations, warnings {sum(r['warnings'] for r in records)}")
 
 

@@ -17,9 +17,11 @@ Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
 """
 import argparse
-import json
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fixture_json  # noqa: E402  (scripts/fixture_json.py: the fixtures' layout)
 
 os.environ.setdefault("MUJOCO_GL", "disable")
 if os.environ.get("PYTHONHASHSEED") != "0":
@@ -787,9 +789,7 @@ def record(fixture, robot, out, resets):
         data["rollouts"].append(r)
     stem = fixture if fixture in SETUPS or robot == "Panda" else f"{task}-{robot}"
     path = os.path.join(out, f"{stem}.json")
-    with open(path, "w") as f:
-        json.dump(data, f, separators=(",", ":"))
-        f.write("\n")
+    fixture_json.dump(data, path)
     n = sum(len(r["steps"]) for r in data["rollouts"])
     print(f"{stem}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
 

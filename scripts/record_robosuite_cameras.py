@@ -13,9 +13,11 @@ shape and dtype; GymWrapper's default keys; and both cameras' RGB frames (hex of
 bytes) and depth frames (hex of the little-endian float32 bytes), as robosuite returns them
 (OpenGL row order, raw depth in [0, 1]).
 """
-import json
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fixture_json  # noqa: E402  (scripts/fixture_json.py: the fixtures' layout)
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
@@ -62,8 +64,7 @@ def main():
         "gym_default_keys": list(gym.keys),
         "frames": frames,
     }
-    with open(out, "w") as f:
-        json.dump(record, f)
+    fixture_json.dump(record, out)
     print(f"wrote {out} ({os.path.getsize(out) // 1024} KiB)")
 
 

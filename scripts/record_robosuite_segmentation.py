@@ -10,9 +10,11 @@ and `class` segmentations of each; the cube size and the state [time, qpos, qvel
 reset; robosuite's instance and class names in id order; and each segmentation frame as
 the hex of its little-endian int16 values (OpenGL row order, as robosuite returns them).
 """
-import json
 import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fixture_json  # noqa: E402  (scripts/fixture_json.py: the fixtures' layout)
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
@@ -58,8 +60,7 @@ def main():
         "classes": list(env.model.classes_to_ids),
         "frames": frames,
     }
-    with open(out, "w") as f:
-        json.dump(record, f)
+    fixture_json.dump(record, out)
     print(f"wrote {out} ({os.path.getsize(out) // 1024} KiB)")
 
 
