@@ -2,9 +2,8 @@
 //! single environment would with the same seed and actions, whatever batches it lands in;
 //! NextStep autoreset; typed errors for misuse; panics are errors, not hangs.
 
-
-use adapters::{ThreadEnvPool, ThreadOptions};
 use crate::common::{WalkEnv, a32};
+use adapters::{ThreadEnvPool, ThreadOptions};
 use gym_core::{Env, Error, Info};
 use ndarray::{ArrayD, Axis, IxDyn};
 use std::collections::HashSet;

@@ -1,12 +1,11 @@
 //! Wrapper stacks: composition through `WrapperExt`, typed stacks as plain values, boxing
 //! into `BoxedEnv`, and wrappers over boxed environments (toy environments only).
 
-
+use crate::common::{CountEnv, DictEnv, WalkEnv, a32, a64};
 use adapters::{
     FrameStackObservation, GymWrapper, NormalizeObservation, Padding, RecordEpisodeStatistics,
     TimeLimit, WrapperExt,
 };
-use crate::common::{CountEnv, DictEnv, WalkEnv, a32, a64};
 use gym_core::spaces::{AnySpace, BoxSpace};
 use gym_core::{
     BoxedEnv, DType, DynSpace, Env, EnvExt, Error, Flatten, IntoBoxedEnv, Space, Value, Wrapper,

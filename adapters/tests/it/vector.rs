@@ -1,10 +1,9 @@
 //! Vector environments: Gymnasium's autoreset traces, masks, seeds, infos, equivalence with
 //! single environments, and failure handling (toy environments only).
 
-
+use crate::common::{CountEnv, DictEnv, DiscreteEnv, WalkEnv, a32};
 use adapters::vector::VectorInfoValue;
 use adapters::{AutoresetMode, BatchSpace, Seeds, SyncVectorEnv, ThreadVectorEnv, VectorEnv};
-use crate::common::{CountEnv, DictEnv, DiscreteEnv, WalkEnv, a32};
 use gym_core::{ArrayValue, Env, Error, Info, InfoValue, Space, Value};
 use ndarray::{ArrayD, Axis, IxDyn, arr1, arr2};
 

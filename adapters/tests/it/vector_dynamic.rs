@@ -3,11 +3,10 @@
 //! thread counts and uneven step costs (so that threads take each other's envs), through
 //! typed and boxed (`DynEnv::step_into`) environments alike.
 
-
+use crate::common::WalkEnv;
 use adapters::{
     AutoresetMode, BatchSpace, SyncVectorEnv, ThreadOptions, ThreadVectorEnv, VectorEnv, WrapperExt,
 };
-use crate::common::WalkEnv;
 use gym_core::{Env, EnvRng, IntoBoxedEnv, Space, Value, rng_from_seed};
 use ndarray::{ArrayD, Axis};
 

@@ -2,9 +2,8 @@
 //! exactly and is checked as a whole before any environment steps, so a rejected call
 //! changes nothing; a forked child gets a clear error, never a hang.
 
-
-use adapters::{SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv};
 use crate::common::WalkEnv;
+use adapters::{SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv};
 use gym_core::Error;
 use ndarray::{Array2, ArrayD};
 use std::time::{Duration, Instant};

@@ -3,7 +3,6 @@
 //! robosuite's action layout, and bad configs are typed errors naming the key, raised when
 //! the env is made.
 
-
 use crate::common::get;
 use gym_core::{Env, Error, Space};
 use ndarray::{Array1, ArrayD};

@@ -10,7 +10,6 @@
 //! by up to 0.12 rad, which moves the arm by a few 1e-5), that floor plus 10 %. The action
 //! bounds equal robosuite's `action_spec`.
 
-
 use crate::common::fixtures::values;
 use gym_core::Env;
 use ndarray::{Array1, ArrayD};

@@ -1,7 +1,6 @@
 //! Door: observation layout, the door placed through the model, reward and success on
 //! hand-set states, the latch, a scripted policy that opens the door, state round trips.
 
-
 use crate::common::{
     action, assert_observation_layout, assert_snapshot_replays, finger_yaw, get, wrap_half,
 };

@@ -1,6 +1,5 @@
 //! Lift: observation layout, seeding, episode mechanics, reward / success, state, errors.
 
-
 use crate::common::{action, get, zero};
 use gym_core::{DType, Env, Error, Info, Space, Value};
 use robosuite_env::sim::{Sim, check_mujoco_version};

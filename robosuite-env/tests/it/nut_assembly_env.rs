@@ -1,7 +1,6 @@
 //! The NutAssembly family: observation layouts, placement, single-object modes, hand-set
 //! reward / success, a scripted policy, task states and the MuJoCo arena.
 
-
 use crate::common::object_tasks::{
     PlacePolicy, arena_use, assert_spread, assert_task_states_rejected, assert_variant_layouts,
     body_pos, probe_actions, random_episodes, set_free_joint,

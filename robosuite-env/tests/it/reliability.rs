@@ -2,7 +2,6 @@
 //! steps, divergence, bad states and mis-sized sensors give typed errors, and every
 //! rejected call leaves the env as it was.
 
-
 use crate::common::zero;
 use gym_core::{Env, Error};
 use robosuite_env::config::MAX_SUBSTEPS;

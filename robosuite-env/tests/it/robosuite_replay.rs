@@ -11,7 +11,6 @@
 //! `floor`, `scripts/mujoco_floor.py`), the tolerance is that floor plus 10 %: the part of
 //! the difference MuJoCo's version causes is not robosuite-rs's to remove.
 
-
 use crate::common::fixtures::{env_for, load, recorded_tasks, replay};
 use gym_core::Env;
 use mujoco_rs::wrappers::mj_model::MjtObjBase as Obj;

@@ -1,6 +1,5 @@
 //! A scripted policy (reach above the cube, descend, close, lift) solves Lift.
 
-
 use gym_core::Env;
 use robosuite_env::{EnvConfig, make_with};
 

@@ -1,7 +1,6 @@
 //! Stack: observation layout, placement, reward and success on hand-set states, a scripted
 //! policy, state round trips.
 
-
 use crate::common::{
     action, assert_observation_layout, assert_snapshot_replays, dist3, finger_yaw, get, move_to,
     wrap_to_quarter, yaw_of,

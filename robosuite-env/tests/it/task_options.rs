@@ -4,7 +4,6 @@
 //! ones are typed errors. `placement_initializer`, `lite_physics`, `base_types` (scenes
 //! recorded by `scripts/record_bases.py`) and the env step taken one substep at a time.
 
-
 use crate::common::get;
 use gym_core::{Env, Error};
 use ndarray::ArrayD;

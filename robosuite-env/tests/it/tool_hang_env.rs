@@ -1,7 +1,6 @@
 //! ToolHang: observation layout, placement, the frame and tool checks on hand-set states,
 //! reward, task state, a scripted grasp of the tool, and scenes supplied as XML.
 
-
 use crate::common::{action, get, wrap_half, zero};
 use gym_core::{DType, Env, Error, Space, Value};
 use robosuite_env::sim::{body_id, geom_id, site_id};

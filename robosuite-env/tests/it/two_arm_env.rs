@@ -2,7 +2,6 @@
 //! against robosuite's probes, robot set-ups (`env_configuration`, mixed pairs, per-arm
 //! controllers), hand-set states, per-reset sizes, scripted success and bad input.
 
-
 use crate::common::fixtures::{config_for, load};
 use crate::common::get;
 use gym_core::{DType, Env, Error, Space, Value};

@@ -1,7 +1,6 @@
 //! Wipe: the wiping tool, the marker walk, observations (and their one-step lag), reward,
 //! success, early termination, configuration and state round trips.
 
-
 use crate::common::fixtures::{env_for, load, values};
 use crate::common::{assert_observation_layout, assert_snapshot_replays, get};
 use gym_core::{DType, Env, Error};
