@@ -15,9 +15,8 @@ use super::config::{IkConfig, join};
 use super::joint_position::JointTracker;
 use super::{ArmBinding, ArmController, Timing, check_gains, check_state};
 use crate::math::{PsdPinv, axisangle2quat, clip_rotation, clip_translation, quat2mat_f32};
-use crate::sim::Sim;
+use crate::sim::{Sim, mju};
 use gym_core::{Error, Result};
-use mujoco_rs::mujoco_c::{mju_mat2Quat, mju_quat2Vel};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector3, Vector6};
 
 /// robosuite's gains on the position and orientation error (`Kpos`, `Kori`).
@@ -148,13 +147,7 @@ impl ArmController for InverseKinematics {
         let drot = quat2mat_f32(rot);
         // The twist: mju_mat2Quat of the (row-major) rotation, then mju_quat2Vel.
         let mat: [f64; 9] = std::array::from_fn(|i| drot[(i / 3, i % 3)]);
-        let mut quat = [0.0; 4];
-        let mut vel = [0.0; 3];
-        // SAFETY: fixed-size buffers of the sizes MuJoCo writes and reads.
-        unsafe {
-            mju_mat2Quat(&mut quat, &mat);
-            mju_quat2Vel(&mut vel, &quat, 1.0);
-        }
+        let vel = mju::quat2vel(&mju::mat2quat(&mat), 1.0);
         let twist = Vector6::new(
             K_TWIST * dpos[0] / self.dt,
             K_TWIST * dpos[1] / self.dt,

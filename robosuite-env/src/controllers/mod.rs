@@ -3,7 +3,9 @@
 //! `OSC_POSITION` ([`Osc`]), `IK_POSE` ([`InverseKinematics`]), `JOINT_POSITION`
 //! ([`JointPosition`]), `JOINT_VELOCITY` ([`JointVelocity`]) and `JOINT_TORQUE`
 //! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), and robosuite's
-//! controller configurations ([`config`]).
+//! controller configurations ([`config`]). The arm controller types are the entries of
+//! one table ([`table::ARM_CONTROLLERS`]), from which their list, config parsing and
+//! building derive.
 //!
 //! Per env step an arm controller takes its slice of the action on the first substep
 //! ([`ArmController::set_goal`]) and computes joint torques on every substep
@@ -19,6 +21,7 @@ mod joint_torque;
 mod joint_velocity;
 mod osc;
 mod state;
+pub mod table;
 
 pub use config::{ArmControllerConfig, ArmPartConfig, CompositeControllerConfig, ControllerConfig};
 pub use gripper::GripController;
@@ -118,18 +121,7 @@ pub fn build_arm_controller(
     timing: Timing,
     path: &str,
 ) -> Result<Box<dyn ArmController>> {
-    Ok(match config {
-        ArmControllerConfig::OscPose(c) => Box::new(Osc::new(c, true, bind, timing, path)?),
-        ArmControllerConfig::OscPosition(c) => Box::new(Osc::new(c, false, bind, timing, path)?),
-        ArmControllerConfig::IkPose(c) => Box::new(InverseKinematics::new(c, bind, timing, path)?),
-        ArmControllerConfig::JointPosition(c) => {
-            Box::new(JointPosition::new(c, bind, timing, path)?)
-        }
-        ArmControllerConfig::JointVelocity(c) => {
-            Box::new(JointVelocity::new(c, bind, timing, path)?)
-        }
-        ArmControllerConfig::JointTorque(c) => Box::new(JointTorque::new(c, bind, timing, path)?),
-    })
+    (table::entry_of(config).build)(config, bind, timing, path)
 }
 
 /// robosuite's `scale_action`: inputs clipped to `[input_min, input_max]` and mapped

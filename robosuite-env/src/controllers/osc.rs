@@ -14,7 +14,6 @@ use crate::math::{
 };
 use crate::sim::Sim;
 use gym_core::{Error, Result};
-use mujoco_rs::mujoco_c::mj_jacSite;
 use nalgebra::{Cholesky, DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
 use std::f64::consts::PI;
 
@@ -338,18 +337,11 @@ impl Osc {
     /// `get_site_xvelp/xvelr` of `{robot}{arm}_center`), read live.
     fn base_velocity(&mut self, sim: &Sim) -> (Vector3<f64>, Vector3<f64>) {
         let nv = self.arm.binding().nv;
-        let (m_ptr, d_ptr) = sim.raw();
-        let site = i32::try_from(self.arm.binding().base_site).unwrap_or(i32::MAX);
-        // SAFETY: m/d are live; the buffers hold 3·nv values each.
-        unsafe {
-            mj_jacSite(
-                m_ptr,
-                d_ptr,
-                self.base_jacp.as_mut_ptr(),
-                self.base_jacr.as_mut_ptr(),
-                site,
-            );
-        }
+        sim.data().jac_site_into(
+            self.arm.binding().base_site,
+            Some(&mut self.base_jacp),
+            Some(&mut self.base_jacr),
+        );
         let qvel = sim.data().qvel();
         let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
         for r in 0..3 {

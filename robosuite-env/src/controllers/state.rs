@@ -10,7 +10,6 @@
 use super::ArmBinding;
 use crate::math::mat_from_row_major;
 use crate::sim::Sim;
-use mujoco_rs::mujoco_c::{mj_fullM, mj_jacSite};
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 /// What a controller reads besides the joint positions and velocities.
@@ -94,19 +93,8 @@ impl ArmState {
             self.qd[i] = qvel[v];
         }
         let nv = self.bind.nv;
-        let (m_ptr, d_ptr) = sim.raw();
         if self.needs.site {
-            let site = i32::try_from(self.bind.site).unwrap_or(i32::MAX);
-            // SAFETY: m/d are live; the Jacobian buffers hold 3·nv values each.
-            unsafe {
-                mj_jacSite(
-                    m_ptr,
-                    d_ptr,
-                    self.jacp.as_mut_ptr(),
-                    self.jacr.as_mut_ptr(),
-                    site,
-                );
-            }
+            d.jac_site_into(self.bind.site, Some(&mut self.jacp), Some(&mut self.jacr));
             self.pos = Vector3::from(d.site_xpos()[self.bind.site]);
             self.ori = mat_from_row_major(&d.site_xmat()[self.bind.site]);
             for r in 0..3 {
@@ -124,8 +112,8 @@ impl ArmState {
             }
         }
         if self.needs.mass {
-            // SAFETY: m/d are live; full_m holds nv·nv values.
-            unsafe { mj_fullM(m_ptr, d_ptr, self.full_m.as_mut_ptr()) };
+            d.full_m(&mut self.full_m)
+                .expect("the buffer is sized for the model's nv");
             for (r, &dr) in self.bind.dofs.iter().enumerate() {
                 for (c, &dc) in self.bind.dofs.iter().enumerate() {
                     self.mass[(r, c)] = self.full_m[dr * nv + dc];

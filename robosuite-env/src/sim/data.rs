@@ -259,26 +259,45 @@ impl Data {
     /// # Panics
     /// When `site` is not a site id of the model.
     pub fn jac_site(&self, jacp: bool, jacr: bool, site: usize) -> (Vec<f64>, Vec<f64>) {
+        let nv = self.model.ffi().nv.max(0) as usize;
+        let mut p = if jacp { vec![0.0; 3 * nv] } else { Vec::new() };
+        let mut r = if jacr { vec![0.0; 3 * nv] } else { Vec::new() };
+        self.jac_site_into(site, jacp.then_some(&mut p[..]), jacr.then_some(&mut r[..]));
+        (p, r)
+    }
+
+    /// The `3 × nv` translational (`jacp`) and rotational (`jacr`) Jacobians of site
+    /// `site` (`mj_jacSite`), row-major, into the buffers given (a part given as `None` is
+    /// not computed), without allocating.
+    ///
+    /// # Panics
+    /// When `site` is not a site id of the model, or a buffer holds fewer than `3·nv`
+    /// values.
+    pub fn jac_site_into(&self, site: usize, jacp: Option<&mut [f64]>, jacr: Option<&mut [f64]>) {
         let nsite = self.model.ffi().nsite.max(0) as usize;
         assert!(
             site < nsite,
             "site id {site} out of range (the model has {nsite})"
         );
         let nv = self.model.ffi().nv.max(0) as usize;
-        let mut p = if jacp { vec![0.0; 3 * nv] } else { Vec::new() };
-        let mut r = if jacr { vec![0.0; 3 * nv] } else { Vec::new() };
-        let (m, d) = self.raw();
-        let out = |v: &mut Vec<f64>| {
-            if v.is_empty() {
-                std::ptr::null_mut()
-            } else {
+        let out = |v: Option<&mut [f64]>| match v {
+            None => std::ptr::null_mut(),
+            Some(v) => {
+                assert!(
+                    v.len() >= 3 * nv,
+                    "a Jacobian buffer holds {} values, needs 3·nv = {}",
+                    v.len(),
+                    3 * nv
+                );
                 v.as_mut_ptr()
             }
         };
-        // SAFETY: the model and data of `self`; each buffer holds 3·nv values or is null;
-        // the site id is in range.
-        unsafe { mujoco_rs::mujoco_c::mj_jacSite(m, d, out(&mut p), out(&mut r), site as i32) };
-        (p, r)
+        let (p, r) = (out(jacp), out(jacr));
+        let (m, d) = self.raw();
+        // SAFETY: the model and data of `self`; each buffer holds at least 3·nv values or
+        // is null (which `mj_jacSite` skips); the site id is in range (so it fits an i32,
+        // as MuJoCo's sizes do).
+        unsafe { mujoco_rs::mujoco_c::mj_jacSite(m, d, p, r, site as i32) };
     }
 
     /// The simulation time.

@@ -1,9 +1,11 @@
 //! MuJoCo plumbing: the simulator an environment owns, name lookups, contact queries,
-//! run-time model edits and the MuJoCo version check.
+//! run-time model edits, safe wrappers of the MuJoCo math the controllers use ([`mju`]) and
+//! the MuJoCo version check.
 
 mod contacts;
 mod data;
 mod guard;
+pub mod mju;
 mod names;
 mod resize;
 mod version;
@@ -142,12 +144,6 @@ impl Sim {
     /// The data, mutably.
     pub fn data_mut(&mut self) -> &mut Data {
         &mut self.data
-    }
-
-    /// Raw pointers to the model and the data, for MuJoCo functions that the safe wrapper
-    /// does not expose without allocating.
-    pub(crate) fn raw(&self) -> (*const mjModel, *const mjData) {
-        self.data.raw()
     }
 
     /// Mutable raw pointers to the model and the data (for `mj_setConst`).

@@ -2,7 +2,7 @@
 //! same cache as its model files): the defaults robosuite hands out, read as robosuite's
 //! `load_composite_controller_config` and `load_part_controller_config` read them.
 
-use super::parts::ARM_CONTROLLER_TYPES;
+use super::ARM_CONTROLLER_TYPES;
 use crate::assets::{Assets, read_file};
 use gym_core::{Error, Result};
 use serde_json::{Map, Value};

@@ -13,16 +13,18 @@ mod files;
 mod parts;
 mod values;
 
+pub use super::table::ARM_CONTROLLER_TYPES;
 pub use files::{
     COMPOSITE_CONTROLLER_TYPES, load_composite_controller_config, load_part_controller_config,
     read_json,
 };
 pub use parts::{
-    ARM_CONTROLLER_TYPES, ArmControllerConfig, GRIPPER_CONTROLLER_TYPES, GripperConfig, IkConfig,
-    JointPositionConfig, JointTorqueConfig, JointVelocityConfig, OscConfig,
+    ArmControllerConfig, GRIPPER_CONTROLLER_TYPES, GripperConfig, IkConfig, JointPositionConfig,
+    JointTorqueConfig, JointVelocityConfig, OscConfig,
 };
 pub use values::{Bounds, ImpedanceMode, InputRefFrame, InputType, Interpolation, PerAxis};
 
+use super::table::arm_controller;
 use crate::assets::Assets;
 use gym_core::{Error, Result};
 use serde::de::DeserializeOwned;
@@ -371,8 +373,8 @@ fn parse_arm_part(value: &Value, path: &str) -> Result<ArmPartConfig> {
         })?,
         &type_path,
     )?;
-    let (keys, ignored) =
-        ArmControllerConfig::keys_of(kind).ok_or_else(|| unknown_type(kind, &type_path))?;
+    let entry = arm_controller(kind).ok_or_else(|| unknown_type(kind, &type_path))?;
+    let keys = (entry.keys)();
     let mut fields = Map::new();
     for (key, v) in obj {
         if keys.contains(&key.as_str()) {
@@ -382,16 +384,7 @@ fn parse_arm_part(value: &Value, path: &str) -> Result<ArmPartConfig> {
         // robosuite's controllers take `**kwargs`) are not the controller's settings; see
         // [`ignored_keys`].
     }
-    let _ = ignored;
-    let fields = Value::Object(fields);
-    let controller = match kind {
-        "OSC_POSE" => ArmControllerConfig::OscPose(typed(fields, path)?),
-        "OSC_POSITION" => ArmControllerConfig::OscPosition(typed(fields, path)?),
-        "IK_POSE" => ArmControllerConfig::IkPose(typed(fields, path)?),
-        "JOINT_POSITION" => ArmControllerConfig::JointPosition(typed(fields, path)?),
-        "JOINT_VELOCITY" => ArmControllerConfig::JointVelocity(typed(fields, path)?),
-        _ => ArmControllerConfig::JointTorque(typed(fields, path)?),
-    };
+    let controller = (entry.parse)(Value::Object(fields), path)?;
     let gripper = match obj.get("gripper") {
         None | Some(Value::Null) => GripperConfig::default(),
         Some(g) => parse_gripper(g, &join(path, "gripper"))?,
@@ -422,9 +415,9 @@ fn parse_gripper(value: &Value, path: &str) -> Result<GripperConfig> {
         if key == "type" {
             continue;
         }
-        if !GripperConfig::KEYS.contains(&key.as_str()) {
+        if !GripperConfig::keys().contains(&key.as_str()) {
             let mut valid = vec!["type"];
-            valid.extend_from_slice(GripperConfig::KEYS);
+            valid.extend_from_slice(GripperConfig::keys());
             return Err(unknown_key(path, key, &valid));
         }
         fields.insert(key.clone(), v.clone());
@@ -433,7 +426,7 @@ fn parse_gripper(value: &Value, path: &str) -> Result<GripperConfig> {
 }
 
 /// Deserializes `value` into `T`, naming the offending key in the error.
-fn typed<T: DeserializeOwned>(value: Value, path: &str) -> Result<T> {
+pub(crate) fn typed<T: DeserializeOwned>(value: Value, path: &str) -> Result<T> {
     serde_path_to_error::deserialize(value).map_err(|e| {
         let inner = e.path().to_string();
         let at = if inner == "." {

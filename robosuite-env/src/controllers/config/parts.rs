@@ -2,17 +2,9 @@
 //! constructor defaults for every key a config leaves out.
 
 use super::values::{Bounds, ImpedanceMode, InputRefFrame, InputType, Interpolation, PerAxis};
+use crate::controllers::table::{arm_controller, entry_of};
 use serde::{Deserialize, Serialize};
-
-/// The arm controllers robosuite 1.5.2 offers, by their config `type`.
-pub const ARM_CONTROLLER_TYPES: &[&str] = &[
-    "OSC_POSE",
-    "OSC_POSITION",
-    "IK_POSE",
-    "JOINT_POSITION",
-    "JOINT_VELOCITY",
-    "JOINT_TORQUE",
-];
+use serde_aux::serde_introspection::serde_introspect;
 
 /// The gripper controllers (robosuite's `GRIP`).
 pub const GRIPPER_CONTROLLER_TYPES: &[&str] = &["GRIP"];
@@ -99,26 +91,6 @@ impl OscConfig {
     fn default_damping_ratio_limits() -> Bounds {
         Bounds::uniform(0.0, 100.0)
     }
-
-    /// The keys a config of this type may hold besides `type` and `gripper`.
-    pub const KEYS: &'static [&'static str] = &[
-        "input_max",
-        "input_min",
-        "output_max",
-        "output_min",
-        "kp",
-        "damping_ratio",
-        "impedance_mode",
-        "kp_limits",
-        "damping_ratio_limits",
-        "position_limits",
-        "orientation_limits",
-        "uncouple_pos_ori",
-        "input_type",
-        "input_ref_frame",
-        "interpolation",
-        "ramp_ratio",
-    ];
 
     /// The same stiffness on every axis.
     #[must_use]
@@ -251,28 +223,6 @@ impl JointPositionConfig {
     fn default_kp() -> PerAxis {
         PerAxis::Scalar(50.0)
     }
-
-    /// The keys a config of this type may hold besides `type` and `gripper`.
-    pub const KEYS: &'static [&'static str] = &[
-        "input_max",
-        "input_min",
-        "output_max",
-        "output_min",
-        "kp",
-        "damping_ratio",
-        "kd",
-        "impedance_mode",
-        "kp_limits",
-        "damping_ratio_limits",
-        "qpos_limits",
-        "input_type",
-        "use_torque_compensation",
-        "interpolation",
-        "ramp_ratio",
-    ];
-
-    /// Keys robosuite's own `JOINT_POSITION` configs carry that its controller ignores.
-    pub const IGNORED: &'static [&'static str] = &["kv", "velocity_limits"];
 }
 
 impl Default for JointPositionConfig {
@@ -336,19 +286,6 @@ impl JointVelocityConfig {
     fn default_kp() -> PerAxis {
         PerAxis::Scalar(0.25)
     }
-
-    /// The keys a config of this type may hold besides `type` and `gripper`.
-    pub const KEYS: &'static [&'static str] = &[
-        "input_max",
-        "input_min",
-        "output_max",
-        "output_min",
-        "kp",
-        "velocity_limits",
-        "use_torque_compensation",
-        "interpolation",
-        "ramp_ratio",
-    ];
 }
 
 impl Default for JointVelocityConfig {
@@ -397,20 +334,6 @@ pub struct JointTorqueConfig {
     /// Share of the env step over which an interpolated goal ramps (default 0.2).
     #[serde(default = "ramp_ratio")]
     pub ramp_ratio: f64,
-}
-
-impl JointTorqueConfig {
-    /// The keys a config of this type may hold besides `type` and `gripper`.
-    pub const KEYS: &'static [&'static str] = &[
-        "input_max",
-        "input_min",
-        "output_max",
-        "output_min",
-        "torque_limits",
-        "use_torque_compensation",
-        "interpolation",
-        "ramp_ratio",
-    ];
 }
 
 impl Default for JointTorqueConfig {
@@ -473,17 +396,6 @@ impl IkConfig {
     fn default_integration_dt() -> f64 {
         0.1
     }
-
-    /// The keys a config of this type may hold besides `type` and `gripper`.
-    pub const KEYS: &'static [&'static str] = &[
-        "ik_pos_limit",
-        "ik_ori_limit",
-        "kp",
-        "damping_ratio",
-        "ik_integration_dt",
-        "interpolation",
-        "ramp_ratio",
-    ];
 }
 
 impl Default for IkConfig {
@@ -512,8 +424,10 @@ pub struct GripperConfig {
 }
 
 impl GripperConfig {
-    /// The keys a gripper config may hold besides `type`.
-    pub const KEYS: &'static [&'static str] = &["use_action_scaling"];
+    /// The keys a gripper config may hold besides `type`: the fields of this struct.
+    pub fn keys() -> &'static [&'static str] {
+        serde_introspect::<Self>()
+    }
 }
 
 impl Default for GripperConfig {
@@ -554,29 +468,15 @@ impl Default for ArmControllerConfig {
 impl ArmControllerConfig {
     /// robosuite's controller `type`.
     pub fn controller_type(&self) -> &'static str {
-        match self {
-            Self::OscPose(_) => "OSC_POSE",
-            Self::OscPosition(_) => "OSC_POSITION",
-            Self::IkPose(_) => "IK_POSE",
-            Self::JointPosition(_) => "JOINT_POSITION",
-            Self::JointVelocity(_) => "JOINT_VELOCITY",
-            Self::JointTorque(_) => "JOINT_TORQUE",
-        }
+        entry_of(self).name
     }
 
-    /// The keys a config of `controller_type` may hold besides `type` and `gripper`, and
-    /// the keys robosuite's own configs carry that are accepted and ignored; `None` for an
-    /// unknown type.
+    /// The keys a config of `controller_type` may hold besides `type` and `gripper` (the
+    /// fields of its serde struct), and the keys robosuite's own configs carry that are
+    /// accepted and ignored; `None` for an unknown type.
     pub fn keys_of(
         controller_type: &str,
     ) -> Option<(&'static [&'static str], &'static [&'static str])> {
-        Some(match controller_type {
-            "OSC_POSE" | "OSC_POSITION" => (OscConfig::KEYS, &[]),
-            "IK_POSE" => (IkConfig::KEYS, &[]),
-            "JOINT_POSITION" => (JointPositionConfig::KEYS, JointPositionConfig::IGNORED),
-            "JOINT_VELOCITY" => (JointVelocityConfig::KEYS, &[]),
-            "JOINT_TORQUE" => (JointTorqueConfig::KEYS, &[]),
-            _ => return None,
-        })
+        arm_controller(controller_type).map(|e| ((e.keys)(), e.ignored))
     }
 }
