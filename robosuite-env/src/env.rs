@@ -1044,32 +1044,7 @@ impl RobosuiteEnv {
     /// # Errors
     /// [`Error::Model`] when MuJoCo cannot parse, compile or save the scene.
     pub fn scene_xml(&self) -> Result<String> {
-        use mujoco_rs::wrappers::mj_editing::MjSpec;
-        let mut spec = MjSpec::from_xml_string(&self.source_xml)
-            .map_err(|e| Error::model(format!("cannot parse the scene: {e}")))?;
-        spec.compile()
-            .map_err(|e| Error::model(format!("cannot compile the scene: {e}")))?;
-        // SAFETY: the spec was just compiled from the text this model was compiled from, so
-        // the two have the same sizes (model edits keep every size).
-        let copied =
-            unsafe { mujoco_rs::mujoco_c::mj_copyBack(spec.ffi_mut(), self.sim.model().ffi()) };
-        if copied == 0 {
-            return Err(Error::model(
-                "MuJoCo could not copy the model back into the scene",
-            ));
-        }
-        let mut size = 4 * self.source_xml.len() + (1 << 16);
-        loop {
-            match spec.save_xml_string(size) {
-                Ok(text) => return Ok(text),
-                Err(mujoco_rs::error::MjEditError::XmlBufferTooSmall { required_size })
-                    if required_size > size =>
-                {
-                    size = required_size + 1;
-                }
-                Err(e) => return Err(Error::model(format!("cannot save the scene: {e}"))),
-            }
-        }
+        crate::sim::scene_xml(&self.source_xml, self.sim.model())
     }
 
     /// Whether observable `spec` exists in this env: robosuite creates the object

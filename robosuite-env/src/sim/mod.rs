@@ -1,6 +1,6 @@
 //! MuJoCo plumbing: the simulator an environment owns, name lookups, contact queries,
-//! run-time model edits, safe wrappers of the MuJoCo math the controllers use ([`mju`]) and
-//! the MuJoCo version check.
+//! run-time model edits, safe wrappers of the MuJoCo math the controllers use ([`mju`]), the
+//! scene's MJCF with the model's current values ([`scene_xml`]) and the MuJoCo version check.
 
 mod contacts;
 mod data;
@@ -9,12 +9,14 @@ pub mod mju;
 mod names;
 mod resize;
 mod version;
+mod xml;
 
 pub use contacts::{GeomSet, any_contact_between, any_contact_with};
 pub use data::{Data, KeepAlive};
 pub use names::{actuator_for_joint, actuator_id, body_id, geom_id, joint_id, sensor_adr, site_id};
 pub use resize::{BoxGeomUpdate, reshape_body_from, resize_box_body, resize_cylinder_body};
 pub use version::{MUJOCO_VERSION, check_mujoco_version};
+pub use xml::scene_xml;
 
 use guard::Call;
 use gym_core::{Error, Result};
