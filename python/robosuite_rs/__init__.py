@@ -524,13 +524,9 @@ class _TaskModel:
 
     def save_model(self, fname: str, pretty: bool = False) -> None:
         """Writes the MJCF to ``fname`` (``pretty``: indented)."""
-        text = self._xml
-        if pretty:
-            import xml.dom.minidom
+        from .models.robots import save_xml
 
-            text = xml.dom.minidom.parseString(text).toprettyxml(indent="  ")
-        with open(fname, "w", encoding="utf8") as f:
-            f.write(text)
+        save_xml(self._xml, fname, pretty)
 
 
 def make(

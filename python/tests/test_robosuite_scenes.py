@@ -91,7 +91,7 @@ def test_states_give_robosuites_observations(case):
 
 
 @pytest.mark.parametrize("robot", ["Panda", "Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"])
-def test_robot_models_are_robosuites(robot):
+def test_robot_models_are_robosuites(robot, tmp_path):
     # robosuite.models.robots.<Robot>(): the robot's own names and its prepared joints equal
     # those of the scene robosuite 1.5.2 saved (its robot0_ elements and their joint
     # settings), and init_qpos is robosuite's (the recorded reset without noise).
@@ -118,6 +118,8 @@ def test_robot_models_are_robosuites(robot):
     assert np.allclose(env.robots[0]._joint_positions, model.init_qpos)
     assert env.robots[0].robot_model.joints == model.joints
     assert model.base_xpos_offset["table"](0.8) == pytest.approx([-0.56, 0, 0])
+    model.save_model(str(tmp_path / "robot.xml"))
+    assert (tmp_path / "robot.xml").read_text() == model.get_xml()
     with pytest.raises(Exception, match="not found"):
         robots.create_robot("R2D2")
     with pytest.raises(ValueError, match="idn"):

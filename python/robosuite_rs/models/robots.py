@@ -23,6 +23,17 @@ from .. import _native
 __all__ = ["RobotModel", "ManipulatorModel", "REGISTERED_ROBOTS", "create_robot"]
 
 
+def save_xml(text: str, fname: str, pretty: bool = False) -> None:
+    """Writes the MJCF ``text`` to ``fname`` (``pretty``: indented), as robosuite's
+    ``save_model``."""
+    if pretty:
+        import xml.dom.minidom
+
+        text = xml.dom.minidom.parseString(text).toprettyxml(indent="  ")
+    with open(fname, "w", encoding="utf8") as f:
+        f.write(text)
+
+
 class RobotModel:
     """robosuite's ``RobotModel`` for one robot of this build (see the module docs).
 
@@ -111,13 +122,7 @@ class RobotModel:
 
     def save_model(self, fname: str, pretty: bool = False) -> None:
         """Writes :meth:`get_xml` to ``fname`` (``pretty``: indented)."""
-        text = self._xml
-        if pretty:
-            import xml.dom.minidom
-
-            text = xml.dom.minidom.parseString(text).toprettyxml(indent="  ")
-        with open(fname, "w", encoding="utf8") as f:
-            f.write(text)
+        save_xml(self._xml, fname, pretty)
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} idn={self.idn} prefix={self.naming_prefix!r}>"

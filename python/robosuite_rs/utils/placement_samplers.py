@@ -156,17 +156,19 @@ class UniformRandomSampler(ObjectPositionSampler):
         self.rotation = rotation
         self.rotation_axis = rotation_axis
 
-    def _sample_x(self, radius: float) -> float:
-        low, high = self.x_range
+    def _sample_in(self, bounds: list[float], radius: float) -> float:
+        """A uniform draw in ``bounds``, shrunk by ``radius`` at each end when the object's
+        boundary must stay in range (robosuite's ``_sample_x`` / ``_sample_y``)."""
+        low, high = bounds
         if self.ensure_object_boundary_in_range:
             low, high = low + radius, high - radius
         return float(self.rng.uniform(high=high, low=low))
 
+    def _sample_x(self, radius: float) -> float:
+        return self._sample_in(self.x_range, radius)
+
     def _sample_y(self, radius: float) -> float:
-        low, high = self.y_range
-        if self.ensure_object_boundary_in_range:
-            low, high = low + radius, high - radius
-        return float(self.rng.uniform(high=high, low=low))
+        return self._sample_in(self.y_range, radius)
 
     def _sample_quat(self) -> np.ndarray:
         if self.rotation is None:
