@@ -542,27 +542,28 @@ def make(
     takes; two for the two-arm tasks); ``env_configuration``: ``"default"``, or for the
     two-arm tasks ``"opposed"`` / ``"parallel"`` (robosuite's set-ups).
 
-    Supported: ``horizon``, ``control_freq``, ``reward_scale`` (``None`` allowed),
-    ``reward_shaping``, ``ignore_done``, ``use_object_obs``, ``seed``,
+    The arguments are :data:`SUPPORTED_KWARGS` (the schema declared in the Rust core) and the
+    task's own (:func:`task_arguments`), with robosuite's names, value types (a name or a
+    list of names, dicts, ``None``, NumPy values) and defaults, among them ``horizon``,
+    ``control_freq``, ``reward_scale`` (``None`` allowed), ``reward_shaping``,
+    ``ignore_done``, ``use_object_obs``, ``seed``, ``lite_physics``,
     ``initialization_noise`` (``"default"``, ``None`` or ``{"magnitude", "type"}``),
-    ``controller_configs`` (robosuite's composite ``BASIC`` config or a part config of
-    any of :data:`ALL_PART_CONTROLLERS`, exactly as robosuite's
+    ``controller_configs`` (robosuite's composite or part configs, as
     :func:`load_composite_controller_config` / :func:`load_part_controller_config` return
-    them, or a list of one per robot),
-    ``has_renderer`` (``False`` only: there is no on-screen viewer), robosuite's camera
-    arguments ``use_camera_obs``, ``has_offscreen_renderer``, ``camera_names``,
-    ``camera_heights``, ``camera_widths``, ``camera_depths``, ``camera_segmentations``
-    (``"element"``, ``"instance"``, ``"class"``) — camera observations are off by default
-    here (robosuite turns them on); ``has_offscreen_renderer`` defaults to ``True`` as in
-    robosuite — and Gymnasium's ``render_mode`` (``"rgb_array"``, ``"depth_array"`` or
-    ``None``) drawn from ``render_camera`` (default ``"frontview"``) at ``render_width`` ×
-    ``render_height`` (default 256), ``model_xml`` (a robosuite-style scene file to run
-    the task on, e.g. one saved from robosuite with ``env.sim.model.get_xml()``).
+    them, one or one per robot), ``gripper_types``, ``base_types``, robosuite's camera
+    arguments (camera observations are off by default here; ``has_offscreen_renderer``
+    defaults to ``True`` as in robosuite), Gymnasium's ``render_mode`` (``"rgb_array"``,
+    ``"depth_array"`` or ``None``) drawn from ``render_camera`` at ``render_width`` ×
+    ``render_height``, and robosuite's viewer arguments with the values this build honours
+    (``has_renderer=False``). ``model_xml``: a robosuite-style scene file to run the task
+    on, e.g. one saved from robosuite with ``env.sim.model.get_xml()``.
 
     Raises:
-        ValueError: for an unknown task, an unsupported value, or an invalid argument
-            (an unknown camera's message lists the model's cameras).
-        TypeError: for an unknown keyword argument.
+        ValueError: for an unknown task, an unsupported value, or an ill-typed or invalid
+            argument (the message names the argument and the item; an unknown camera's
+            lists the model's cameras).
+        TypeError: for an unknown keyword argument (the message lists robosuite's and the
+            task's own).
     """
     config = _native_kwargs(robots, kwargs)
     convention = served_macro("IMAGE_CONVENTION", "opengl")
