@@ -21,8 +21,8 @@ demo: prerequisites
 test: test-rust test-python test-wheel
 
 test-rust: prerequisites
-	$(CARGO) test --workspace --all-targets --features gym-core/proptest-support,robosuite-env/render
-	$(CARGO) test --workspace --doc --features robosuite-env/render
+	$(CARGO) test --workspace --exclude my-envs --all-targets --features gym-core/proptest-support,robosuite-env/render
+	$(CARGO) test --workspace --exclude my-envs --doc --features robosuite-env/render
 
 test-python: prerequisites
 	bash python/scripts/test.sh
@@ -57,17 +57,17 @@ fuzz: prerequisites
 	FUZZ_EXAMPLES=300 bash python/scripts/test.sh -k fuzz
 
 bench: prerequisites
-	$(CARGO) run --release -p examples --example benchmark -- --json bench.json
+	$(CARGO) run --release -p tools --bin benchmark -- --json bench.json
 
 fmt:
 	$(CARGO) fmt --all
 
 lint: prerequisites
 	$(CARGO) fmt --all -- --check
-	$(CARGO) clippy --workspace --all-targets -- -D warnings
+	$(CARGO) clippy --workspace --exclude my-envs --all-targets -- -D warnings
 
 doc: prerequisites
-	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --workspace --no-deps
+	RUSTDOCFLAGS="-D warnings" $(CARGO) doc --workspace --exclude my-envs --no-deps
 
 prerequisites:
 	@command -v $(CARGO) >/dev/null || { echo "make: cargo not found; install Rust from https://rustup.rs"; exit 1; }

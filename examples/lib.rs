@@ -1,9 +1,5 @@
 //! Helpers shared by the example programs in this folder.
 
-pub mod barrier_model;
-pub mod case;
-pub mod physics_only;
-
 use gym_core::Info;
 
 /// Formats an [`Info`] on one line, `key=value` pairs in order.

@@ -16,7 +16,7 @@ if [ ! -x "$venv/bin/python" ]; then
     python3 -m venv "$venv"
     "$venv/bin/pip" install --quiet "robosuite==1.5.2" "mujoco==3.3.7" gymnasium h5py
 fi
-cargo build --release -q -p examples --example benchmark
+cargo build --release -q -p tools --bin benchmark
 rs_python=()
 if [ -x .venv/bin/python ] && .venv/bin/python -c "import robosuite_rs" 2> /dev/null; then
     rs_python=(--rs-python .venv/bin/python)

@@ -3,8 +3,8 @@
 #
 #   python/scripts/test.sh [pytest args...]
 #
-# Creates <repo>/.venv if missing (python3 -m venv), installs maturin, pytest, hypothesis, gymnasium,
-# numpy, mujoco==3.17.0 and moviepy (for RecordVideo) into it, builds the extension in release mode with
+# Creates <repo>/.venv if missing (python3 -m venv), installs maturin, pytest, pytest-xdist,
+# hypothesis, gymnasium, numpy, mujoco==3.17.0 and moviepy (for RecordVideo) into it, builds the extension in release mode with
 # `maturin develop` (the same build `pip install .` runs), builds the example of a user's
 # own module (python/examples/own_module) and runs pytest on python/tests.
 # Environment: PYTHON (default python3) picks the interpreter the virtualenv is made from;
@@ -29,10 +29,10 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 PY="$VENV/bin/python"
 # Quiet, idempotent: pip skips what is already installed.
-"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy
+"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy pytest-xdist
 
 start=$(date +%s)
-"$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/Cargo.toml"
+"$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/native/Cargo.toml"
 echo "test.sh: extension built in $(( $(date +%s) - start )) s"
 if [ "${ROBOSUITE_RS_BUILD_ONLY:-0}" = "1" ]; then
     exit 0
@@ -40,21 +40,21 @@ fi
 
 # The example of a user's own pyo3 module (python/examples/own_module, which depends on the
 # robosuite-rs package installed above), tested by tests/test_own_module.py;
-# ROBOSUITE_RS_SKIP_OWN_MODULE=1 skips building it. It compiles robosuite-py (feature
-# `python`, no `PyInit__native`) into the shared target folder, and cargo names a cdylib
-# without a hash: that build overwrites the extension's library while cargo still counts
-# the extension's own build as fresh, so a later `maturin develop` (test_gym_versions.sh)
-# or `maturin build` (wheel.sh) would take the wrong library. Removing it makes the next
-# extension build link it again. (The extension installed above is a copy: unaffected.)
+# ROBOSUITE_RS_SKIP_OWN_MODULE=1 skips building it. It links the robosuite-py library the
+# extension above built (same features, same lock file versions), so only its own crate
+# compiles.
 if [ "${ROBOSUITE_RS_SKIP_OWN_MODULE:-0}" != "1" ]; then
     start=$(date +%s)
     "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/examples/own_module/Cargo.toml"
-    rm -f "$CARGO_TARGET_DIR/release/deps/librobosuite_py.so" "$CARGO_TARGET_DIR/release/librobosuite_py.so"
     echo "test.sh: example module built in $(( $(date +%s) - start )) s"
 fi
 
+# pytest-xdist: one worker per core, at most 4 (each worker holds its own compiled
+# scenes, up to ~5 GiB at the end of the suite); PYTEST_WORKERS overrides (0: no workers).
+workers="${PYTEST_WORKERS:-$(nproc)}"
+[ "$workers" -le 4 ] || workers=4
 start=$(date +%s)
 status=0
-"$PY" -m pytest -q "$ROOT/python/tests" "$@" || status=$?
+"$PY" -m pytest -q -n "$workers" --dist worksteal "$ROOT/python/tests" "$@" || status=$?
 echo "test.sh: pytest finished in $(( $(date +%s) - start )) s"
 exit $status

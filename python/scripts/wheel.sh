@@ -27,7 +27,7 @@ rm -rf "$ROOT/dist"
 # which `maturin develop` (test.sh) reuses, would then need a library only the wheel has.
 # So the edit is undone afterwards (or, without a prior build, cargo's output is removed
 # and the next build relinks it).
-lib="$CARGO_TARGET_DIR/release/deps/librobosuite_py.so"
+lib="$CARGO_TARGET_DIR/release/deps/librobosuite_native.so"
 rpath=""
 [ -f "$lib" ] && rpath="$(patchelf --print-rpath "$lib")"
 restore() {
@@ -37,7 +37,7 @@ restore() {
     if [ -n "$rpath" ]; then
         patchelf --replace-needed "$bundled" libmujoco.so.3.17.0 --set-rpath "$rpath" "$lib"
     else
-        rm -f "$lib" "$CARGO_TARGET_DIR/release/librobosuite_py.so" "$CARGO_TARGET_DIR/maturin/librobosuite_py.so"
+        rm -f "$lib" "$CARGO_TARGET_DIR/release/librobosuite_native.so" "$CARGO_TARGET_DIR/maturin/librobosuite_native.so"
     fi
 }
 trap restore EXIT

@@ -19,9 +19,9 @@
 //! }
 //! ```
 //!
-//! With the `module` feature it is also the extension module `robosuite_rs._native` (built
-//! by maturin from the repository's `pyproject.toml`); a user's own module must not enable
-//! it (two `PyInit__native` symbols would clash).
+//! The extension module `robosuite_rs._native` is the `robosuite-native` crate
+//! (`python/native`, built by maturin from the repository's `pyproject.toml`): one call of
+//! [`module::init`].
 
 pub mod fork;
 pub mod shared;
@@ -30,8 +30,8 @@ pub mod shared;
 mod convert;
 #[cfg(feature = "python")]
 mod errors;
-#[cfg(feature = "module")]
-mod module;
+#[cfg(feature = "python")]
+pub mod module;
 #[cfg(feature = "python")]
 mod pool;
 #[cfg(feature = "python")]

@@ -1,4 +1,5 @@
-//! The extension module `robosuite_rs._native`.
+//! The contents of the extension module `robosuite_rs._native` ([`init`]; the module
+//! itself is the `robosuite-native` crate).
 
 use crate::convert::py_to_json;
 use crate::errors::to_pyerr;
@@ -351,9 +352,11 @@ fn part_controller_types() -> Vec<String> {
         .collect()
 }
 
-/// The extension module.
-#[pymodule(name = "_native")]
-fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+/// Adds robosuite-rs's classes and functions to `m` (the body of `robosuite_rs._native`).
+///
+/// # Errors
+/// When Python refuses an attribute.
+pub fn init(m: &Bound<'_, PyModule>) -> PyResult<()> {
     robosuite_env::register_envs();
     m.add_class::<PyEnv>()?;
     m.add_class::<PyVecEnv>()?;

@@ -37,22 +37,23 @@ def test_check_env_on_registered_env(env_id: str) -> None:
 ROBOTS = ["Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"]
 
 
+# One case per robot and task (not one per robot), so parallel test runs spread them.
 @pytest.mark.parametrize("robot", ROBOTS)
-def test_check_env_on_every_task_with_every_robot(robot: str) -> None:
+@pytest.mark.parametrize("env_id", IDS)
+def test_check_env_on_every_task_with_every_robot(env_id: str, robot: str) -> None:
     # The Panda is covered above; every other single-arm robot on every task, with its
     # default gripper (Wipe: the wiping tool) and default controller; the two-arm tasks
     # with two of it.
-    for env_id in IDS:
-        name = env_id.split("/")[1].rsplit("-v", 1)[0]
-        count = robosuite_rs._native.task_robot_count(name)
-        env = gym.make(env_id, horizon=30, robots=[robot] * count)
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            check_env(env.unwrapped)
-        assert unexpected(caught) == [], (env_id, robot)
-        joints = env.unwrapped.env.observation_spec()["robot0_joint_pos"].shape
-        assert joints == ((6,) if robot == "UR5e" else (7,)), (env_id, robot)
-        env.close()
+    name = env_id.split("/")[1].rsplit("-v", 1)[0]
+    count = robosuite_rs._native.task_robot_count(name)
+    env = gym.make(env_id, horizon=30, robots=[robot] * count)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(env.unwrapped)
+    assert unexpected(caught) == [], (env_id, robot)
+    joints = env.unwrapped.env.observation_spec()["robot0_joint_pos"].shape
+    assert joints == ((6,) if robot == "UR5e" else (7,)), (env_id, robot)
+    env.close()
 
 
 @pytest.mark.parametrize("env_id", IDS)

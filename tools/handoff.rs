@@ -7,7 +7,7 @@
 //! shows what the threads gain. Figures are medians over `--rounds` interleaved rounds.
 //!
 //! ```text
-//! cargo run --release -p examples --example handoff -- [--seconds 4] [--rounds 4] [--json handoff.json]
+//! cargo run --release -p tools --bin handoff -- [--seconds 4] [--rounds 4] [--json handoff.json]
 //! ```
 
 use adapters::{SyncVectorEnv, ThreadEnvPool, ThreadVectorEnv, VectorEnv};

@@ -3,7 +3,7 @@
 //! (Mesa's software device on a CPU-only machine), and writes PNGs of every default camera.
 //!
 //! ```text
-//! cargo run --release -p examples --features render --example camera_benchmark -- [--png DIR]
+//! cargo run --release -p tools --features render --bin camera_benchmark -- [--png DIR]
 //! ```
 
 use gym_core::{Env, Frame, RenderMode};

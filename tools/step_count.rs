@@ -3,8 +3,8 @@
 //! `valgrind --tool=callgrind` counts the same instructions for the same binary and input.
 //!
 //! ```text
-//! cargo build --release -p examples --example step_count
-//! valgrind --tool=callgrind target/release/examples/step_count Lift gym 200 [ROBOT] [CONTROLLER]
+//! cargo build --release -p tools --bin step_count
+//! valgrind --tool=callgrind target/release/step_count Lift gym 200 [ROBOT] [CONTROLLER]
 //! ```
 //!
 //! `ROBOT` puts the task on another robot (`-` or nothing: the Panda), `CONTROLLER` uses
@@ -17,8 +17,8 @@
 //! difference of the counts (`scripts/instructions_per_step.sh` does this).
 
 use adapters::WrapperExt;
-use examples::case::Case;
-use examples::physics_only::PhysicsOnly;
+use tools::case::Case;
+use tools::physics_only::PhysicsOnly;
 use gym_core::{Env, Error, Result, Space, rng_from_seed};
 use std::hint::black_box;
 

@@ -7,7 +7,7 @@
 //! (`ThreadEnvPool`, two envs per thread). Prints a table; `--json PATH` also writes JSON.
 //!
 //! ```text
-//! cargo run --release -p examples --example benchmark -- [--task Lift] [--robot Sawyer]
+//! cargo run --release -p tools --bin benchmark -- [--task Lift] [--robot Sawyer]
 //!     [--controller OSC_POSITION] [--robots] [--controllers] [--cpu-time] [--seconds 3]
 //!     [--max-envs 4] [--rounds 5] [--pin] [--only steps|cost|vector|model] [--json bench.json]
 //! ```
@@ -19,7 +19,7 @@
 //! as it has threads. `--only model` measures the distribution of one env's step times
 //! (`step_into` with random actions, an episode's reset counted as a step, as a vector
 //! env's autoreset is) and prints the barrier model's predicted efficiency (see
-//! `examples::barrier_model`) for 2, 8 and 16 threads beside the vector table measured
+//! `tools::barrier_model`) for 2, 8 and 16 threads beside the vector table measured
 //! here; it also splits the spread of step times into the env's own and the machine's
 //! noise (each step timed again from a snapshot) and gives the model for a quiet core.
 //!
@@ -39,9 +39,9 @@
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
 use adapters::{BatchSpace, ThreadEnvPool, ThreadOptions, ThreadVectorEnv, VectorEnv, WrapperExt};
-use examples::barrier_model::{Assignment, expected_max, predicted_efficiency, summarize};
-use examples::case::Case;
-use examples::physics_only::PhysicsOnly;
+use tools::barrier_model::{Assignment, expected_max, predicted_efficiency, summarize};
+use tools::case::Case;
+use tools::physics_only::PhysicsOnly;
 use gym_core::{Env, Info, Result, Space, rng_from_seed};
 use robosuite_env::controllers::config::ARM_CONTROLLER_TYPES;
 use serde_json::json;
@@ -435,7 +435,7 @@ fn model_rows(times: &[f64], rng: &mut gym_core::EnvRng) -> Vec<serde_json::Valu
 /// end counted as a step, as a vector env's autoreset is), in wall-clock and in CPU time of
 /// the stepping thread (what a dedicated core sees: without preemption by other work), their
 /// summaries in µs, and the barrier model's predicted efficiency for 2, 8 and 16 threads
-/// from each sample (see `examples::barrier_model`).
+/// from each sample (see `tools::barrier_model`).
 fn step_time_model(
     task: &Case,
     args: &Args,
