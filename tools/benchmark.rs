@@ -39,13 +39,13 @@
 //! speed drifts between minutes. `--seconds` is the time per figure, split over the rounds.
 
 use adapters::{BatchSpace, ThreadEnvPool, ThreadOptions, ThreadVectorEnv, VectorEnv, WrapperExt};
-use tools::barrier_model::{Assignment, expected_max, predicted_efficiency, summarize};
-use tools::case::Case;
-use tools::physics_only::PhysicsOnly;
 use gym_core::{Env, Info, Result, Space, rng_from_seed};
 use robosuite_env::controllers::config::ARM_CONTROLLER_TYPES;
 use serde_json::json;
 use std::time::{Duration, Instant};
+use tools::barrier_model::{Assignment, expected_max, predicted_efficiency, summarize};
+use tools::case::Case;
+use tools::physics_only::PhysicsOnly;
 
 /// A part of the figures to measure alone.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -17,10 +17,10 @@
 //! difference of the counts (`scripts/instructions_per_step.sh` does this).
 
 use adapters::WrapperExt;
-use tools::case::Case;
-use tools::physics_only::PhysicsOnly;
 use gym_core::{Env, Error, Result, Space, rng_from_seed};
 use std::hint::black_box;
+use tools::case::Case;
+use tools::physics_only::PhysicsOnly;
 
 fn main() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();

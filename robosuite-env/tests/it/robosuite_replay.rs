@@ -105,18 +105,30 @@ fn placement_ranges_equal_robosuites() {
         let fixture = load(&task);
         let mut env = env_for(&fixture);
         let n = fixture.placement.resets;
-        for (object, want) in &fixture.placement.bodies {
-            let body = robosuite_env::sim::body_id(env.sim().model(), object)
-                .unwrap_or_else(|e| panic!("{task}: {e}"));
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for seed in 0..n as u64 {
-                env.reset(Some(seed), None).unwrap();
-                let p = env.sim().data().xpos()[body];
+        // One pass over the seeds, every body's extent drawn from the same resets.
+        let bodies: Vec<(&String, usize)> = fixture
+            .placement
+            .bodies
+            .keys()
+            .map(|object| {
+                let body = robosuite_env::sim::body_id(env.sim().model(), object)
+                    .unwrap_or_else(|e| panic!("{task}: {e}"));
+                (object, body)
+            })
+            .collect();
+        let mut seen = vec![([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]); bodies.len()];
+        for seed in 0..n as u64 {
+            env.reset(Some(seed), None).unwrap();
+            for ((_, body), (lo, hi)) in bodies.iter().zip(&mut seen) {
+                let p = env.sim().data().xpos()[*body];
                 for i in 0..3 {
                     lo[i] = lo[i].min(p[i]);
                     hi[i] = hi[i].max(p[i]);
                 }
             }
+        }
+        for ((object, _), (lo, hi)) in bodies.iter().zip(&seen) {
+            let want = &fixture.placement.bodies[*object];
             for i in 0..3 {
                 // n uniform draws fall short of a bound by about range / n; allow 5 %.
                 let range = want.max[i] - want.min[i];
