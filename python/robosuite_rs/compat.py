@@ -54,7 +54,8 @@ def _module(name: str, doc: str, attrs: dict[str, Any], package: bool = False) -
 def install_as_robosuite() -> types.ModuleType:
     """Registers this package as ``robosuite`` in ``sys.modules``: ``import robosuite``,
     ``robosuite.make``, ``robosuite.utils.transform_utils``, ``robosuite.utils.camera_utils``,
-    ``robosuite.utils.binding_utils``, ``robosuite.wrappers.GymWrapper``,
+    ``robosuite.utils.binding_utils``, ``robosuite.wrappers`` (``GymWrapper``,
+    ``DataCollectionWrapper``, ``DemoSamplerWrapper``),
     ``robosuite.controllers``, ``robosuite.robots``, ``robosuite.models.robots``,
     ``robosuite.macros`` then give ours.
     Returns the ``robosuite`` module. Calling it again changes nothing.
@@ -120,7 +121,12 @@ def install_as_robosuite() -> types.ModuleType:
     wrappers_mod = _module(
         "robosuite.wrappers",
         "robosuite's wrappers.",
-        {"GymWrapper": wrappers.GymWrapper},
+        {
+            "GymWrapper": wrappers.GymWrapper,
+            "Wrapper": wrappers.Wrapper,
+            "DataCollectionWrapper": wrappers.DataCollectionWrapper,
+            "DemoSamplerWrapper": wrappers.DemoSamplerWrapper,
+        },
         package=True,
     )
     environments = _module(

@@ -4,6 +4,9 @@ and :class:`GymWrapper` (robosuite's ``GymWrapper``, served by the Rust core).
 Import swap for robosuite users::
 
     from robosuite_rs.wrappers import GymWrapper   # was: from robosuite.wrappers import GymWrapper
+
+robosuite's demonstration wrappers are here too: :class:`DataCollectionWrapper` and
+:class:`DemoSamplerWrapper` (see :mod:`robosuite_rs.datasets`).
 """
 
 from __future__ import annotations
@@ -13,12 +16,13 @@ from typing import TYPE_CHECKING, Any, SupportsFloat
 import gymnasium as gym
 import numpy as np
 
+from ._demo_wrappers import DataCollectionWrapper, DemoSamplerWrapper, Wrapper
 from .spaces import from_spec
 
 if TYPE_CHECKING:
     from . import RobosuiteEnv
 
-__all__ = ["RustEnv", "GymWrapper"]
+__all__ = ["RustEnv", "GymWrapper", "Wrapper", "DataCollectionWrapper", "DemoSamplerWrapper"]
 
 
 class RustEnv(gym.Env):  # type: ignore[type-arg]

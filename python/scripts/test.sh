@@ -4,7 +4,8 @@
 #   python/scripts/test.sh [pytest args...]
 #
 # Creates <repo>/.venv if missing (python3 -m venv), installs maturin, pytest, pytest-xdist,
-# hypothesis, gymnasium, numpy, mujoco==3.17.0 and moviepy (for RecordVideo) into it, builds the extension in release mode with
+# hypothesis, gymnasium, numpy, mujoco==3.17.0, moviepy (for RecordVideo) and h5py
+# (robosuite_rs.datasets) into it, builds the extension in release mode with
 # `maturin develop` (the same build `pip install .` runs), builds the example of a user's
 # own module (python/examples/own_module) and runs pytest on python/tests.
 # Environment: PYTHON (default python3) picks the interpreter the virtualenv is made from;
@@ -29,7 +30,7 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 PY="$VENV/bin/python"
 # Quiet, idempotent: pip skips what is already installed.
-"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy pytest-xdist
+"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy pytest-xdist h5py
 
 start=$(date +%s)
 "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/native/Cargo.toml"
