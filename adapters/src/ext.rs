@@ -1,7 +1,6 @@
 //! [`WrapperExt`]: one method per wrapper on every environment, so stacks read in order.
 
 use crate::batch::BatchSpace;
-use gym_core::spaces::{FilterKeys, FilterableSpace};
 use crate::frame_stack_observation::Padding;
 use crate::numeric::NumericSpace;
 use crate::rescale_action::ActionBound;
@@ -11,6 +10,7 @@ use crate::{
     OrderEnforcing, PassiveEnvChecker, RecordEpisodeStatistics, RepeatAction, RescaleAction,
     StickyAction, TimeLimit, TransformAction, TransformObservation, TransformReward,
 };
+use gym_core::spaces::{FilterKeys, FilterableSpace};
 use gym_core::{ArrayElement, Env, Result, Space};
 
 /// Builder methods for every wrapper of this crate, implemented for every [`Env`]:

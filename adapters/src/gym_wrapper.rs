@@ -34,8 +34,8 @@
 use crate::{DtypeObservation, FilterObservation, FlattenObservation};
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, FilterKeys, FilterableSpace, NumericSpace};
 use gym_core::{
-    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ResetOptions,
-    Result, Step, Transition, Value, Wrapper,
+    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ResetOptions, Result,
+    Step, Transition, Value, Wrapper,
 };
 use ndarray::{ArrayD, IxDyn};
 
@@ -256,6 +256,7 @@ where
 /// The layers of a [`GymWrapper`]: the selection alone (with its last observation), or
 /// the flat stack.
 #[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)]
 enum Stack<E: Env>
 where
     E::ObsSpace: FilterableSpace,
@@ -550,7 +551,11 @@ where
         self.stack.inner_mut().inner_mut().inner_mut().inner_mut()
     }
     fn into_inner(self) -> E {
-        self.stack.into_inner().into_inner().into_inner().into_inner()
+        self.stack
+            .into_inner()
+            .into_inner()
+            .into_inner()
+            .into_inner()
     }
 }
 

@@ -14,8 +14,7 @@ use crate::spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
 use crate::{
-    ArrayElement, ArrayValue, DictValue, DynSpace, Error, Flatten, Result, Space,
-    SpaceError, Value,
+    ArrayElement, ArrayValue, DictValue, DynSpace, Error, Flatten, Result, Space, SpaceError, Value,
 };
 use ndarray::{ArrayD, Axis, IxDyn, Zip};
 

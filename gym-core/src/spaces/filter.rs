@@ -197,7 +197,12 @@ impl FilterableSpace for DictSpace {
         if out.len() != filtered.len() || !out.keys().eq(filtered.keys()) {
             *out = filtered
                 .keys()
-                .map(|k| Ok((k.to_owned(), x.get(k).ok_or_else(|| missing(keys, x))?.clone())))
+                .map(|k| {
+                    Ok((
+                        k.to_owned(),
+                        x.get(k).ok_or_else(|| missing(keys, x))?.clone(),
+                    ))
+                })
                 .collect::<Result<_>>()?;
             return Ok(());
         }

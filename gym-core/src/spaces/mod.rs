@@ -22,13 +22,13 @@ pub mod numeric;
 mod tuple;
 
 pub use any::{AnyBox, AnySpace};
-pub use batch::{BatchOf, BatchSpace};
-pub use filter::{FilterKeys, FilterableSpace};
-pub use numeric::{ArraySpec, NumericSpace};
 pub(crate) use any::{concat_flat_spaces, split_flat};
+pub use batch::{BatchOf, BatchSpace};
 pub use box_space::BoxSpace;
 pub use dict::DictSpace;
 pub use discrete::Discrete;
+pub use filter::{FilterKeys, FilterableSpace};
 pub use multi_binary::MultiBinary;
 pub use multi_discrete::MultiDiscrete;
+pub use numeric::{ArraySpec, NumericSpace};
 pub use tuple::TupleSpace;

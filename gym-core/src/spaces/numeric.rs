@@ -11,9 +11,7 @@
 use crate::spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
-use crate::{
-    ArrayElement, ArrayValue, DType, DynSpace, Error, Result, Space, SpaceError, Value,
-};
+use crate::{ArrayElement, ArrayValue, DType, DynSpace, Error, Result, Space, SpaceError, Value};
 use ndarray::{ArrayD, IxDyn, Zip};
 use std::any::Any;
 
@@ -167,7 +165,11 @@ impl<T: ArrayElement> NumericSpace for BoxSpace<T> {
         Ok(cast_array_ref(x))
     }
 
-    fn element_to_array_into<U: ArrayElement>(&self, x: &ArrayD<T>, out: &mut ArrayD<U>) -> Result<()> {
+    fn element_to_array_into<U: ArrayElement>(
+        &self,
+        x: &ArrayD<T>,
+        out: &mut ArrayD<U>,
+    ) -> Result<()> {
         cast_into(x, out);
         Ok(())
     }
@@ -210,13 +212,9 @@ impl NumericSpace for Discrete {
         })
     }
 
-
     fn element_to_array<U: ArrayElement>(&self, x: &i64) -> Result<ArrayD<U>> {
         Ok(ArrayD::from_elem(IxDyn(&[]), U::from_f64(*x as f64)))
     }
-
-
-
 }
 
 impl NumericSpace for MultiDiscrete {
@@ -234,13 +232,9 @@ impl NumericSpace for MultiDiscrete {
         })
     }
 
-
     fn element_to_array<U: ArrayElement>(&self, x: &ArrayD<i64>) -> Result<ArrayD<U>> {
         Ok(cast_array_ref(x))
     }
-
-
-
 }
 
 impl NumericSpace for MultiBinary {
@@ -255,13 +249,9 @@ impl NumericSpace for MultiBinary {
         })
     }
 
-
     fn element_to_array<U: ArrayElement>(&self, x: &ArrayD<i8>) -> Result<ArrayD<U>> {
         Ok(cast_array_ref(x))
     }
-
-
-
 }
 
 impl NumericSpace for AnyBox {
