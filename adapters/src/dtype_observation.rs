@@ -17,11 +17,13 @@ use std::marker::PhantomData;
 /// | `MultiBinary` | `Box(0, 1, shape, U)` |
 ///
 /// Observations are cast with Rust `as` semantics (NumPy's `astype`, saturating instead of
-/// wrapping for out-of-range integers).
+/// wrapping for out-of-range integers). [`Env::step_into`] keeps the inner observation
+/// between steps and casts it into the caller's array, allocating nothing.
 #[derive(Debug, Clone)]
-pub struct DtypeObservation<E, U: ArrayElement> {
+pub struct DtypeObservation<E: Env, U: ArrayElement> {
     env: E,
     space: BoxSpace<U>,
+    kept: Option<E::Obs>,
     _dtype: PhantomData<fn() -> U>,
 }
 
@@ -40,6 +42,7 @@ where
         Ok(Self {
             env,
             space,
+            kept: None,
             _dtype: PhantomData,
         })
     }
@@ -74,6 +77,16 @@ where
 
     fn observation(&mut self, observation: E::Obs) -> Result<ArrayD<U>> {
         self.env.observation_space().element_to_array(&observation)
+    }
+
+    fn observation_into(&mut self, observation: &E::Obs, out: &mut ArrayD<U>) -> Result<()> {
+        self.env
+            .observation_space()
+            .element_to_array_into(observation, out)
+    }
+
+    fn inner_buffer(&mut self) -> Option<&mut Option<E::Obs>> {
+        Some(&mut self.kept)
     }
 }
 

@@ -1,9 +1,7 @@
 //! [`WrapperExt`]: one method per wrapper on every environment, so stacks read in order.
 
 use crate::batch::BatchSpace;
-use crate::filter_observation::{FilterKeys, FilterableSpace};
 use crate::frame_stack_observation::Padding;
-use crate::gym_wrapper::DictObservationSpace;
 use crate::numeric::NumericSpace;
 use crate::rescale_action::ActionBound;
 use crate::{
@@ -12,6 +10,7 @@ use crate::{
     OrderEnforcing, PassiveEnvChecker, RecordEpisodeStatistics, RepeatAction, RescaleAction,
     StickyAction, TimeLimit, TransformAction, TransformObservation, TransformReward,
 };
+use gym_core::spaces::{FilterKeys, FilterableSpace};
 use gym_core::{ArrayElement, Env, Result, Space};
 
 /// Builder methods for every wrapper of this crate, implemented for every [`Env`]:
@@ -34,7 +33,7 @@ pub trait WrapperExt: Env + Sized {
     /// As [`GymWrapper::new`].
     fn gym_wrapper(self, keys: Option<Vec<String>>, flatten_obs: bool) -> Result<GymWrapper<Self>>
     where
-        Self::ObsSpace: DictObservationSpace,
+        Self::ObsSpace: FilterableSpace,
         Self::ActSpace: NumericSpace,
     {
         GymWrapper::new(self, keys, flatten_obs)
@@ -46,7 +45,7 @@ pub trait WrapperExt: Env + Sized {
     /// As [`FlatGymWrapper::new`].
     fn flat_gym_wrapper(self, keys: Option<Vec<String>>) -> Result<FlatGymWrapper<Self>>
     where
-        Self::ObsSpace: DictObservationSpace,
+        Self::ObsSpace: FilterableSpace,
         Self::ActSpace: NumericSpace,
     {
         FlatGymWrapper::new(self, keys)

@@ -2,7 +2,7 @@
 //! `flatten` / `flatten_space`).
 
 use gym_core::spaces::AnyBox;
-use gym_core::{ArrayValue, Env, ObservationWrapper, Observations, Result, Wrapper};
+use gym_core::{ArrayValue, Env, Flatten, ObservationWrapper, Observations, Result, Wrapper};
 
 /// Gymnasium's `FlattenObservation`: the observation space becomes
 /// `flatten_space(env.observation_space)` and each observation `flatten(space, obs)`.
@@ -11,17 +11,26 @@ use gym_core::{ArrayValue, Env, ObservationWrapper, Observations, Result, Wrappe
 /// concatenates its parts in key order with NumPy's type promotion (so `float32` and
 /// `float64` parts give `float64`). Observations are [`ArrayValue`]s of the flat Box's
 /// dtype; the space is the dynamic [`AnyBox`].
+///
+/// [`Env::step_into`] keeps the inner observation between steps and flattens it into the
+/// caller's array ([`gym_core::Flatten::flatten_into`]: Box and Dict-of-Box observations
+/// then allocate nothing).
 #[derive(Debug, Clone)]
-pub struct FlattenObservation<E> {
+pub struct FlattenObservation<E: Env> {
     env: E,
     space: AnyBox,
+    kept: Option<E::Obs>,
 }
 
 impl<E: Env> FlattenObservation<E> {
     /// Wraps `env`.
     pub fn new(env: E) -> Self {
         let space = gym_core::flatten_space(env.observation_space());
-        Self { env, space }
+        Self {
+            env,
+            space,
+            kept: None,
+        }
     }
 }
 
@@ -51,6 +60,17 @@ impl<E: Env> ObservationWrapper for FlattenObservation<E> {
             self.env.observation_space(),
             &observation,
         )?)
+    }
+
+    fn observation_into(&mut self, observation: &E::Obs, out: &mut ArrayValue) -> Result<()> {
+        Ok(self
+            .env
+            .observation_space()
+            .flatten_into(observation, out)?)
+    }
+
+    fn inner_buffer(&mut self) -> Option<&mut Option<E::Obs>> {
+        Some(&mut self.kept)
     }
 }
 

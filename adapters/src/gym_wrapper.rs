@@ -3,8 +3,8 @@
 //!
 //! Both select observation keys of a Dict-observation environment (robosuite's
 //! `RobosuiteEnv`, any env whose observation space is a [`DictSpace`], or a boxed env from
-//! the registry whose [`AnySpace`] is a Dict; see [`DictObservationSpace`]), and expose the
-//! environment's action bounds as an `f32` Box. Compared with robosuite 1.5.2's wrapper:
+//! the registry whose [`AnySpace`] is a Dict), and expose the environment's action bounds as
+//! an `f32` Box. Compared with robosuite 1.5.2's wrapper:
 //!
 //! * flat observations are `float32`, matching their `Box(-inf, inf, (n,), float32)` space
 //!   (robosuite returns `float64` inside a `float32` space, which fails `check_env`);
@@ -22,90 +22,22 @@
 //! [`Value`] observations in an [`AnySpace`] (a `float32` Box when flat, a Dict of the
 //! selected keys otherwise), and [`FlatGymWrapper`] yields typed `ArrayD<f32>` observations
 //! in a [`BoxSpace<f32>`], for code that wants the flat vector without matching on a
-//! `Value`. Both precompute each key's position in the observation dict (a lookup by name is
-//! only the fallback when an observation's keys are not in the space's order); `step`
-//! allocates one array per flat observation and [`FlatGymWrapper`]'s `step_into` none.
+//! `Value`.
+//!
+//! Both are compositions of Gymnasium's wrappers: the selection is
+//! [`FilterObservation::keeping_order`] (the keys in the order given, as robosuite
+//! concatenates them), the flat observation [`FlattenObservation`] (the keys' arrays
+//! concatenated, each row-major; a Discrete key flattens to its one-hot) cast to `f32` by
+//! [`DtypeObservation`], under an `f32` action cast. Each layer keeps its inner observation
+//! between steps, so `step_into` allocates nothing after its first step.
 
-use crate::numeric::NumericSpace;
-use gym_core::spaces::{AnySpace, BoxSpace, DictSpace};
+use crate::{DtypeObservation, FilterObservation, FlattenObservation};
+use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, FilterKeys, FilterableSpace, NumericSpace};
 use gym_core::{
-    DictValue, DynSpace, Env, Error, Info, ResetOptions, Result, Scalar, Space, SpaceError, Step,
-    Transition, Value,
+    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ResetOptions, Result,
+    Step, Transition, Value, Wrapper,
 };
 use ndarray::{ArrayD, IxDyn};
-
-/// An observation space whose elements are ordered dicts: [`DictSpace`], or an
-/// [`AnySpace`] holding one (the observation space of a boxed, registry-made env).
-pub trait DictObservationSpace: DynSpace {
-    /// The Dict space, if this is one.
-    fn dict_space(&self) -> Option<&DictSpace>;
-
-    /// The element as a dict (moved, not copied).
-    ///
-    /// # Errors
-    /// When a dynamic element is not a dict.
-    fn into_dict(x: Self::Element) -> Result<DictValue>;
-
-    /// The element as a borrowed dict.
-    ///
-    /// # Errors
-    /// When a dynamic element is not a dict.
-    fn as_dict(x: &Self::Element) -> Result<&DictValue>;
-}
-
-impl DictObservationSpace for DictSpace {
-    fn dict_space(&self) -> Option<&DictSpace> {
-        Some(self)
-    }
-
-    fn into_dict(x: DictValue) -> Result<DictValue> {
-        Ok(x)
-    }
-
-    fn as_dict(x: &DictValue) -> Result<&DictValue> {
-        Ok(x)
-    }
-}
-
-impl DictObservationSpace for AnySpace {
-    fn dict_space(&self) -> Option<&DictSpace> {
-        self.as_dict()
-    }
-
-    fn into_dict(x: Value) -> Result<DictValue> {
-        match x {
-            Value::Dict(d) => Ok(d),
-            other => Err(not_a_dict(&other)),
-        }
-    }
-
-    fn as_dict(x: &Value) -> Result<&DictValue> {
-        match x {
-            Value::Dict(d) => Ok(d),
-            other => Err(not_a_dict(other)),
-        }
-    }
-}
-
-fn not_a_dict(x: &Value) -> Error {
-    SpaceError::WrongKind {
-        expected: "dict",
-        got: x.kind(),
-    }
-    .into()
-}
-
-fn dict_space_of<S: DictObservationSpace>(space: &S) -> Result<&DictSpace> {
-    space.dict_space().ok_or_else(|| {
-        Error::invalid_argument(
-            "env",
-            format!(
-                "GymWrapper needs a Dict observation space, got {}",
-                space.to_any()
-            ),
-        )
-    })
-}
 
 /// robosuite 1.5's default keys for an observation space: `object-state` (when present),
 /// the camera images (keys ending in `_image`, in space order), then
@@ -129,183 +61,6 @@ pub fn default_keys(space: &DictSpace) -> Vec<String> {
         keys.push(k);
     }
     keys
-}
-
-/// The selected keys with their positions and flat sizes, computed once.
-#[derive(Debug, Clone, PartialEq)]
-struct KeyPlan {
-    keys: Vec<String>,
-    positions: Vec<usize>,
-    sizes: Vec<usize>,
-    total: usize,
-}
-
-impl KeyPlan {
-    fn new(space: &DictSpace, keys: Option<Vec<String>>, flat: bool) -> Result<Self> {
-        let available = || space.keys().map(str::to_owned).collect::<Vec<_>>();
-        let keys = match keys {
-            Some(k) => k,
-            None => default_keys(space),
-        };
-        if keys.is_empty() {
-            return Err(Error::invalid_argument(
-                "keys",
-                format!(
-                    "no observation keys selected (available: {})",
-                    available().join(", ")
-                ),
-            ));
-        }
-        let mut positions = Vec::with_capacity(keys.len());
-        let mut sizes = Vec::with_capacity(keys.len());
-        for (i, k) in keys.iter().enumerate() {
-            let pos = space
-                .keys()
-                .position(|s| s == k)
-                .ok_or_else(|| Error::UnknownKey {
-                    key: k.clone(),
-                    available: available(),
-                })?;
-            if keys[..i].contains(k) {
-                return Err(Error::invalid_argument(
-                    "keys",
-                    format!("duplicate key `{k}`"),
-                ));
-            }
-            let sub = space.get(k).expect("found above");
-            if flat && matches!(sub, AnySpace::Dict(_) | AnySpace::Tuple(_)) {
-                return Err(Error::invalid_argument(
-                    "keys",
-                    format!(
-                        "`{k}` is a {} space; only array observations can be flattened",
-                        sub.kind()
-                    ),
-                ));
-            }
-            positions.push(pos);
-            sizes.push(sub.shape().map_or(1, |s| s.iter().product()));
-        }
-        let total = sizes.iter().sum();
-        Ok(Self {
-            keys,
-            positions,
-            sizes,
-            total,
-        })
-    }
-
-    /// The value of selected key `j`: by position when the dict is in the space's order,
-    /// else by name.
-    fn value<'a>(&self, obs: &'a DictValue, j: usize) -> Result<&'a Value> {
-        let key = &self.keys[j];
-        if let Some((k, v)) = obs.get_index(self.positions[j])
-            && k == key
-        {
-            return Ok(v);
-        }
-        obs.get(key).ok_or_else(|| Error::UnknownKey {
-            key: key.clone(),
-            available: obs.keys().cloned().collect(),
-        })
-    }
-
-    /// The selected keys concatenated (each flattened, row-major) as `f32`.
-    fn flatten(&self, obs: &DictValue) -> Result<ArrayD<f32>> {
-        let mut out = ArrayD::zeros(IxDyn(&[self.total]));
-        self.flatten_into(obs, &mut out)?;
-        Ok(out)
-    }
-
-    /// Flattens into `out`, reusing its storage when it is a standard-layout vector of the
-    /// flat length.
-    fn flatten_into(&self, obs: &DictValue, out: &mut ArrayD<f32>) -> Result<()> {
-        if out.shape() != [self.total] || !out.is_standard_layout() {
-            *out = ArrayD::zeros(IxDyn(&[self.total]));
-        }
-        let flat = out.as_slice_mut().expect("a standard-layout vector");
-        let mut at = 0;
-        for j in 0..self.keys.len() {
-            let n = match self.value(obs, j)? {
-                Value::Array(a) => {
-                    let n = a.len();
-                    if n == self.sizes[j] {
-                        let dst = &mut flat[at..at + n];
-                        gym_core::for_each_array!(a, arr => dst
-                            .iter_mut()
-                            .zip(arr.iter())
-                            .for_each(|(d, v)| *d = v.to_f64() as f32));
-                    }
-                    n
-                }
-                Value::Discrete(d) => {
-                    if self.sizes[j] == 1 {
-                        flat[at] = *d as f32;
-                    }
-                    1
-                }
-                other => {
-                    return Err(SpaceError::WrongKind {
-                        expected: "array",
-                        got: other.kind(),
-                    }
-                    .into());
-                }
-            };
-            if n != self.sizes[j] {
-                return Err(Error::Contract {
-                    check: "GymWrapper".into(),
-                    message: format!(
-                        "observation `{}` has {n} elements, its space {}",
-                        self.keys[j], self.sizes[j]
-                    )
-                    .into(),
-                });
-            }
-            at += n;
-        }
-        Ok(())
-    }
-
-    /// The selected entries of `obs` copied into `out`, in key order: in place when `out`
-    /// already holds such a dict (the previous step's), else as a new dict.
-    fn select_into(&self, obs: &DictValue, out: &mut Value) -> Result<()> {
-        let same_keys = matches!(out, Value::Dict(d) if d.keys().eq(self.keys.iter()));
-        if !same_keys {
-            let mut dict = DictValue::with_capacity(self.keys.len());
-            for j in 0..self.keys.len() {
-                dict.insert(self.keys[j].clone(), self.value(obs, j)?.clone());
-            }
-            *out = Value::Dict(dict);
-            return Ok(());
-        }
-        if let Value::Dict(dict) = out {
-            for (j, dst) in dict.values_mut().enumerate() {
-                assign_value(dst, self.value(obs, j)?);
-            }
-        }
-        Ok(())
-    }
-
-    /// The selected entries moved out of `obs`, in key order.
-    fn select(&self, mut obs: DictValue) -> Result<DictValue> {
-        let mut out = DictValue::with_capacity(self.keys.len());
-        for (j, key) in self.keys.iter().enumerate() {
-            let in_place = obs
-                .get_index(self.positions[j])
-                .is_some_and(|(k, _)| k == key);
-            let v = if in_place {
-                std::mem::replace(&mut obs[self.positions[j]], Value::Discrete(0))
-            } else {
-                obs.swap_remove(key.as_str())
-                    .ok_or_else(|| Error::UnknownKey {
-                        key: key.clone(),
-                        available: obs.keys().cloned().collect(),
-                    })?
-            };
-            out.insert(key.clone(), v);
-        }
-        Ok(out)
-    }
 }
 
 /// The environment's action bounds as an `f32` Box. Bounds that `f32` cannot represent are
@@ -334,100 +89,148 @@ fn f32_action_space<S: NumericSpace>(inner: &S) -> Result<BoxSpace<f32>> {
     )?)
 }
 
-fn convert_action<S: NumericSpace>(inner: &S, action: &ArrayD<f32>) -> Result<S::Element> {
-    inner
-        .element_from_array(action)
-        .map_err(Error::into_invalid_action)
-}
-
-/// The inner environment's last action and observation, kept between `step_into` calls so
-/// that a loop of them converts the action and receives the observation in place.
+/// The environment with `f32` actions in the environment's bounds (rounded inwards), each
+/// cast to an inner action kept between steps.
 #[derive(Debug, Clone)]
-struct InnerBuffers<E: Env> {
-    action: Option<E::Act>,
-    obs: Option<E::Obs>,
+struct F32Actions<E: Env> {
+    env: E,
+    space: BoxSpace<f32>,
+    kept: Option<E::Act>,
 }
 
-impl<E> InnerBuffers<E>
+impl<E: Env> Wrapper for F32Actions<E>
 where
-    E: Env,
     E::ActSpace: NumericSpace,
 {
-    fn new() -> Self {
-        Self {
-            action: None,
-            obs: None,
-        }
+    type Inner = E;
+    type Kind = Actions;
+    fn inner(&self) -> &E {
+        &self.env
     }
-
-    /// Converts `action` into the kept inner action, steps `env` into the kept inner
-    /// observation (allocating only on the first call) and returns the transition with that
-    /// observation.
-    fn step_into(
-        &mut self,
-        env: &mut E,
-        action: &ArrayD<f32>,
-        info: &mut Info,
-    ) -> Result<(Transition, &E::Obs)> {
-        let space = env.action_space();
-        let inner_action = match &mut self.action {
-            Some(a) => {
-                space
-                    .element_from_array_into(action, a)
-                    .map_err(Error::into_invalid_action)?;
-                a
-            }
-            None => self.action.insert(convert_action(space, action)?),
-        };
-        let transition = match &mut self.obs {
-            Some(obs) => env.step_into(inner_action, obs, info)?,
-            None => {
-                let step = env.step(inner_action)?;
-                *info = step.info;
-                self.obs = Some(step.observation);
-                Transition {
-                    reward: step.reward,
-                    terminated: step.terminated,
-                    truncated: step.truncated,
-                }
-            }
-        };
-        let obs = self
-            .obs
-            .as_ref()
-            .ok_or_else(|| Error::simulation("the inner observation was not kept"))?;
-        Ok((transition, obs))
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
     }
 }
 
-/// Copies `src` into `dst`, reusing `dst`'s arrays where the two have the same structure,
-/// dtypes and shapes (a kept observation buffer), else replacing `dst` by a copy.
-fn assign_value(dst: &mut Value, src: &Value) {
-    use gym_core::ArrayValue as A;
-    match (dst, src) {
-        (Value::Array(d), Value::Array(s)) => match (d, s) {
-            (A::F32(d), A::F32(s)) => d.clone_from(s),
-            (A::F64(d), A::F64(s)) => d.clone_from(s),
-            (A::I8(d), A::I8(s)) => d.clone_from(s),
-            (A::I16(d), A::I16(s)) => d.clone_from(s),
-            (A::I32(d), A::I32(s)) => d.clone_from(s),
-            (A::I64(d), A::I64(s)) => d.clone_from(s),
-            (A::U8(d), A::U8(s)) => d.clone_from(s),
-            (A::Bool(d), A::Bool(s)) => d.clone_from(s),
-            (d, s) => *d = s.clone(),
-        },
-        (Value::Dict(d), Value::Dict(s)) if d.keys().eq(s.keys()) => {
-            for (dv, sv) in d.values_mut().zip(s.values()) {
-                assign_value(dv, sv);
-            }
-        }
-        (Value::Tuple(d), Value::Tuple(s)) if d.len() == s.len() => {
-            for (dv, sv) in d.iter_mut().zip(s) {
-                assign_value(dv, sv);
-            }
-        }
-        (d, s) => *d = s.clone(),
+impl<E: Env> ActionWrapper for F32Actions<E>
+where
+    E::ActSpace: NumericSpace,
+{
+    type Space = BoxSpace<f32>;
+
+    fn space(&self) -> &BoxSpace<f32> {
+        &self.space
     }
+
+    fn action(&mut self, action: &ArrayD<f32>) -> Result<E::Act> {
+        self.env
+            .action_space()
+            .element_from_array(action)
+            .map_err(Error::into_invalid_action)
+    }
+
+    fn action_into(&mut self, action: &ArrayD<f32>, out: &mut E::Act) -> Result<()> {
+        self.env
+            .action_space()
+            .element_from_array_into(action, out)
+            .map_err(Error::into_invalid_action)
+    }
+
+    fn action_buffer(&mut self) -> Option<&mut Option<E::Act>> {
+        Some(&mut self.kept)
+    }
+}
+
+/// The selected keys, in the order given, over `f32` actions.
+type Selected<E> = FilterObservation<F32Actions<E>>;
+
+/// The selected keys flattened and cast to `f32`.
+type Flat<E> = DtypeObservation<FlattenObservation<Selected<E>>, f32>;
+
+/// Checks the environment and keys as robosuite's wrapper needs them and selects the keys:
+/// the selection, the keys and each key's flat size.
+fn select<E>(
+    env: E,
+    keys: Option<Vec<String>>,
+    flat: bool,
+) -> Result<(Selected<E>, Vec<String>, Vec<usize>)>
+where
+    E: Env,
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    let any = env.observation_space().to_any();
+    let dict = any.as_dict().ok_or_else(|| {
+        Error::invalid_argument(
+            "env",
+            format!("GymWrapper needs a Dict observation space, got {any}"),
+        )
+    })?;
+    let keys = keys.unwrap_or_else(|| default_keys(dict));
+    if keys.is_empty() {
+        let available: Vec<&str> = dict.keys().collect();
+        return Err(Error::invalid_argument(
+            "keys",
+            format!(
+                "no observation keys selected (available: {})",
+                available.join(", ")
+            ),
+        ));
+    }
+    let selected = dict.select_space(&FilterKeys::Names(keys.clone()))?;
+    if flat
+        && let Some((k, sub)) = selected
+            .iter()
+            .find(|(_, s)| matches!(s, AnySpace::Dict(_) | AnySpace::Tuple(_)))
+    {
+        return Err(Error::invalid_argument(
+            "keys",
+            format!(
+                "`{k}` is a {} space; only array observations can be flattened",
+                sub.kind()
+            ),
+        ));
+    }
+    let sizes = selected.iter().map(|(_, s)| s.flatdim()).collect();
+    let actions = F32Actions {
+        space: f32_action_space(env.action_space())?,
+        env,
+        kept: None,
+    };
+    let stack = FilterObservation::keeping_order(actions, keys.clone())?;
+    Ok((stack, keys, sizes))
+}
+
+/// The flat stack over a selection.
+fn flat<E>(selected: Selected<E>) -> Result<Flat<E>>
+where
+    E: Env,
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    DtypeObservation::new(FlattenObservation::new(selected))
+}
+
+/// [`Env::step`] of a flat stack through its `step_into` (one new array).
+fn flat_step<E>(stack: &mut Flat<E>, action: &ArrayD<f32>, n: usize) -> Result<Step<ArrayD<f32>>>
+where
+    E: Env,
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    let mut observation = ArrayD::zeros(IxDyn(&[n]));
+    let mut info = Info::new();
+    let t = stack.step_into(action, &mut observation, &mut info)?;
+    Ok(Step {
+        observation,
+        reward: t.reward,
+        terminated: t.terminated,
+        truncated: t.truncated,
+        info,
+    })
 }
 
 /// robosuite's `GymWrapper(env, keys=None, flatten_obs=True)`, corrected (see the
@@ -439,19 +242,34 @@ fn assign_value(dst: &mut Value, src: &Value) {
 /// and writes into the caller's observation in place (the flat array, or each array of the
 /// Dict), so a loop of `step_into` allocates nothing after its first step.
 #[derive(Debug, Clone)]
-pub struct GymWrapper<E: Env> {
-    env: E,
-    plan: KeyPlan,
-    flatten_obs: bool,
+pub struct GymWrapper<E: Env>
+where
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    stack: Stack<E>,
+    keys: Vec<String>,
     observation_space: AnySpace,
     action_space: BoxSpace<f32>,
-    buffers: InnerBuffers<E>,
+}
+
+/// The layers of a [`GymWrapper`]: the selection alone (with its last observation), or
+/// the flat stack.
+#[derive(Debug, Clone)]
+#[allow(clippy::large_enum_variant)]
+enum Stack<E: Env>
+where
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    Dict(Selected<E>, Option<E::Obs>),
+    Flat(Flat<E>),
 }
 
 impl<E> GymWrapper<E>
 where
     E: Env,
-    E::ObsSpace: DictObservationSpace,
+    E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
     /// Wraps `env`, selecting `keys` (robosuite's defaults when `None`, see
@@ -462,48 +280,39 @@ where
     /// keys); [`Error::InvalidArgument`] for no keys, a duplicate key, a nested Dict/Tuple
     /// key when flattening, a non-Dict observation space or a non-Box action space.
     pub fn new(env: E, keys: Option<Vec<String>>, flatten_obs: bool) -> Result<Self> {
-        let dict = dict_space_of(env.observation_space())?;
-        let plan = KeyPlan::new(dict, keys, flatten_obs)?;
-        let observation_space = if flatten_obs {
-            AnySpace::from(BoxSpace::<f32>::unbounded(&[plan.total]))
+        let (selected, keys, sizes) = select(env, keys, flatten_obs)?;
+        let action_space = selected.action_space().clone();
+        let (stack, observation_space) = if flatten_obs {
+            let n = sizes.iter().sum();
+            let space = BoxSpace::<f32>::unbounded(&[n]).into();
+            (Stack::Flat(flat(selected)?), space)
         } else {
-            AnySpace::Dict(dict.select(&plan.keys)?)
+            let space = selected.observation_space().to_any();
+            (Stack::Dict(selected, None), space)
         };
-        let action_space = f32_action_space(env.action_space())?;
         Ok(Self {
-            env,
-            plan,
-            flatten_obs,
+            stack,
+            keys,
             observation_space,
             action_space,
-            buffers: InnerBuffers::new(),
         })
     }
 
     /// The selected keys, in observation order.
     pub fn keys(&self) -> &[String] {
-        &self.plan.keys
+        &self.keys
     }
 
     /// Whether observations are flattened.
     pub fn flatten_obs(&self) -> bool {
-        self.flatten_obs
-    }
-
-    fn observation(&self, obs: E::Obs) -> Result<Value> {
-        let obs = E::ObsSpace::into_dict(obs)?;
-        if self.flatten_obs {
-            Ok(Value::from(self.plan.flatten(&obs)?))
-        } else {
-            Ok(Value::Dict(self.plan.select(obs)?))
-        }
+        matches!(self.stack, Stack::Flat(_))
     }
 }
 
 impl<E> gym_core::CustomWrapper for GymWrapper<E>
 where
     E: Env,
-    E::ObsSpace: DictObservationSpace,
+    E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
     type Observation = Value;
@@ -524,14 +333,30 @@ where
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(Value, Info)> {
-        let (obs, info) = this.env.reset(seed, options)?;
-        Ok((this.observation(obs)?, info))
+        match &mut this.stack {
+            Stack::Dict(s, _) => {
+                let (obs, info) = s.reset(seed, options)?;
+                Ok((s.observation_space().into_value(obs), info))
+            }
+            Stack::Flat(s) => {
+                let (obs, info) = s.reset(seed, options)?;
+                Ok((obs.into(), info))
+            }
+        }
     }
 
     fn step(this: &mut Self, action: &ArrayD<f32>) -> Result<Step<Value>> {
-        let action = convert_action(this.env.action_space(), action)?;
-        let step = this.env.step(&action)?;
-        step.try_map_observation(|o| this.observation(o))
+        match &mut this.stack {
+            Stack::Dict(s, _) => {
+                let step = s.step(action)?;
+                let space = s.observation_space();
+                Ok(step.map_observation(|o| space.into_value(o)))
+            }
+            Stack::Flat(s) => {
+                let n = this.observation_space.flatdim();
+                Ok(flat_step(s, action, n)?.map_observation(Value::from))
+            }
+        }
     }
 
     fn step_into(
@@ -540,37 +365,74 @@ where
         observation: &mut Value,
         info: &mut Info,
     ) -> Result<Transition> {
-        let (transition, inner_obs) = this.buffers.step_into(&mut this.env, action, info)?;
-        let dict = E::ObsSpace::as_dict(inner_obs)?;
-        if !this.flatten_obs {
-            this.plan.select_into(dict, observation)?;
-        } else if let Value::Array(gym_core::ArrayValue::F32(out)) = observation
-            && out.shape() == [this.plan.total]
-        {
-            this.plan.flatten_into(dict, out)?;
-        } else {
-            *observation = Value::from(this.plan.flatten(dict)?);
+        match (&mut this.stack, observation) {
+            (Stack::Flat(s), Value::Array(ArrayValue::F32(out))) => s.step_into(action, out, info),
+            (Stack::Dict(s, kept), out) => match kept {
+                Some(obs) => {
+                    let t = s.step_into(action, obs, info)?;
+                    s.observation_space().to_value_into(obs, out);
+                    Ok(t)
+                }
+                None => {
+                    let step = s.step(action)?;
+                    s.observation_space().to_value_into(&step.observation, out);
+                    *info = step.info;
+                    *kept = Some(step.observation);
+                    Ok(Transition {
+                        reward: step.reward,
+                        terminated: step.terminated,
+                        truncated: step.truncated,
+                    })
+                }
+            },
+            (Stack::Flat(_), out) => {
+                let step = <Self as gym_core::CustomWrapper>::step(this, action)?;
+                *out = step.observation;
+                *info = step.info;
+                Ok(Transition {
+                    reward: step.reward,
+                    terminated: step.terminated,
+                    truncated: step.truncated,
+                })
+            }
         }
-        Ok(transition)
     }
 }
 
-impl<E> gym_core::Wrapper for GymWrapper<E>
+/// The innermost environment of a selection.
+fn env_of<E: Env>(selected: &Selected<E>) -> &E
+where
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    selected.inner().inner()
+}
+
+impl<E> Wrapper for GymWrapper<E>
 where
     E: Env,
-    E::ObsSpace: DictObservationSpace,
+    E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
     type Inner = E;
     type Kind = gym_core::Custom;
     fn inner(&self) -> &E {
-        &self.env
+        match &self.stack {
+            Stack::Dict(s, _) => env_of(s),
+            Stack::Flat(s) => env_of(s.inner().inner()),
+        }
     }
     fn inner_mut(&mut self) -> &mut E {
-        &mut self.env
+        match &mut self.stack {
+            Stack::Dict(s, _) => s.inner_mut().inner_mut(),
+            Stack::Flat(s) => s.inner_mut().inner_mut().inner_mut().inner_mut(),
+        }
     }
     fn into_inner(self) -> E {
-        self.env
+        match self.stack {
+            Stack::Dict(s, _) => s.into_inner().into_inner(),
+            Stack::Flat(s) => s.into_inner().into_inner().into_inner().into_inner(),
+        }
     }
 }
 
@@ -581,18 +443,21 @@ where
 /// observation and action between steps, so a loop of `step_into` over a robosuite env does
 /// not allocate.
 #[derive(Debug, Clone)]
-pub struct FlatGymWrapper<E: Env> {
-    env: E,
-    plan: KeyPlan,
+pub struct FlatGymWrapper<E: Env>
+where
+    E::ObsSpace: FilterableSpace,
+    E::ActSpace: NumericSpace,
+{
+    stack: Flat<E>,
+    keys: Vec<String>,
+    sizes: Vec<usize>,
     observation_space: BoxSpace<f32>,
-    action_space: BoxSpace<f32>,
-    buffers: InnerBuffers<E>,
 }
 
 impl<E> FlatGymWrapper<E>
 where
     E: Env,
-    E::ObsSpace: DictObservationSpace,
+    E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
     /// Wraps `env`, selecting and flattening `keys` (robosuite's defaults when `None`).
@@ -600,30 +465,27 @@ where
     /// # Errors
     /// As [`GymWrapper::new`].
     pub fn new(env: E, keys: Option<Vec<String>>) -> Result<Self> {
-        let plan = KeyPlan::new(dict_space_of(env.observation_space())?, keys, true)?;
-        let observation_space = BoxSpace::unbounded(&[plan.total]);
-        let action_space = f32_action_space(env.action_space())?;
+        let (selected, keys, sizes) = select(env, keys, true)?;
+        let observation_space = BoxSpace::unbounded(&[sizes.iter().sum()]);
         Ok(Self {
-            env,
-            plan,
+            stack: flat(selected)?,
+            keys,
+            sizes,
             observation_space,
-            action_space,
-            buffers: InnerBuffers::new(),
         })
     }
 
     /// The selected keys, in concatenation order.
     pub fn keys(&self) -> &[String] {
-        &self.plan.keys
+        &self.keys
     }
 
     /// Where each key's values lie in the flat observation (`start..end`), in key order.
     pub fn key_slices(&self) -> Vec<(String, std::ops::Range<usize>)> {
         let mut start = 0;
-        self.plan
-            .keys
+        self.keys
             .iter()
-            .zip(&self.plan.sizes)
+            .zip(&self.sizes)
             .map(|(k, &n)| {
                 let r = start..start + n;
                 start += n;
@@ -636,7 +498,7 @@ where
 impl<E> gym_core::CustomWrapper for FlatGymWrapper<E>
 where
     E: Env,
-    E::ObsSpace: DictObservationSpace,
+    E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
     type Observation = ArrayD<f32>;
@@ -649,7 +511,7 @@ where
     }
 
     fn action_space(this: &Self) -> &BoxSpace<f32> {
-        &this.action_space
+        this.stack.action_space()
     }
 
     fn reset(
@@ -657,21 +519,11 @@ where
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(ArrayD<f32>, Info)> {
-        let (obs, info) = this.env.reset(seed, options)?;
-        Ok((this.plan.flatten(&E::ObsSpace::into_dict(obs)?)?, info))
+        this.stack.reset(seed, options)
     }
 
     fn step(this: &mut Self, action: &ArrayD<f32>) -> Result<Step<ArrayD<f32>>> {
-        let mut observation = ArrayD::zeros(IxDyn(&[this.plan.total]));
-        let mut info = Info::new();
-        let t = this.step_into(action, &mut observation, &mut info)?;
-        Ok(Step {
-            observation,
-            reward: t.reward,
-            terminated: t.terminated,
-            truncated: t.truncated,
-            info,
-        })
+        flat_step(&mut this.stack, action, this.observation_space.flatdim())
     }
 
     fn step_into(
@@ -680,29 +532,30 @@ where
         observation: &mut ArrayD<f32>,
         info: &mut Info,
     ) -> Result<Transition> {
-        let (transition, inner_obs) = this.buffers.step_into(&mut this.env, action, info)?;
-        this.plan
-            .flatten_into(E::ObsSpace::as_dict(inner_obs)?, observation)?;
-        Ok(transition)
+        this.stack.step_into(action, observation, info)
     }
 }
 
-impl<E> gym_core::Wrapper for FlatGymWrapper<E>
+impl<E> Wrapper for FlatGymWrapper<E>
 where
     E: Env,
-    E::ObsSpace: DictObservationSpace,
+    E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
     type Inner = E;
     type Kind = gym_core::Custom;
     fn inner(&self) -> &E {
-        &self.env
+        env_of(self.stack.inner().inner())
     }
     fn inner_mut(&mut self) -> &mut E {
-        &mut self.env
+        self.stack.inner_mut().inner_mut().inner_mut().inner_mut()
     }
     fn into_inner(self) -> E {
-        self.env
+        self.stack
+            .into_inner()
+            .into_inner()
+            .into_inner()
+            .into_inner()
     }
 }
 
@@ -710,7 +563,7 @@ where
 mod tests {
     use super::*;
     use crate::toy::{DictEnv, a32};
-    use gym_core::{DType, EnvExt};
+    use gym_core::{DType, EnvExt, Space};
 
     #[test]
     fn default_keys_follow_robosuite() {

@@ -38,11 +38,13 @@
 //! * Reward: [`NormalizeReward`], [`TransformReward`], [`ClipReward`].
 //! * Vector environments: [`vector`] ([`SyncVectorEnv`], [`ThreadVectorEnv`], and
 //!   EnvPool's asynchronous mode, [`ThreadEnvPool`]).
-//! * Space helpers the wrappers are generic over: [`NumericSpace`], [`BatchSpace`],
-//!   [`FilterableSpace`], [`DictObservationSpace`].
+//! * The space abilities the wrappers are generic over live in gym-core beside the spaces
+//!   ([`gym_core::spaces`]) and are re-exported here: [`NumericSpace`], [`BatchSpace`],
+//!   [`FilterableSpace`].
 
 pub mod autoreset;
-pub mod batch;
+/// Batched spaces (moved to [`gym_core::spaces::batch`]; this path is kept).
+pub use gym_core::spaces::batch;
 pub mod clip_action;
 pub mod clip_reward;
 pub mod dtype_observation;
@@ -53,7 +55,8 @@ pub mod frame_stack_observation;
 pub mod gym_wrapper;
 pub mod normalize_observation;
 pub mod normalize_reward;
-pub mod numeric;
+/// Numeric spaces (moved to [`gym_core::spaces::numeric`]; this path is kept).
+pub use gym_core::spaces::numeric;
 pub mod order_enforcing;
 pub mod passive_env_checker;
 pub mod record_episode_statistics;
@@ -78,10 +81,11 @@ pub use clip_action::ClipAction;
 pub use clip_reward::ClipReward;
 pub use dtype_observation::DtypeObservation;
 pub use ext::WrapperExt;
-pub use filter_observation::{FilterKeys, FilterObservation, FilterableSpace};
+pub use filter_observation::FilterObservation;
 pub use flatten_observation::FlattenObservation;
 pub use frame_stack_observation::{FrameStackObservation, Padding};
-pub use gym_wrapper::{DictObservationSpace, FlatGymWrapper, GymWrapper, default_keys};
+pub use gym_core::spaces::{FilterKeys, FilterableSpace};
+pub use gym_wrapper::{FlatGymWrapper, GymWrapper, default_keys};
 pub use normalize_observation::NormalizeObservation;
 pub use normalize_reward::NormalizeReward;
 pub use numeric::{ArraySpec, NumericSpace};

@@ -45,6 +45,17 @@ pub trait Flatten: Space {
     /// When `x` does not have the structure of the space.
     fn flatten(&self, x: &Self::Element) -> Result<ArrayValue, SpaceError>;
 
+    /// [`Flatten::flatten`] into `out`, reusing its storage when it already is a vector of
+    /// the flat dtype and length (Box and Dict spaces of arrays then allocate nothing); the
+    /// default allocates.
+    ///
+    /// # Errors
+    /// As [`Flatten::flatten`].
+    fn flatten_into(&self, x: &Self::Element, out: &mut ArrayValue) -> Result<(), SpaceError> {
+        *out = self.flatten(x)?;
+        Ok(())
+    }
+
     /// Inverts [`Flatten::flatten`] (`gymnasium.spaces.unflatten`).
     ///
     /// # Errors
@@ -63,6 +74,19 @@ pub trait DynSpace: Space {
 
     /// Converts an element to a dynamic [`Value`].
     fn to_value(&self, x: &Self::Element) -> Value;
+
+    /// Converts an owned element to a dynamic [`Value`], moving it where the element already
+    /// is one (Dict, Tuple and dynamic spaces); the default copies it.
+    #[allow(clippy::wrong_self_convention)]
+    fn into_value(&self, x: Self::Element) -> Value {
+        self.to_value(&x)
+    }
+
+    /// [`DynSpace::to_value`] into `out`, reusing its storage where it has the same
+    /// structure (see [`Value::assign_from`]); the default allocates.
+    fn to_value_into(&self, x: &Self::Element, out: &mut Value) {
+        *out = self.to_value(x);
+    }
 
     /// Converts a dynamic [`Value`] to an element, checking structure and dtype (safe casts
     /// only) but not bounds; use [`Space::contains`] for that.

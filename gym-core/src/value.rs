@@ -193,6 +193,48 @@ impl ArrayValue {
         }
     }
 
+    /// Copies `src` into `self`, reusing `self`'s storage when the dtypes agree (nothing is
+    /// allocated when the shapes agree too), else replacing `self` by a copy.
+    pub fn assign_from(&mut self, src: &ArrayValue) {
+        use ArrayValue as A;
+        match (self, src) {
+            (A::I8(d), A::I8(s)) => d.clone_from(s),
+            (A::I16(d), A::I16(s)) => d.clone_from(s),
+            (A::I32(d), A::I32(s)) => d.clone_from(s),
+            (A::I64(d), A::I64(s)) => d.clone_from(s),
+            (A::U8(d), A::U8(s)) => d.clone_from(s),
+            (A::F32(d), A::F32(s)) => d.clone_from(s),
+            (A::F64(d), A::F64(s)) => d.clone_from(s),
+            (A::Bool(d), A::Bool(s)) => d.clone_from(s),
+            (d, s) => *d = s.clone(),
+        }
+    }
+
+    /// Whether the array is contiguous in row-major order.
+    pub fn is_standard_layout(&self) -> bool {
+        for_each_array!(self, a => a.is_standard_layout())
+    }
+
+    /// Writes `src`'s elements (row-major, cast with `as`) into this contiguous array from
+    /// element `at` on; `false`, with nothing written, when this is not contiguous or has
+    /// no room for them.
+    pub fn write_at(&mut self, at: usize, src: &ArrayValue) -> bool {
+        fn go<T: ArrayElement>(dst: &mut ArrayD<T>, at: usize, src: &ArrayValue) -> bool {
+            let Some(part) = dst
+                .as_slice_mut()
+                .and_then(|d| d.get_mut(at..at + src.len()))
+            else {
+                return false;
+            };
+            for_each_array!(src, a => part
+                .iter_mut()
+                .zip(a.iter())
+                .for_each(|(d, v)| *d = v.cast_to::<T>()));
+            true
+        }
+        for_each_array!(self, d => go(d, at, src))
+    }
+
     /// The elements `start..end` of a one-dimensional array.
     pub fn slice_1d(&self, start: usize, end: usize) -> ArrayValue {
         for_each_array!(self, a => {
@@ -246,6 +288,21 @@ impl Value {
         }
     }
 
+    /// Copies `src` into `self` in place where the two have the same structure (dict keys
+    /// in the same order, tuples of the same length, arrays of the same dtype and shape:
+    /// then nothing is allocated), else replacing the differing part by a copy.
+    pub fn assign_from(&mut self, src: &Value) {
+        match (self, src) {
+            (Value::Array(d), Value::Array(s)) => d.assign_from(s),
+            (Value::Discrete(d), Value::Discrete(s)) => *d = *s,
+            (Value::Dict(d), Value::Dict(s)) => assign_dict(d, s),
+            (Value::Tuple(d), Value::Tuple(s)) if d.len() == s.len() => {
+                d.iter_mut().zip(s).for_each(|(d, s)| d.assign_from(s));
+            }
+            (d, s) => *d = s.clone(),
+        }
+    }
+
     /// Whether every number inside is finite.
     pub fn all_finite(&self) -> bool {
         match self {
@@ -253,6 +310,50 @@ impl Value {
             Value::Discrete(_) => true,
             Value::Dict(d) => d.values().all(Value::all_finite),
             Value::Tuple(t) => t.iter().all(Value::all_finite),
+        }
+    }
+}
+
+/// [`Value::assign_from`] for dicts: in place when the keys agree in order.
+pub fn assign_dict(dst: &mut DictValue, src: &DictValue) {
+    if dst.len() == src.len() && dst.keys().eq(src.keys()) {
+        dst.values_mut()
+            .zip(src.values())
+            .for_each(|(d, s)| d.assign_from(s));
+    } else {
+        dst.clone_from(src);
+    }
+}
+
+impl From<DictValue> for Value {
+    fn from(d: DictValue) -> Self {
+        Value::Dict(d)
+    }
+}
+
+impl From<Vec<Value>> for Value {
+    fn from(t: Vec<Value>) -> Self {
+        Value::Tuple(t)
+    }
+}
+
+impl From<i64> for Value {
+    fn from(i: i64) -> Self {
+        Value::Discrete(i)
+    }
+}
+
+impl TryFrom<Value> for DictValue {
+    type Error = SpaceError;
+
+    /// The dict inside a [`Value::Dict`] (moved), else [`SpaceError::WrongKind`].
+    fn try_from(v: Value) -> Result<Self, SpaceError> {
+        match v {
+            Value::Dict(d) => Ok(d),
+            other => Err(SpaceError::WrongKind {
+                expected: "dict",
+                got: other.kind(),
+            }),
         }
     }
 }
@@ -322,6 +423,37 @@ mod tests {
         assert_eq!(back, ArrayValue::from(arr1(&[true, false]).into_dyn()));
         assert!(back.to_typed::<f32>().is_ok());
         assert!(mixed.to_typed::<bool>().is_err());
+    }
+
+    #[test]
+    fn assign_from_reuses_matching_storage() {
+        let mut dst = Value::Dict(
+            [("a".to_owned(), Value::from(arr1(&[1.0f64, 2.0]).into_dyn()))]
+                .into_iter()
+                .collect(),
+        );
+        let src = Value::Dict(
+            [("a".to_owned(), Value::from(arr1(&[3.0f64, 4.0]).into_dyn()))]
+                .into_iter()
+                .collect(),
+        );
+        let ptr = |v: &Value| match v {
+            Value::Dict(d) => match &d["a"] {
+                Value::Array(ArrayValue::F64(a)) => a.as_ptr(),
+                _ => unreachable!(),
+            },
+            _ => unreachable!(),
+        };
+        let before = ptr(&dst);
+        dst.assign_from(&src);
+        assert_eq!(dst, src);
+        assert_eq!(ptr(&dst), before);
+        let other = Value::Tuple(vec![Value::Discrete(1)]);
+        dst.assign_from(&other);
+        assert_eq!(dst, other);
+        let mut a = ArrayValue::from(arr1(&[1i8]).into_dyn());
+        a.assign_from(&ArrayValue::from(arr1(&[0.5f32, 1.0]).into_dyn()));
+        assert_eq!(a.dtype(), DType::F32);
     }
 
     #[test]

@@ -112,6 +112,30 @@ pub trait ObservationWrapper: Wrapper<Kind = Observations> {
         &mut self,
         observation: <Self::Inner as Env>::Obs,
     ) -> Result<<Self::Space as Space>::Element>;
+
+    /// Maps a borrowed observation of the inner environment into `out`, the previous
+    /// observation, reusing its storage: what [`Env::step_into`] calls. The default clones
+    /// the observation and calls [`ObservationWrapper::observation`]; override it (and opt
+    /// into [`ObservationWrapper::inner_buffer`]) for a step that allocates nothing.
+    ///
+    /// # Errors
+    /// As [`ObservationWrapper::observation`].
+    fn observation_into(
+        &mut self,
+        observation: &<Self::Inner as Env>::Obs,
+        out: &mut <Self::Space as Space>::Element,
+    ) -> Result<()> {
+        *out = self.observation(observation.clone())?;
+        Ok(())
+    }
+
+    /// Where the kind keeps the inner environment's observation between steps (a field of
+    /// the wrapper, `None` until the first step), or `None` (the default) to step the inner
+    /// environment with [`Env::step`]. With a buffer, [`Env::step_into`] steps the inner
+    /// environment into it and maps it with [`ObservationWrapper::observation_into`].
+    fn inner_buffer(&mut self) -> Option<&mut Option<<Self::Inner as Env>::Obs>> {
+        None
+    }
 }
 
 /// Gymnasium's `ActionWrapper`: the wrapper accepts actions of [`ActionWrapper::space`] and
@@ -132,6 +156,28 @@ pub trait ActionWrapper: Wrapper<Kind = Actions> {
         &mut self,
         action: &<Self::Space as Space>::Element,
     ) -> Result<<Self::Inner as Env>::Act>;
+
+    /// Maps an action into `out`, the previous inner action, reusing its storage. The
+    /// default calls [`ActionWrapper::action`].
+    ///
+    /// # Errors
+    /// As [`ActionWrapper::action`].
+    fn action_into(
+        &mut self,
+        action: &<Self::Space as Space>::Element,
+        out: &mut <Self::Inner as Env>::Act,
+    ) -> Result<()> {
+        *out = self.action(action)?;
+        Ok(())
+    }
+
+    /// Where the kind keeps the inner action between steps (a field of the wrapper, `None`
+    /// until the first step), or `None` (the default) to map each action with
+    /// [`ActionWrapper::action`]. With a buffer, every step maps the action with
+    /// [`ActionWrapper::action_into`].
+    fn action_buffer(&mut self) -> Option<&mut Option<<Self::Inner as Env>::Act>> {
+        None
+    }
 }
 
 /// Gymnasium's `RewardWrapper`: every reward is mapped by [`RewardWrapper::reward`].
@@ -339,8 +385,21 @@ impl<W: ObservationWrapper> WrapperKind<W> for Observations {
         Ok((w.observation(observation)?, info))
     }
     fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
-        let step = w.inner_mut().step(action)?;
-        step.try_map_observation(|o| w.observation(o))
+        if w.inner_buffer().is_none() {
+            let step = w.inner_mut().step(action)?;
+            return step.try_map_observation(|o| w.observation(o));
+        }
+        let mut info = Info::new();
+        let (t, kept) = step_kept(w, action, &mut info)?;
+        let observation = w.observation(kept.clone());
+        put_back(w, kept);
+        Ok(Step {
+            observation: observation?,
+            reward: t.reward,
+            terminated: t.terminated,
+            truncated: t.truncated,
+            info,
+        })
     }
     fn step_into(
         w: &mut W,
@@ -348,10 +407,80 @@ impl<W: ObservationWrapper> WrapperKind<W> for Observations {
         observation: &mut Self::Obs,
         info: &mut Info,
     ) -> Result<Transition> {
-        Ok(move_step(Self::step(w, action)?, observation, info))
+        if w.inner_buffer().is_none() {
+            return Ok(move_step(Self::step(w, action)?, observation, info));
+        }
+        let (t, kept) = step_kept(w, action, info)?;
+        let mapped = w.observation_into(&kept, observation);
+        put_back(w, kept);
+        mapped.map(|()| t)
     }
     fn render(w: &mut W) -> Result<Option<Frame>> {
         w.inner_mut().render()
+    }
+}
+
+/// Steps the inner environment of an observation wrapper with a buffer into the kept
+/// observation (taken out of the wrapper, which the caller puts back with [`put_back`]);
+/// the first step, with nothing kept yet, goes through [`Env::step`].
+fn step_kept<W: ObservationWrapper>(
+    w: &mut W,
+    action: &InnerAct<W>,
+    info: &mut Info,
+) -> Result<(Transition, InnerObs<W>)> {
+    match w.inner_buffer().and_then(Option::take) {
+        Some(mut kept) => {
+            let t = w.inner_mut().step_into(action, &mut kept, info);
+            match t {
+                Ok(t) => Ok((t, kept)),
+                Err(e) => {
+                    put_back(w, kept);
+                    Err(e)
+                }
+            }
+        }
+        None => {
+            let step = w.inner_mut().step(action)?;
+            *info = step.info;
+            let t = Transition {
+                reward: step.reward,
+                terminated: step.terminated,
+                truncated: step.truncated,
+            };
+            Ok((t, step.observation))
+        }
+    }
+}
+
+/// Returns the kept inner observation to the wrapper's buffer.
+fn put_back<W: ObservationWrapper>(w: &mut W, kept: InnerObs<W>) {
+    if let Some(slot) = w.inner_buffer() {
+        *slot = Some(kept);
+    }
+}
+
+/// The inner action of `action` for an action wrapper: mapped into the wrapper's kept
+/// action when it keeps one (taken out; the caller returns it with [`put_back_action`]).
+fn inner_action<W: ActionWrapper>(
+    w: &mut W,
+    action: &<W::Space as Space>::Element,
+) -> Result<InnerAct<W>> {
+    match w.action_buffer().and_then(Option::take) {
+        Some(mut kept) => match w.action_into(action, &mut kept) {
+            Ok(()) => Ok(kept),
+            Err(e) => {
+                put_back_action(w, kept);
+                Err(e)
+            }
+        },
+        None => w.action(action),
+    }
+}
+
+/// Returns the inner action to the wrapper's buffer, if it keeps one.
+fn put_back_action<W: ActionWrapper>(w: &mut W, kept: InnerAct<W>) {
+    if let Some(slot) = w.action_buffer() {
+        *slot = Some(kept);
     }
 }
 
@@ -375,8 +504,10 @@ impl<W: ActionWrapper> WrapperKind<W> for Actions {
         w.inner_mut().reset(seed, options)
     }
     fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
-        let action = w.action(action)?;
-        w.inner_mut().step(&action)
+        let action = inner_action(w, action)?;
+        let step = w.inner_mut().step(&action);
+        put_back_action(w, action);
+        step
     }
     fn step_into(
         w: &mut W,
@@ -384,8 +515,10 @@ impl<W: ActionWrapper> WrapperKind<W> for Actions {
         observation: &mut Self::Obs,
         info: &mut Info,
     ) -> Result<Transition> {
-        let action = w.action(action)?;
-        w.inner_mut().step_into(&action, observation, info)
+        let action = inner_action(w, action)?;
+        let t = w.inner_mut().step_into(&action, observation, info);
+        put_back_action(w, action);
+        t
     }
     fn render(w: &mut W) -> Result<Option<Frame>> {
         w.inner_mut().render()

@@ -314,7 +314,7 @@ impl ObsLayout {
         for (k, at) in &self.keys {
             if k.modality == "image" {
                 if let (Some(Value::Array(a)), Some(frame)) = (values.next(), images.get(*at)) {
-                    copy_frame(frame, a);
+                    a.assign_from(frame);
                 }
                 continue;
             }
@@ -352,16 +352,6 @@ impl ObsLayout {
                 matches!(entries.next(), Some((name, Value::Array(a)))
                     if *name == g.key && a.dtype() == DType::F64 && a.shape() == [g.len])
             })
-    }
-}
-
-/// Copies a frame into an array of the same dtype and shape, allocating nothing.
-fn copy_frame(src: &ArrayValue, dst: &mut ArrayValue) {
-    match (src, dst) {
-        (ArrayValue::U8(s), ArrayValue::U8(d)) => d.assign(s),
-        (ArrayValue::F32(s), ArrayValue::F32(d)) => d.assign(s),
-        (ArrayValue::I32(s), ArrayValue::I32(d)) => d.assign(s),
-        (s, d) => *d = s.clone(),
     }
 }
 

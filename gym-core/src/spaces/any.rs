@@ -152,6 +152,19 @@ impl Flatten for AnyBox {
         each_box!(self, b => b.flatten(&b.from_value(&Value::Array(x.clone()))?))
     }
 
+    /// In place when `x` casts safely to the Box's dtype, has its shape, and `out` is a
+    /// vector of the Box's dtype and size.
+    fn flatten_into(&self, x: &ArrayValue, out: &mut ArrayValue) -> Result<(), SpaceError> {
+        let fits = x.dtype().can_cast_to(self.dtype())
+            && self.shape() == Some(x.shape())
+            && out.dtype() == self.dtype()
+            && out.shape() == [x.len()];
+        if !(fits && out.write_at(0, x)) {
+            *out = self.flatten(x)?;
+        }
+        Ok(())
+    }
+
     fn unflatten(&self, flat: &ArrayValue) -> Result<ArrayValue, SpaceError> {
         each_box!(self, b => Ok(ArrayValue::from(b.unflatten(flat)?)))
     }
@@ -168,6 +181,10 @@ impl DynSpace for AnyBox {
 
     fn to_value(&self, x: &ArrayValue) -> Value {
         Value::Array(x.clone())
+    }
+
+    fn into_value(&self, x: ArrayValue) -> Value {
+        Value::Array(x)
     }
 
     fn from_value(&self, v: &Value) -> Result<ArrayValue, SpaceError> {
@@ -311,6 +328,17 @@ impl Flatten for AnySpace {
         each_space!(self, s => s.flatten(&s.from_value(x)?))
     }
 
+    fn flatten_into(&self, x: &Value, out: &mut ArrayValue) -> Result<(), SpaceError> {
+        match (self, x) {
+            (AnySpace::Box(b), Value::Array(a)) => b.flatten_into(a, out),
+            (AnySpace::Dict(d), Value::Dict(v)) => d.flatten_into(v, out),
+            _ => {
+                *out = self.flatten(x)?;
+                Ok(())
+            }
+        }
+    }
+
     fn unflatten(&self, flat: &ArrayValue) -> Result<Value, SpaceError> {
         each_space!(self, s => Ok(s.to_value(&s.unflatten(flat)?)))
     }
@@ -327,6 +355,14 @@ impl DynSpace for AnySpace {
 
     fn to_value(&self, x: &Value) -> Value {
         x.clone()
+    }
+
+    fn into_value(&self, x: Value) -> Value {
+        x
+    }
+
+    fn to_value_into(&self, x: &Value, out: &mut Value) {
+        out.assign_from(x);
     }
 
     fn from_value(&self, v: &Value) -> Result<Value, SpaceError> {

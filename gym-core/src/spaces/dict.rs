@@ -145,6 +145,35 @@ impl Flatten for DictSpace {
         Ok(ArrayValue::concatenate(&parts))
     }
 
+    /// In place when `out` is a vector of the flat dtype and length: each Box part is cast
+    /// straight into its range (other parts are flattened first).
+    fn flatten_into(&self, x: &DictValue, out: &mut ArrayValue) -> Result<(), SpaceError> {
+        let n = self.flatdim();
+        if out.dtype() != self.flat_dtype() || out.shape() != [n] || !out.is_standard_layout() {
+            *out = self.flatten(x)?;
+            return Ok(());
+        }
+        let mut at = 0;
+        for (k, s) in &self.spaces {
+            let v = self.value_of(x, k)?;
+            let written = match (s, v) {
+                (AnySpace::Box(b), Value::Array(a))
+                    if a.shape() == b.shape().unwrap_or(&[])
+                        && a.dtype().can_cast_to(b.dtype()) =>
+                {
+                    out.write_at(at, a)
+                }
+                _ => out.write_at(at, &s.flatten(v)?),
+            };
+            if !written {
+                *out = self.flatten(x)?;
+                return Ok(());
+            }
+            at += s.flatdim();
+        }
+        Ok(())
+    }
+
     fn unflatten(&self, flat: &ArrayValue) -> Result<DictValue, SpaceError> {
         let parts = split_flat(flat, self.spaces.values())?;
         self.spaces
@@ -166,6 +195,17 @@ impl DynSpace for DictSpace {
 
     fn to_value(&self, x: &DictValue) -> Value {
         Value::Dict(x.clone())
+    }
+
+    fn into_value(&self, x: DictValue) -> Value {
+        Value::Dict(x)
+    }
+
+    fn to_value_into(&self, x: &DictValue, out: &mut Value) {
+        match out {
+            Value::Dict(d) => crate::value::assign_dict(d, x),
+            other => *other = Value::Dict(x.clone()),
+        }
     }
 
     fn from_value(&self, v: &Value) -> Result<DictValue, SpaceError> {

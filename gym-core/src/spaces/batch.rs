@@ -10,12 +10,11 @@
 //! | `MultiBinary` | `Box(0, 1, (n, *shape), int8)` |
 //! | `Dict` / `Tuple` | a Dict / Tuple of the batched parts, same order |
 
-use gym_core::spaces::{
+use crate::spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
-use gym_core::{
-    ArrayElement, ArrayValue, DType, DictValue, DynSpace, Error, Flatten, Result, Space,
-    SpaceError, Value,
+use crate::{
+    ArrayElement, ArrayValue, DictValue, DynSpace, Error, Flatten, Result, Space, SpaceError, Value,
 };
 use ndarray::{ArrayD, Axis, IxDyn, Zip};
 
@@ -99,7 +98,7 @@ fn batched_shape(n: usize, shape: &[usize]) -> Vec<usize> {
 }
 
 /// `np.tile(a, (n, 1, ...))`: `n` copies stacked along a new first axis.
-pub(crate) fn tile<T: Clone>(a: &ArrayD<T>, n: usize) -> ArrayD<T> {
+pub fn tile<T: Clone>(a: &ArrayD<T>, n: usize) -> ArrayD<T> {
     a.broadcast(IxDyn(&batched_shape(n, a.shape())))
         .expect("prepending an axis always broadcasts")
         .to_owned()
@@ -202,7 +201,7 @@ fn read_array_value_into(
         out: &mut ArrayValue,
     ) -> Result<()> {
         // Borrow `out` as the batch's array type when the dtypes agree.
-        let typed: Option<&mut ArrayD<T>> = gym_core::for_each_array!(out, a => {
+        let typed: Option<&mut ArrayD<T>> = crate::for_each_array!(out, a => {
             (a as &mut dyn std::any::Any).downcast_mut::<ArrayD<T>>()
         });
         match typed {
@@ -213,11 +212,11 @@ fn read_array_value_into(
             }
         }
     }
-    gym_core::for_each_array!(batch, b => go(b, i, item_shape, out))
+    crate::for_each_array!(batch, b => go(b, i, item_shape, out))
 }
 
 fn check_array_value(batch: &ArrayValue, n: usize, item_shape: &[usize]) -> Result<()> {
-    gym_core::for_each_array!(batch, b => check_typed(b, n, item_shape))
+    crate::for_each_array!(batch, b => check_typed(b, n, item_shape))
 }
 
 fn out_of_range(i: usize, n: usize) -> Error {
@@ -264,7 +263,7 @@ fn write_array_value(batch: &mut ArrayValue, i: usize, x: &ArrayValue) -> Result
     fn go<T: ArrayElement>(batch: &mut ArrayD<T>, i: usize, x: &ArrayValue) -> Result<()> {
         match T::peek(x) {
             Some(typed) => write_typed(batch, i, typed),
-            None => write_typed(batch, i, &crate::numeric::array_value_to::<T>(x)),
+            None => write_typed(batch, i, &crate::spaces::numeric::array_value_to::<T>(x)),
         }
     }
     match batch {
@@ -280,21 +279,7 @@ fn write_array_value(batch: &mut ArrayValue, i: usize, x: &ArrayValue) -> Result
 }
 
 fn read_array_value(batch: &ArrayValue, i: usize, item_shape: &[usize]) -> Result<ArrayValue> {
-    gym_core::for_each_array!(batch, b => Ok(ArrayValue::from(read_typed(b, i, item_shape)?)))
-}
-
-fn zeros_value(dtype: DType, shape: &[usize]) -> ArrayValue {
-    let s = IxDyn(shape);
-    match dtype {
-        DType::I8 => ArrayValue::I8(ArrayD::zeros(s)),
-        DType::I16 => ArrayValue::I16(ArrayD::zeros(s)),
-        DType::I32 => ArrayValue::I32(ArrayD::zeros(s)),
-        DType::I64 => ArrayValue::I64(ArrayD::zeros(s)),
-        DType::U8 => ArrayValue::U8(ArrayD::zeros(s)),
-        DType::F32 => ArrayValue::F32(ArrayD::zeros(s)),
-        DType::F64 => ArrayValue::F64(ArrayD::zeros(s)),
-        DType::Bool => ArrayValue::Bool(ArrayD::from_elem(s, false)),
-    }
+    crate::for_each_array!(batch, b => Ok(ArrayValue::from(read_typed(b, i, item_shape)?)))
 }
 
 fn box_zero<T: ArrayElement>(b: &BoxSpace<T>) -> ArrayD<T> {
@@ -462,13 +447,11 @@ impl BatchSpace for AnyBox {
     type Batched = AnyBox;
 
     fn batch_space(&self, n: usize) -> Result<AnyBox> {
-        check_n(n)?;
-        let (low, high) = self.bounds_f64();
-        Ok(AnyBox::new(self.dtype(), tile(&low, n), tile(&high, n))?)
+        each_box!(self, b => Ok(b.batch_space(n)?.into()))
     }
 
     fn create_empty_batch(&self, n: usize) -> ArrayValue {
-        zeros_value(self.dtype(), &batched_shape(n, self.shape().unwrap_or(&[])))
+        each_box!(self, b => ArrayValue::from(b.create_empty_batch(n)))
     }
 
     fn write_item(&self, batch: &mut ArrayValue, i: usize, x: &ArrayValue) -> Result<()> {
@@ -488,16 +471,7 @@ impl BatchSpace for AnyBox {
     }
 
     fn zero_element(&self) -> ArrayValue {
-        match self {
-            AnyBox::I8(b) => ArrayValue::I8(box_zero(b)),
-            AnyBox::I16(b) => ArrayValue::I16(box_zero(b)),
-            AnyBox::I32(b) => ArrayValue::I32(box_zero(b)),
-            AnyBox::I64(b) => ArrayValue::I64(box_zero(b)),
-            AnyBox::U8(b) => ArrayValue::U8(box_zero(b)),
-            AnyBox::F32(b) => ArrayValue::F32(box_zero(b)),
-            AnyBox::F64(b) => ArrayValue::F64(box_zero(b)),
-            AnyBox::Bool(b) => ArrayValue::Bool(box_zero(b)),
-        }
+        each_box!(self, b => ArrayValue::from(box_zero(b)))
     }
 }
 
@@ -520,26 +494,11 @@ impl BatchSpace for AnySpace {
     type Batched = AnySpace;
 
     fn batch_space(&self, n: usize) -> Result<AnySpace> {
-        check_n(n)?;
-        Ok(match self {
-            AnySpace::Box(b) => AnySpace::Box(b.batch_space(n)?),
-            AnySpace::Discrete(d) => AnySpace::MultiDiscrete(d.batch_space(n)?),
-            AnySpace::MultiDiscrete(m) => m.batch_space(n)?.into(),
-            AnySpace::MultiBinary(m) => m.batch_space(n)?.into(),
-            AnySpace::Dict(d) => AnySpace::Dict(d.batch_space(n)?),
-            AnySpace::Tuple(t) => AnySpace::Tuple(t.batch_space(n)?),
-        })
+        each_space!(self, s => Ok(s.batch_space(n)?.to_any()))
     }
 
     fn create_empty_batch(&self, n: usize) -> Value {
-        match self {
-            AnySpace::Box(b) => Value::Array(b.create_empty_batch(n)),
-            AnySpace::Discrete(d) => Value::Array(ArrayValue::I64(d.create_empty_batch(n))),
-            AnySpace::MultiDiscrete(m) => Value::Array(ArrayValue::I64(m.create_empty_batch(n))),
-            AnySpace::MultiBinary(m) => Value::Array(ArrayValue::I8(m.create_empty_batch(n))),
-            AnySpace::Dict(d) => Value::Dict(d.create_empty_batch(n)),
-            AnySpace::Tuple(t) => Value::Tuple(t.create_empty_batch(n)),
-        }
+        each_space!(self, s => s.create_empty_batch(n).into())
     }
 
     fn write_item(&self, batch: &mut Value, i: usize, x: &Value) -> Result<()> {
@@ -612,14 +571,7 @@ impl BatchSpace for AnySpace {
     }
 
     fn zero_element(&self) -> Value {
-        match self {
-            AnySpace::Box(b) => Value::Array(b.zero_element()),
-            AnySpace::Discrete(d) => Value::Discrete(d.zero_element()),
-            AnySpace::MultiDiscrete(m) => Value::Array(ArrayValue::I64(m.zero_element())),
-            AnySpace::MultiBinary(m) => Value::Array(ArrayValue::I8(m.zero_element())),
-            AnySpace::Dict(d) => Value::Dict(d.zero_element()),
-            AnySpace::Tuple(t) => Value::Tuple(t.zero_element()),
-        }
+        each_space!(self, s => s.to_value(&s.zero_element()))
     }
 }
 
@@ -720,6 +672,7 @@ impl BatchSpace for TupleSpace {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::DType;
     use ndarray::{arr1, arr2};
 
     #[test]

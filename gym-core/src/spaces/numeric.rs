@@ -1,13 +1,17 @@
 //! [`NumericSpace`]: spaces whose elements are arrays of numbers (Box, Discrete,
 //! MultiDiscrete, MultiBinary and their dynamic forms), seen uniformly as shaped, bounded
-//! arrays. The numeric wrappers (`ClipAction`, `RescaleAction`, `NormalizeObservation`,
-//! `DtypeObservation`, the `GymWrapper`'s action conversion) are generic over it, so they
-//! work on typed spaces and on the dynamic [`AnySpace`] alike.
+//! arrays. The numeric wrappers of the `adapters` crate (`ClipAction`, `RescaleAction`,
+//! `NormalizeObservation`, `DtypeObservation`, the `GymWrapper`'s action conversion) are
+//! generic over it, so they work on typed spaces and on the dynamic [`AnySpace`] alike.
+//!
+//! Each kind implements what it has (bounds, the conversion of its elements); the Box-only
+//! operations default to [`Error::Unsupported`], and [`AnySpace`] delegates to the space it
+//! holds (Dict and Tuple are not numeric).
 
-use gym_core::spaces::{AnyBox, AnySpace, BoxSpace, Discrete, MultiBinary, MultiDiscrete};
-use gym_core::{
-    ArrayElement, ArrayValue, DType, DynSpace, Error, Result, Space, SpaceError, Value,
+use crate::spaces::{
+    AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
+use crate::{ArrayElement, ArrayValue, DType, DynSpace, Error, Result, Space, SpaceError, Value};
 use ndarray::{ArrayD, IxDyn, Zip};
 use std::any::Any;
 
@@ -31,7 +35,7 @@ pub struct ArraySpec {
 /// Box-only operations ([`NumericSpace::with_bounds`], [`NumericSpace::clip_element`],
 /// [`NumericSpace::element_from_array`]) fail with [`Error::Unsupported`] on the other kinds;
 /// wrappers check [`NumericSpace::is_box`] at construction and report a clearer error.
-pub trait NumericSpace: Space {
+pub trait NumericSpace: DynSpace {
     /// Shape, dtype and bounds.
     ///
     /// # Errors
@@ -39,7 +43,9 @@ pub trait NumericSpace: Space {
     fn array_spec(&self) -> Result<ArraySpec>;
 
     /// Whether this is a Box (the kind action wrappers require).
-    fn is_box(&self) -> bool;
+    fn is_box(&self) -> bool {
+        false
+    }
 
     /// The element as an array of `U` (NumPy's `astype`, an unsafe cast with Rust `as`
     /// semantics).
@@ -48,11 +54,27 @@ pub trait NumericSpace: Space {
     /// When a dynamic element does not have the space's structure.
     fn element_to_array<U: ArrayElement>(&self, x: &Self::Element) -> Result<ArrayD<U>>;
 
+    /// [`NumericSpace::element_to_array`] into `out`, reusing its storage when it has the
+    /// element's shape.
+    ///
+    /// # Errors
+    /// As [`NumericSpace::element_to_array`].
+    fn element_to_array_into<U: ArrayElement>(
+        &self,
+        x: &Self::Element,
+        out: &mut ArrayD<U>,
+    ) -> Result<()> {
+        *out = self.element_to_array(x)?;
+        Ok(())
+    }
+
     /// An element of this Box from an array of `U` (cast with Rust `as` semantics).
     ///
     /// # Errors
     /// [`Error::Unsupported`] for non-Box spaces; a shape mismatch.
-    fn element_from_array<U: ArrayElement>(&self, x: &ArrayD<U>) -> Result<Self::Element>;
+    fn element_from_array<U: ArrayElement>(&self, _x: &ArrayD<U>) -> Result<Self::Element> {
+        Err(not_a_box(self.to_any().kind()))
+    }
 
     /// [`NumericSpace::element_from_array`] into `out`, reusing its storage when it has
     /// the right shape.
@@ -72,17 +94,21 @@ pub trait NumericSpace: Space {
     ///
     /// # Errors
     /// [`Error::Unsupported`] for non-Box spaces; invalid bounds.
-    fn with_bounds(&self, low: ArrayD<f64>, high: ArrayD<f64>) -> Result<Self>;
+    fn with_bounds(&self, _low: ArrayD<f64>, _high: ArrayD<f64>) -> Result<Self> {
+        Err(not_a_box(self.to_any().kind()))
+    }
 
     /// Clips an element into the Box's bounds (`np.clip(x, low, high)`).
     ///
     /// # Errors
     /// [`Error::Unsupported`] for non-Box spaces; a malformed dynamic element.
-    fn clip_element(&self, x: &Self::Element) -> Result<Self::Element>;
+    fn clip_element(&self, _x: &Self::Element) -> Result<Self::Element> {
+        Err(not_a_box(self.to_any().kind()))
+    }
 }
 
-/// Converts a borrowed array to another element type (a copy).
-pub(crate) fn cast_array_ref<S: ArrayElement, T: ArrayElement>(x: &ArrayD<S>) -> ArrayD<T> {
+/// Converts a borrowed array to another element type (a copy; NumPy's `astype`).
+pub fn cast_array_ref<S: ArrayElement, T: ArrayElement>(x: &ArrayD<S>) -> ArrayD<T> {
     if let Some(same) = (x as &dyn Any).downcast_ref::<ArrayD<T>>() {
         return same.clone();
     }
@@ -90,8 +116,17 @@ pub(crate) fn cast_array_ref<S: ArrayElement, T: ArrayElement>(x: &ArrayD<S>) ->
 }
 
 /// Converts any array value to a typed array (unsafe cast, as NumPy's `astype`).
-pub(crate) fn array_value_to<U: ArrayElement>(x: &ArrayValue) -> ArrayD<U> {
-    gym_core::for_each_array!(x, a => cast_array_ref(a))
+pub fn array_value_to<U: ArrayElement>(x: &ArrayValue) -> ArrayD<U> {
+    crate::for_each_array!(x, a => cast_array_ref(a))
+}
+
+/// Casts `x` into `out` in place when the shapes agree, else replaces `out`.
+fn cast_into<S: ArrayElement, T: ArrayElement>(x: &ArrayD<S>, out: &mut ArrayD<T>) {
+    if out.shape() == x.shape() {
+        out.zip_mut_with(x, |o, v| *o = v.cast_to::<T>());
+    } else {
+        *out = cast_array_ref(x);
+    }
 }
 
 fn not_a_box(kind: &str) -> Error {
@@ -130,6 +165,15 @@ impl<T: ArrayElement> NumericSpace for BoxSpace<T> {
         Ok(cast_array_ref(x))
     }
 
+    fn element_to_array_into<U: ArrayElement>(
+        &self,
+        x: &ArrayD<T>,
+        out: &mut ArrayD<U>,
+    ) -> Result<()> {
+        cast_into(x, out);
+        Ok(())
+    }
+
     fn element_from_array<U: ArrayElement>(&self, x: &ArrayD<U>) -> Result<ArrayD<T>> {
         check_shape(self.low().shape(), x.shape())?;
         Ok(cast_array_ref(x))
@@ -141,11 +185,7 @@ impl<T: ArrayElement> NumericSpace for BoxSpace<T> {
         out: &mut ArrayD<T>,
     ) -> Result<()> {
         check_shape(self.low().shape(), x.shape())?;
-        if out.shape() == x.shape() {
-            out.zip_mut_with(x, |o, v| *o = v.cast_to::<T>());
-        } else {
-            *out = cast_array_ref(x);
-        }
+        cast_into(x, out);
         Ok(())
     }
 
@@ -172,24 +212,8 @@ impl NumericSpace for Discrete {
         })
     }
 
-    fn is_box(&self) -> bool {
-        false
-    }
-
     fn element_to_array<U: ArrayElement>(&self, x: &i64) -> Result<ArrayD<U>> {
         Ok(ArrayD::from_elem(IxDyn(&[]), U::from_f64(*x as f64)))
-    }
-
-    fn element_from_array<U: ArrayElement>(&self, _x: &ArrayD<U>) -> Result<i64> {
-        Err(not_a_box("Discrete"))
-    }
-
-    fn with_bounds(&self, _low: ArrayD<f64>, _high: ArrayD<f64>) -> Result<Self> {
-        Err(not_a_box("Discrete"))
-    }
-
-    fn clip_element(&self, _x: &i64) -> Result<i64> {
-        Err(not_a_box("Discrete"))
     }
 }
 
@@ -208,24 +232,8 @@ impl NumericSpace for MultiDiscrete {
         })
     }
 
-    fn is_box(&self) -> bool {
-        false
-    }
-
     fn element_to_array<U: ArrayElement>(&self, x: &ArrayD<i64>) -> Result<ArrayD<U>> {
         Ok(cast_array_ref(x))
-    }
-
-    fn element_from_array<U: ArrayElement>(&self, _x: &ArrayD<U>) -> Result<ArrayD<i64>> {
-        Err(not_a_box("MultiDiscrete"))
-    }
-
-    fn with_bounds(&self, _low: ArrayD<f64>, _high: ArrayD<f64>) -> Result<Self> {
-        Err(not_a_box("MultiDiscrete"))
-    }
-
-    fn clip_element(&self, _x: &ArrayD<i64>) -> Result<ArrayD<i64>> {
-        Err(not_a_box("MultiDiscrete"))
     }
 }
 
@@ -241,24 +249,8 @@ impl NumericSpace for MultiBinary {
         })
     }
 
-    fn is_box(&self) -> bool {
-        false
-    }
-
     fn element_to_array<U: ArrayElement>(&self, x: &ArrayD<i8>) -> Result<ArrayD<U>> {
         Ok(cast_array_ref(x))
-    }
-
-    fn element_from_array<U: ArrayElement>(&self, _x: &ArrayD<U>) -> Result<ArrayD<i8>> {
-        Err(not_a_box("MultiBinary"))
-    }
-
-    fn with_bounds(&self, _low: ArrayD<f64>, _high: ArrayD<f64>) -> Result<Self> {
-        Err(not_a_box("MultiBinary"))
-    }
-
-    fn clip_element(&self, _x: &ArrayD<i8>) -> Result<ArrayD<i8>> {
-        Err(not_a_box("MultiBinary"))
     }
 }
 
@@ -280,6 +272,15 @@ impl NumericSpace for AnyBox {
 
     fn element_to_array<U: ArrayElement>(&self, x: &ArrayValue) -> Result<ArrayD<U>> {
         Ok(array_value_to(x))
+    }
+
+    fn element_to_array_into<U: ArrayElement>(
+        &self,
+        x: &ArrayValue,
+        out: &mut ArrayD<U>,
+    ) -> Result<()> {
+        crate::for_each_array!(x, a => cast_into(a, out));
+        Ok(())
     }
 
     fn element_from_array<U: ArrayElement>(&self, x: &ArrayD<U>) -> Result<ArrayValue> {
@@ -323,19 +324,31 @@ fn as_array(v: &Value) -> Result<&ArrayValue> {
     })
 }
 
+/// Dict and Tuple spaces are not numeric: every operation fails.
+macro_rules! not_numeric_space {
+    ($($t:ty),*) => {$(
+        impl NumericSpace for $t {
+            fn array_spec(&self) -> Result<ArraySpec> {
+                Err(not_numeric(&self.to_any()))
+            }
+
+            fn element_to_array<U: ArrayElement>(&self, _x: &Self::Element) -> Result<ArrayD<U>> {
+                Err(not_numeric(&self.to_any()))
+            }
+        }
+    )*};
+}
+not_numeric_space!(DictSpace, TupleSpace);
+
+/// The space-level operations delegate to the space inside; an element is converted the
+/// way each kind's elements appear as [`Value`]s (arrays cast with `astype`).
 impl NumericSpace for AnySpace {
     fn array_spec(&self) -> Result<ArraySpec> {
-        match self {
-            AnySpace::Box(b) => b.array_spec(),
-            AnySpace::Discrete(d) => d.array_spec(),
-            AnySpace::MultiDiscrete(m) => m.array_spec(),
-            AnySpace::MultiBinary(m) => m.array_spec(),
-            AnySpace::Dict(_) | AnySpace::Tuple(_) => Err(not_numeric(self)),
-        }
+        each_space!(self, s => s.array_spec())
     }
 
     fn is_box(&self) -> bool {
-        matches!(self, AnySpace::Box(_))
+        each_space!(self, s => s.is_box())
     }
 
     fn element_to_array<U: ArrayElement>(&self, x: &Value) -> Result<ArrayD<U>> {
@@ -356,10 +369,7 @@ impl NumericSpace for AnySpace {
     }
 
     fn with_bounds(&self, low: ArrayD<f64>, high: ArrayD<f64>) -> Result<Self> {
-        match self {
-            AnySpace::Box(b) => Ok(AnySpace::Box(b.with_bounds(low, high)?)),
-            other => Err(not_a_box(other.kind())),
-        }
+        each_space!(self, s => Ok(s.with_bounds(low, high)?.into()))
     }
 
     fn clip_element(&self, x: &Value) -> Result<Value> {
