@@ -2,7 +2,7 @@
 //! `ManipulationEnv`) around any task, implementing [`gym_core::Env`].
 
 use crate::assets::Assets;
-use crate::camera_rig::CameraRig;
+use crate::cameras::rig::CameraRig;
 use crate::config::EnvConfig;
 use crate::controllers::config::robot_default;
 use crate::controllers::{CompositeControllerConfig, Timing};
@@ -220,56 +220,6 @@ struct Composed {
     scene: Scene,
 }
 
-/// robosuite's `Task.generate_id_mappings` order: the objects, then each robot, its mount
-/// and its grippers, then the arena's top-level bodies (but the table and the mocap
-/// targets).
-fn segment_groups(composed: &Composed) -> Vec<crate::camera_rig::SegmentGroup> {
-    use crate::camera_rig::{GroupGeoms, SegmentGroup};
-    use crate::models::objects::Shape;
-    let prefixed = |instance: String, class: &str, prefix: &str| SegmentGroup {
-        instance,
-        class: class.to_owned(),
-        geoms: GroupGeoms::Prefix(prefix.to_owned()),
-    };
-    let mut groups = Vec::new();
-    for o in &composed.task_scene.objects {
-        // Generated boxes and cylinders share robosuite's classes; other objects each
-        // have their own.
-        let class = match o.shape {
-            Some(Shape::Box(_)) => "BoxObject".to_owned(),
-            Some(Shape::Cylinder(_)) => "CylinderObject".to_owned(),
-            None => format!("object:{}", o.name),
-        };
-        groups.push(prefixed(o.name.clone(), &class, &format!("{}_", o.name)));
-    }
-    for r in &composed.robots {
-        let name = r.info.name;
-        groups.push(prefixed(format!("{name}{}", r.idn), name, &r.xml.prefix));
-        if let Some(m) = &r.mount {
-            let class = m.info.name;
-            groups.push(prefixed(format!("{class}{}", r.idn), class, &m.xml.prefix));
-        }
-        for arm in &r.arms {
-            let class = arm.gripper.info.name;
-            let instance = format!("{class}{}_{}", r.idn, arm.side);
-            groups.push(prefixed(instance, class, &arm.gripper.xml.prefix));
-        }
-    }
-    let arena = composed.task_scene.arena.doc.worldbody();
-    for body in crate::mjcf::tree::children(arena).filter(|e| e.name == "body") {
-        if let Some(name) = crate::mjcf::tree::attr(body, "name")
-            && !["table", "left_eef_target", "right_eef_target"].contains(&name)
-        {
-            groups.push(SegmentGroup {
-                instance: name.to_owned(),
-                class: name.to_owned(),
-                geoms: GroupGeoms::Body(name.to_owned()),
-            });
-        }
-    }
-    groups
-}
-
 /// The scene `spec` composes for `config` (robots, arena, objects), before compiling.
 ///
 /// # Errors
@@ -443,8 +393,12 @@ impl RobosuiteEnv {
         // robosuite's `RobotEnv` adds the camera observables after the robots' and before
         // the task's; frames live outside the buffer.
         let mut model = model;
-        crate::camera_rig::prepare_model(&config.cameras, &mut model);
-        let cameras = CameraRig::new(&config.cameras, &model, &segment_groups(&composed))?;
+        crate::cameras::rig::prepare_model(&config.cameras, &mut model);
+        let cameras = CameraRig::new(
+            &config.cameras,
+            &model,
+            &crate::cameras::segmentation::groups(&composed.task_scene, &composed.robots),
+        )?;
         if let Some(rig) = &cameras {
             obs_specs.extend(rig.specs().iter().cloned());
         }
@@ -1118,7 +1072,7 @@ impl RobosuiteEnv {
 
     /// robosuite's `sim.render(width, height, camera_name=..., depth=..., segmentation=...)`:
     /// a frame of `camera` (a fixed camera by id, or MuJoCo's free camera) at any size up to
-    /// [`crate::render::MAX_SIZE`], drawn with the env's own offscreen renderer for free
+    /// [`crate::cameras::MAX_CAMERA_SIZE`], drawn with the env's own offscreen renderer for free
     /// rendering (made on first use, grown when a larger frame is asked for), whether or not
     /// the env has camera observations.
     ///

@@ -23,6 +23,9 @@
 //!   `GRIP`, and robosuite's controller configs;
 //! * [`robots`]: robots bound to a compiled scene, with arms, grippers and observables;
 //! * [`observables`]: robosuite's observables and its ordered observation dict;
+//! * [`cameras`]: camera observations: their arguments, one env's camera rig and robosuite's
+//!   segmentation groups; [`render`] (feature `render`): MuJoCo's offscreen renderer on
+//!   EGL, the backend that draws them;
 //! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and
 //!   the tasks;
 //! * [`saved`]: an env's whole run-time state as text (pickling, deep copies);
@@ -30,7 +33,6 @@
 //!   [`register_envs`]).
 
 pub mod assets;
-pub mod camera_rig;
 pub mod cameras;
 pub mod config;
 pub mod controllers;

@@ -23,9 +23,9 @@ use mujoco_rs::prelude::{
 /// The scene capacity robosuite gives its render context (`maxgeom=10000`).
 const MAX_GEOM: usize = 10_000;
 
-/// The largest width or height a camera may ask for (MuJoCo's offscreen buffer must fit in
-/// one OpenGL renderbuffer; 4096 fits every implementation, Mesa's included).
-pub const MAX_SIZE: usize = 4096;
+/// The largest width or height a frame may have ([`crate::cameras::MAX_CAMERA_SIZE`]).
+pub use crate::cameras::MAX_CAMERA_SIZE as MAX_SIZE;
+use crate::cameras::check_size;
 
 /// What one render of one camera writes; each buffer holds `height × width` pixels (×3 for
 /// RGB), bottom row first.
@@ -391,16 +391,6 @@ impl Drop for OffscreenRenderer {
             }
         }
     }
-}
-
-fn check_size(name: &str, v: usize) -> Result<()> {
-    if v == 0 || v > MAX_SIZE {
-        return Err(Error::invalid_argument(
-            name,
-            format!("must be in 1..={MAX_SIZE} pixels, got {v}"),
-        ));
-    }
-    Ok(())
 }
 
 fn set_segmentation_flags(scene: &mut MjvScene, on: bool) {

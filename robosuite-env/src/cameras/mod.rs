@@ -1,19 +1,26 @@
-//! robosuite's camera observations (`RobotEnv._create_camera_sensors`): the camera
-//! arguments with their validation, the observables they add (`{camera}_image`,
-//! `{camera}_depth`, `{camera}_segmentation_{level}`), and the frames behind them, drawn by
-//! MuJoCo's renderer ([`crate::render`], feature `render`).
+//! robosuite's camera observations (`RobotEnv._create_camera_sensors`), in three parts:
+//! * this module: the camera arguments ([`CameraConfig`]) with their validation and the
+//!   observables they add (`{camera}_image`, `{camera}_depth`,
+//!   `{camera}_segmentation_{level}`);
+//! * [`rig`]: one environment's cameras resolved against its model, their frames, and the
+//!   renderer that draws them (MuJoCo's, [`crate::render`], feature `render`);
+//! * [`segmentation`]: which model part each geom belongs to, for the segmentation frames.
 //!
 //! Shapes and dtypes are robosuite's: images `(H, W, 3)` uint8, depth `(H, W, 1)` float32
 //! (raw z-buffer in `[0, 1]`; metres through [`crate::render::real_depth`], robosuite's
 //! `get_real_depth_map`), segmentation `(H, W, 1)` int32. Rows run bottom first under
 //! robosuite's default `IMAGE_CONVENTION = "opengl"`, top first under `"opencv"`.
 
+pub mod rig;
+pub mod segmentation;
+
 use crate::observables::ObsSpec;
 use gym_core::{ArrayValue, DType, Error, RenderMode, Result};
 use ndarray::{ArrayD, IxDyn};
 
-/// The largest camera width or height accepted (robosuite sets no limit; MuJoCo's
-/// offscreen buffer must fit one OpenGL renderbuffer).
+/// The largest camera or frame width or height accepted (robosuite sets no limit; MuJoCo's
+/// offscreen buffer must fit one OpenGL renderbuffer, and 4096 fits every implementation,
+/// Mesa's included).
 pub const MAX_CAMERA_SIZE: usize = 4096;
 
 /// robosuite's segmentation levels.
@@ -248,7 +255,8 @@ impl CameraConfig {
     }
 }
 
-fn check_size(name: &str, v: usize) -> Result<()> {
+/// `v` as a camera or frame size named `name`: in `1..=MAX_CAMERA_SIZE`.
+pub(crate) fn check_size(name: &str, v: usize) -> Result<()> {
     if v == 0 || v > MAX_CAMERA_SIZE {
         return Err(Error::invalid_argument(
             name,

@@ -2,9 +2,8 @@
 //! frames, and the offscreen renderer that draws them and Gymnasium's `render()` frames.
 //! Without the `render` feature, asking for any of it is an [`Error::Unsupported`].
 
-use crate::cameras::{
-    CameraConfig, CameraObs, ImageConvention, Segmentation, blank_frames, camera_specs,
-};
+use super::segmentation::{SegmentGroup, segment_ids};
+use super::{CameraConfig, CameraObs, ImageConvention, Segmentation, blank_frames, camera_specs};
 use crate::observables::ObsSpec;
 use crate::sim::Data;
 use gym_core::{ArrayValue, Error, Frame, RenderMode, Result};
@@ -26,79 +25,6 @@ pub struct CameraRig {
     class_ids: Vec<i32>,
     #[cfg(feature = "render")]
     renderer: crate::render::OffscreenRenderer,
-}
-
-/// One model part for robosuite's instance and class segmentations (an entry of its
-/// `instances_to_ids`, in order): a robot, mount, gripper or object, whose geoms are the
-/// named geoms with its prefix, or a top-level arena body, whose geoms are its subtree's
-/// visual (group 1) geoms.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct SegmentGroup {
-    /// The instance (unique).
-    pub instance: String,
-    /// The class (shared by instances of one kind, such as two `BoxObject`s).
-    pub class: String,
-    /// Where its geoms are.
-    pub geoms: GroupGeoms,
-}
-
-/// How a [`SegmentGroup`] finds its geoms in the model.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub enum GroupGeoms {
-    /// The geoms whose names start with this prefix (`robot0_`, `cube_`, ...).
-    Prefix(String),
-    /// The visual (group 1) geoms of this body's subtree.
-    Body(String),
-}
-
-/// Per geom id, the 1-based index of its group (by instance or by class, in order of first
-/// appearance), 0 for a geom in none: robosuite's `mapping.get(id, -1) + 1`.
-fn segment_ids(model: &MjModel, groups: &[SegmentGroup], by_class: bool) -> Vec<i32> {
-    let ngeom = model.ffi().ngeom.max(0) as usize;
-    let mut ids = vec![0; ngeom];
-    let mut names: Vec<&str> = Vec::new();
-    let parents = model.body_parentid();
-    let (geom_body, geom_group) = (model.geom_bodyid(), model.geom_group());
-    for g in groups {
-        let key = if by_class { &g.class } else { &g.instance };
-        let id = match names.iter().position(|n| n == key) {
-            Some(i) => i,
-            None => {
-                names.push(key);
-                names.len() - 1
-            }
-        } as i32
-            + 1;
-        let body = match &g.geoms {
-            GroupGeoms::Body(name) => model.name_to_id(MjtObjBase::mjOBJ_BODY, name),
-            GroupGeoms::Prefix(_) => None,
-        };
-        for (geom, slot) in ids.iter_mut().enumerate() {
-            let member = match &g.geoms {
-                GroupGeoms::Prefix(prefix) => model
-                    .id_to_name(MjtObjBase::mjOBJ_GEOM, geom)
-                    .is_some_and(|n| n.starts_with(prefix.as_str())),
-                GroupGeoms::Body(_) => {
-                    body.is_some_and(|b| {
-                        let mut at = geom_body[geom] as usize;
-                        loop {
-                            if at == b {
-                                break true;
-                            }
-                            if at == 0 {
-                                break false;
-                            }
-                            at = parents[at] as usize;
-                        }
-                    }) && geom_group[geom] == 1
-                }
-            };
-            if member && *slot == 0 {
-                *slot = id;
-            }
-        }
-    }
-    ids
 }
 
 /// The id of camera `name`, or an error listing the model's cameras.
