@@ -8,7 +8,7 @@
 //! `get_real_depth_map`), segmentation `(H, W, 1)` int32. Rows run bottom first under
 //! robosuite's default `IMAGE_CONVENTION = "opengl"`, top first under `"opencv"`.
 
-use crate::observables::ObsSpec;
+use crate::observables::{Modality, ObsSpec};
 use gym_core::{ArrayValue, DType, Error, RenderMode, Result};
 use ndarray::{ArrayD, IxDyn};
 
@@ -267,7 +267,7 @@ pub fn camera_specs(cameras: &[CameraObs]) -> Vec<ObsSpec> {
             key,
             shape: vec![c.height, c.width, channels],
             dtype,
-            modality: "image".to_owned(),
+            modality: Modality::Image,
             needs_object_obs: false,
             active: true,
         };

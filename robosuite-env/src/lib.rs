@@ -39,6 +39,7 @@ pub mod math;
 pub mod mjcf;
 pub mod models;
 pub mod observables;
+pub mod placement;
 pub mod registry;
 #[cfg(feature = "render")]
 pub mod render;
@@ -54,6 +55,7 @@ pub use env::{
     EnvSnapshot, ModelSource, MujocoObjectInfo, ObservableFlag, ObservableInfo, RobosuiteEnv,
 };
 pub use registry::{
-    ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,
+    ENV_NAMES, TASKS, TaskEntry, make, make_from_scene_xml, make_task, make_with, register_envs,
+    scene_xml,
 };
 pub use robots::{InitNoise, NoiseKind};
