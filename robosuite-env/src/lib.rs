@@ -40,6 +40,7 @@ pub mod mjcf;
 pub mod models;
 pub mod observables;
 pub mod placement;
+pub mod prelude;
 pub mod registry;
 #[cfg(feature = "render")]
 pub mod render;
