@@ -23,11 +23,14 @@
 //!   `GRIP`, and robosuite's controller configs;
 //! * [`robots`]: robots bound to a compiled scene, with arms, grippers and observables;
 //! * [`observables`]: robosuite's observables and its ordered observation dict;
-//! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and
+//! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) and [`TaskLogic`](tasks::TaskLogic) (run in
+//!   a [`Bound`](tasks::Bound) [`Task`](tasks::Task)), the table and two-arm helpers, and
 //!   the tasks;
+//! * [`placement`]: robosuite's placement samplers;
+//! * [`prelude`]: what a user and a task author need, in one import;
 //! * [`saved`]: an env's whole run-time state as text (pickling, deep copies);
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
-//!   [`register_envs`]).
+//!   [`register_envs`]), all reading one table of tasks ([`TASKS`]).
 
 pub mod assets;
 pub mod camera_rig;

@@ -10,7 +10,7 @@ use crate::mjcf::tree::{self, append, array_to_string, set_attr};
 use crate::models::arenas::Arena;
 use crate::models::objects::primitive::Primitive;
 use crate::models::objects::{CustomMaterial, Joints, ObjType, Shape, xml_object};
-use crate::models::robots::RobotModel;
+use crate::models::robots::{GripperChoice, RobotModel};
 use crate::observables::{Modality, Observable};
 use crate::robots::Robot;
 use crate::sim::{BoxGeomUpdate, Sim, body_id, resize_cylinder_body};
@@ -76,6 +76,24 @@ impl TaskSpec for TwoArmPegInHoleSpec {
         RobotSetup::TwoArm {
             opposed_shift: 0.0,
             parallel_shift: 0.25,
+        }
+    }
+
+    /// robosuite asserts `gripper_types is None`: the arms hold the peg and the plate.
+    fn gripper(
+        &self,
+        _robot: usize,
+        _arm: usize,
+        configured: &GripperChoice,
+    ) -> Result<GripperChoice> {
+        match configured {
+            GripperChoice::Default | GripperChoice::None => Ok(GripperChoice::None),
+            GripperChoice::Named(name) => Err(Error::invalid_argument(
+                "gripper_types",
+                format!(
+                    "TwoArmPegInHole takes no gripper (robosuite asserts gripper_types is None), got `{name}`"
+                ),
+            )),
         }
     }
 
