@@ -256,6 +256,7 @@ fn robosuite_env_names() -> Vec<String> {
 fn task_robot_count(env_name: &str) -> PyResult<usize> {
     Ok(robosuite_env::make_task(env_name)
         .map_err(to_pyerr)?
+        .robots()
         .num_robots())
 }
 

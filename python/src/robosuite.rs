@@ -561,7 +561,7 @@ impl PyRobosuiteEnv {
             .map(|o| {
                 (
                     o.spec.key,
-                    o.spec.modality,
+                    o.spec.modality.name(),
                     o.spec.shape,
                     o.spec.dtype.name(),
                     o.enabled,

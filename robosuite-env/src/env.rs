@@ -230,14 +230,15 @@ pub fn compose_scene(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -
 }
 
 fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<Composed> {
-    let config = &config.clone().with_default_robots(spec.num_robots());
+    let setup = spec.robots();
+    let config = &config.clone().with_default_robots(setup.num_robots());
     config.validate()?;
     let infos = config
         .robots
         .iter()
         .map(|name| robot_info(name))
         .collect::<Result<Vec<_>>>()?;
-    let configuration = spec.check_robots(&infos, config.env_configuration)?;
+    let configuration = setup.check(spec.name(), &infos, config.env_configuration)?;
     let mut robots = Vec::with_capacity(infos.len());
     let mut controllers = Vec::with_capacity(infos.len());
     for (i, &info) in infos.iter().enumerate() {
@@ -256,7 +257,8 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
             .transpose()?;
         robots.push(RobotModel::build(assets, info, i, &grippers, base)?);
     }
-    let task_scene = spec.build_configured(assets, &mut robots, configuration)?;
+    let task_scene = spec.build(assets, &mut robots)?;
+    setup.place(&mut robots, configuration, &task_scene.arena);
     let mut scene = Scene::compose(assets, &task_scene.arena, &robots, &task_scene.objects)?;
     for object in &task_scene.attached {
         scene.doc_mut().merge_assets(&object.assets);
@@ -343,7 +345,7 @@ impl RobosuiteEnv {
         source: ModelSource,
     ) -> Result<Self> {
         // The robots and the robot set-up the scene was composed with.
-        let mut config = config.with_default_robots(spec.num_robots());
+        let mut config = config.with_default_robots(spec.robots().num_robots());
         config.env_configuration = composed.configuration;
         config.reward_shaping = Some(
             config

@@ -24,13 +24,16 @@
 //! * [`robots`]: robots bound to a compiled scene, with arms, grippers and observables;
 //! * [`observables`]: robosuite's observables and its ordered observation dict;
 //! * [`cameras`]: camera observations: their arguments, one env's camera rig and robosuite's
-//!   segmentation groups; [`render`] (feature `render`): MuJoCo's offscreen renderer on
+//!   segmentation groups; `render` (feature `render`): MuJoCo's offscreen renderer on
 //!   EGL, the backend that draws them;
-//! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) / [`Task`](tasks::Task), placement samplers and
+//! * [`tasks`]: [`TaskSpec`](tasks::TaskSpec) and [`TaskLogic`](tasks::TaskLogic) (run in
+//!   a [`Bound`](tasks::Bound) [`Task`](tasks::Task)), the table and two-arm helpers, and
 //!   the tasks;
+//! * [`placement`]: robosuite's placement samplers;
+//! * [`prelude`]: what a user and a task author need, in one import;
 //! * [`saved`]: an env's whole run-time state as text (pickling, deep copies);
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
-//!   [`register_envs`]).
+//!   [`register_envs`]), all reading one table of tasks ([`TASKS`]).
 
 pub mod assets;
 pub mod cameras;
@@ -41,6 +44,8 @@ pub mod math;
 pub mod mjcf;
 pub mod models;
 pub mod observables;
+pub mod placement;
+pub mod prelude;
 pub mod registry;
 #[cfg(feature = "render")]
 pub mod render;
@@ -56,6 +61,7 @@ pub use env::{
     EnvSnapshot, ModelSource, MujocoObjectInfo, ObservableFlag, ObservableInfo, RobosuiteEnv,
 };
 pub use registry::{
-    ENV_NAMES, make, make_from_scene_xml, make_task, make_with, register_envs, scene_xml,
+    ENV_NAMES, TASKS, TaskEntry, make, make_from_scene_xml, make_task, make_with, register_envs,
+    scene_xml,
 };
 pub use robots::{InitNoise, NoiseKind};

@@ -14,6 +14,35 @@ use gym_core::{
 use ndarray::{ArrayD, IxDyn};
 use std::sync::Arc;
 
+/// An observable's modality: observables of one modality are also returned concatenated
+/// as `{modality}-state` (images are not concatenated).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Modality {
+    /// robosuite's `object`: task observables, present only with `use_object_obs`.
+    Object,
+    /// robosuite's `image`: camera frames (outside the flat observation buffer).
+    Image,
+    /// robosuite's `robot{i}_proprio`: robot `i`'s proprioception.
+    Proprio(usize),
+}
+
+impl std::fmt::Display for Modality {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Object => f.write_str("object"),
+            Self::Image => f.write_str("image"),
+            Self::Proprio(i) => write!(f, "robot{i}_proprio"),
+        }
+    }
+}
+
+impl Modality {
+    /// robosuite's name of the modality (`"object"`, `"image"`, `"robot0_proprio"`).
+    pub fn name(self) -> String {
+        self.to_string()
+    }
+}
+
 /// What an observable is, without its reader.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ObsSpec {
@@ -23,9 +52,9 @@ pub struct ObsSpec {
     pub shape: Vec<usize>,
     /// The dtype robosuite returns.
     pub dtype: DType,
-    /// The modality (`"robot0_proprio"`, `"object"`, ...): observables of one modality are
-    /// also returned concatenated as `{modality}-state`.
-    pub modality: String,
+    /// The modality: observables of one modality are also returned concatenated as
+    /// `{modality}-state`.
+    pub modality: Modality,
     /// Whether the observable exists only with `use_object_obs` (every `object` observable,
     /// and task observables robosuite creates inside its `use_object_obs` branch, such as
     /// Wipe's `robot0_contact`).
@@ -81,7 +110,7 @@ impl<C> Observable<C> {
         key: impl Into<String>,
         shape: &[usize],
         dtype: DType,
-        modality: &str,
+        modality: Modality,
         read: impl Fn(&C, &Sim, &mut [f64]) + Send + Sync + 'static,
     ) -> Self {
         Self {
@@ -89,8 +118,8 @@ impl<C> Observable<C> {
                 key: key.into(),
                 shape: shape.to_vec(),
                 dtype,
-                modality: modality.to_owned(),
-                needs_object_obs: modality == "object",
+                modality,
+                needs_object_obs: modality == Modality::Object,
                 active: true,
             },
             read: Arc::new(read),
@@ -113,14 +142,39 @@ impl<C> Observable<C> {
         self
     }
 
-    /// A float64 vector observable.
+    /// A float64 vector observable of `len` values that `read` writes.
     pub fn f64(
         key: impl Into<String>,
         len: usize,
-        modality: &str,
+        modality: Modality,
         read: impl Fn(&C, &Sim, &mut [f64]) + Send + Sync + 'static,
     ) -> Self {
         Self::new(key, &[len], DType::F64, modality, read)
+    }
+
+    /// A float64 vector observable of the `N` values `value` returns:
+    /// `Observable::vec("cube_pos", Modality::Object, |t: &Lift, sim| t.cube.pos(sim))`.
+    pub fn vec<const N: usize>(
+        key: impl Into<String>,
+        modality: Modality,
+        value: impl Fn(&C, &Sim) -> [f64; N] + Send + Sync + 'static,
+    ) -> Self {
+        Self::new(key, &[N], DType::F64, modality, move |c, sim, out| {
+            out.copy_from_slice(&value(c, sim));
+        })
+    }
+
+    /// [`Observable::vec`] with robosuite's `dtype` for the values (float32 quaternions read
+    /// from a frame matrix, booleans, ...).
+    pub fn vec_as<const N: usize>(
+        key: impl Into<String>,
+        dtype: DType,
+        modality: Modality,
+        value: impl Fn(&C, &Sim) -> [f64; N] + Send + Sync + 'static,
+    ) -> Self {
+        Self::new(key, &[N], dtype, modality, move |c, sim, out| {
+            out.copy_from_slice(&value(c, sim));
+        })
     }
 }
 
@@ -148,6 +202,7 @@ pub fn total_len(specs: &[ObsSpec]) -> usize {
 #[derive(Debug, Clone, PartialEq)]
 struct Group {
     key: String,
+    modality: Modality,
     members: Vec<usize>,
     len: usize,
 }
@@ -175,7 +230,7 @@ impl ObsLayout {
         let mut at = 0;
         let mut image = 0;
         for spec in specs {
-            if spec.modality == "image" {
+            if spec.modality == Modality::Image {
                 if active(&spec) {
                     keys.push((spec, image));
                 }
@@ -188,22 +243,20 @@ impl ObsLayout {
                 continue;
             }
             let i = keys.len();
-            match groups.iter_mut().find(|g| g.key == spec.modality) {
+            match groups.iter_mut().find(|g| g.modality == spec.modality) {
                 Some(g) => {
                     g.members.push(i);
                     g.len += spec.len();
                 }
                 None => groups.push(Group {
-                    key: spec.modality.clone(),
+                    key: format!("{}-state", spec.modality),
+                    modality: spec.modality,
                     members: vec![i],
                     len: spec.len(),
                 }),
             }
             keys.push((spec, at));
             at += n;
-        }
-        for g in &mut groups {
-            g.key = format!("{}-state", g.key);
         }
         Self {
             keys,
@@ -235,7 +288,7 @@ impl ObsLayout {
     pub fn range_of(&self, key: &str) -> Option<std::ops::Range<usize>> {
         self.keys
             .iter()
-            .find(|(k, _)| k.key == key && k.modality != "image")
+            .find(|(k, _)| k.key == key && k.modality != Modality::Image)
             .map(|(k, at)| *at..*at + k.len())
     }
 
@@ -273,7 +326,7 @@ impl ObsLayout {
     pub fn to_dict_with(&self, buf: &[f64], images: &[ArrayValue]) -> DictValue {
         let mut out = DictValue::with_capacity(self.keys.len() + self.groups.len());
         for (k, at) in &self.keys {
-            if k.modality == "image" {
+            if k.modality == Modality::Image {
                 let frame = images
                     .get(*at)
                     .cloned()
@@ -312,7 +365,7 @@ impl ObsLayout {
         }
         let mut values = out.values_mut();
         for (k, at) in &self.keys {
-            if k.modality == "image" {
+            if k.modality == Modality::Image {
                 if let (Some(Value::Array(a)), Some(frame)) = (values.next(), images.get(*at)) {
                     a.assign_from(frame);
                 }
@@ -381,13 +434,13 @@ fn array(shape: &[usize], dtype: DType, values: Vec<f64>) -> ArrayValue {
 mod tests {
     use super::*;
 
-    fn spec(key: &str, len: usize, dtype: DType, modality: &str) -> ObsSpec {
+    fn spec(key: &str, len: usize, dtype: DType, modality: Modality) -> ObsSpec {
         ObsSpec {
             key: key.into(),
             shape: vec![len],
             dtype,
-            modality: modality.into(),
-            needs_object_obs: modality == "object",
+            modality,
+            needs_object_obs: modality == Modality::Object,
             active: true,
         }
     }
@@ -396,10 +449,10 @@ mod tests {
     fn modalities_concatenate_in_first_appearance_order() {
         let layout = ObsLayout::new(
             vec![
-                spec("robot0_a", 2, DType::F64, "robot0_proprio"),
-                spec("cube_pos", 3, DType::F64, "object"),
-                spec("hidden", 2, DType::F64, "object"),
-                spec("robot0_contact", 1, DType::Bool, "robot0_proprio"),
+                spec("robot0_a", 2, DType::F64, Modality::Proprio(0)),
+                spec("cube_pos", 3, DType::F64, Modality::Object),
+                spec("hidden", 2, DType::F64, Modality::Object),
+                spec("robot0_contact", 1, DType::Bool, Modality::Proprio(0)),
             ],
             |s| s.key != "hidden",
         );

@@ -12,57 +12,79 @@ use gym_core::registry::{EnvSpec, register};
 use gym_core::{Error, IntoBoxedEnv, Result};
 use std::sync::Arc;
 
-/// The environment names this crate provides.
-pub const ENV_NAMES: &[&str] = &[
-    "Lift",
-    "Stack",
-    "NutAssembly",
-    "NutAssemblySingle",
-    "NutAssemblySquare",
-    "NutAssemblyRound",
-    "PickPlace",
-    "PickPlaceSingle",
-    "PickPlaceMilk",
-    "PickPlaceBread",
-    "PickPlaceCereal",
-    "PickPlaceCan",
-    "Door",
-    "Wipe",
-    "ToolHang",
-    "TwoArmLift",
-    "TwoArmPegInHole",
-    "TwoArmHandover",
-    "TwoArmTransport",
+/// One registered task: its name and its constructor with robosuite's defaults.
+#[derive(Debug, Clone, Copy)]
+pub struct TaskEntry {
+    /// robosuite's environment name, such as `"Lift"` (the spec's [`TaskSpec::name`]).
+    pub name: &'static str,
+    /// The task with robosuite's default settings.
+    pub make: fn() -> Box<dyn TaskSpec>,
+}
+
+fn boxed<T: TaskSpec + 'static>(spec: T) -> Box<dyn TaskSpec> {
+    Box::new(spec)
+}
+
+fn pick_place(name: &str) -> Box<dyn TaskSpec> {
+    boxed(PickPlaceSpec::variant(name).expect("a PickPlace variant"))
+}
+
+fn nut_assembly(name: &str) -> Box<dyn TaskSpec> {
+    boxed(NutAssemblySpec::variant(name).expect("a NutAssembly variant"))
+}
+
+/// Every task this crate provides, in registration order: [`ENV_NAMES`], [`make_task`],
+/// [`make`] and [`register_envs`] read this table. A task added here is available by name
+/// everywhere (Rust, the registry, Python).
+#[rustfmt::skip]
+pub const TASKS: &[TaskEntry] = &[
+    TaskEntry { name: "Lift", make: || boxed(LiftSpec::default()) },
+    TaskEntry { name: "Stack", make: || boxed(StackSpec::default()) },
+    TaskEntry { name: "NutAssembly", make: || nut_assembly("NutAssembly") },
+    TaskEntry { name: "NutAssemblySingle", make: || nut_assembly("NutAssemblySingle") },
+    TaskEntry { name: "NutAssemblySquare", make: || nut_assembly("NutAssemblySquare") },
+    TaskEntry { name: "NutAssemblyRound", make: || nut_assembly("NutAssemblyRound") },
+    TaskEntry { name: "PickPlace", make: || pick_place("PickPlace") },
+    TaskEntry { name: "PickPlaceSingle", make: || pick_place("PickPlaceSingle") },
+    TaskEntry { name: "PickPlaceMilk", make: || pick_place("PickPlaceMilk") },
+    TaskEntry { name: "PickPlaceBread", make: || pick_place("PickPlaceBread") },
+    TaskEntry { name: "PickPlaceCereal", make: || pick_place("PickPlaceCereal") },
+    TaskEntry { name: "PickPlaceCan", make: || pick_place("PickPlaceCan") },
+    TaskEntry { name: "Door", make: || boxed(DoorSpec::default()) },
+    TaskEntry { name: "Wipe", make: || boxed(WipeSpec::default()) },
+    TaskEntry { name: "ToolHang", make: || boxed(ToolHangSpec::default()) },
+    TaskEntry { name: "TwoArmLift", make: || boxed(TwoArmLiftSpec::default()) },
+    TaskEntry { name: "TwoArmPegInHole", make: || boxed(TwoArmPegInHoleSpec::default()) },
+    TaskEntry { name: "TwoArmHandover", make: || boxed(TwoArmHandoverSpec::default()) },
+    TaskEntry { name: "TwoArmTransport", make: || boxed(TwoArmTransportSpec::default()) },
 ];
+
+const fn task_names<const N: usize>(tasks: &[TaskEntry]) -> [&'static str; N] {
+    let mut names = [""; N];
+    let mut i = 0;
+    while i < N {
+        names[i] = tasks[i].name;
+        i += 1;
+    }
+    names
+}
+
+/// The environment names this crate provides: the names of [`TASKS`], in order.
+pub const ENV_NAMES: &[&str] = &task_names::<{ TASKS.len() }>(TASKS);
 
 /// The task registered under `name`, with robosuite's default settings.
 ///
 /// # Errors
 /// [`Error::UnknownEnv`] listing [`ENV_NAMES`].
 pub fn make_task(name: &str) -> Result<Box<dyn TaskSpec>> {
-    match name {
-        "Lift" => Ok(Box::new(LiftSpec::default())),
-        "Stack" => Ok(Box::new(StackSpec::default())),
-        "Door" => Ok(Box::new(DoorSpec::default())),
-        "Wipe" => Ok(Box::new(WipeSpec::default())),
-        "ToolHang" => Ok(Box::new(ToolHangSpec::default())),
-        "TwoArmLift" => Ok(Box::new(TwoArmLiftSpec::default())),
-        "TwoArmPegInHole" => Ok(Box::new(TwoArmPegInHoleSpec::default())),
-        "TwoArmHandover" => Ok(Box::new(TwoArmHandoverSpec::default())),
-        "TwoArmTransport" => Ok(Box::new(TwoArmTransportSpec::default())),
-        other => {
-            if let Some(spec) = PickPlaceSpec::variant(other) {
-                return Ok(Box::new(spec));
-            }
-            if let Some(spec) = NutAssemblySpec::variant(other) {
-                return Ok(Box::new(spec));
-            }
-            Err(Error::UnknownEnv {
-                id: other.to_owned(),
-                available: ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
-            })
-        }
-    }
+    TASKS
+        .iter()
+        .find(|t| t.name == name)
+        .map(|t| (t.make)())
+        .ok_or_else(|| Error::UnknownEnv {
+            id: name.to_owned(),
+            available: ENV_NAMES.iter().map(|s| (*s).to_owned()).collect(),
+        })
 }
 
 /// Makes the environment `name` with robosuite's defaults (Panda, `OSC_POSE`).
@@ -124,5 +146,21 @@ pub fn register_envs() {
             nondeterministic: false,
             description: format!("robosuite 1.5.2 {name} on robosuite's own model files"),
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_entry_makes_the_task_of_its_name() {
+        assert_eq!(ENV_NAMES.len(), TASKS.len());
+        for (entry, name) in TASKS.iter().zip(ENV_NAMES) {
+            assert_eq!(entry.name, *name);
+            assert_eq!((entry.make)().name(), entry.name);
+            assert_eq!(make_task(name).unwrap().name(), entry.name);
+        }
+        assert!(matches!(make_task("Nope"), Err(Error::UnknownEnv { .. })));
     }
 }

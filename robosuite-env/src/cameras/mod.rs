@@ -14,7 +14,7 @@
 pub mod rig;
 pub mod segmentation;
 
-use crate::observables::ObsSpec;
+use crate::observables::{Modality, ObsSpec};
 use gym_core::{ArrayValue, DType, Error, RenderMode, Result};
 use ndarray::{ArrayD, IxDyn};
 
@@ -275,7 +275,7 @@ pub fn camera_specs(cameras: &[CameraObs]) -> Vec<ObsSpec> {
             key,
             shape: vec![c.height, c.width, channels],
             dtype,
-            modality: "image".to_owned(),
+            modality: Modality::Image,
             needs_object_obs: false,
             active: true,
         };

@@ -10,7 +10,7 @@ use crate::controllers::{
 use crate::math::{mat_from_row_major, mat2quat, xyzw};
 use crate::models::grippers::GripperInfo;
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::observables::{Modality, ObsSpec, Observable, observe_all, specs};
 use crate::sim::{GeomSet, Sim, actuator_id, body_id, geom_id, joint_id, site_id};
 use gym_core::{DType, EnvRng, Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
@@ -355,9 +355,8 @@ impl Robot {
     /// prefixed `right_` / `left_` on a bimanual robot).
     fn make_observables(&self) -> Vec<Observable<Robot>> {
         let pf = format!("robot{}_", self.index);
-        let modality = format!("{pf}proprio");
         let n = self.joint_qpos.len();
-        let m = modality.as_str();
+        let m = Modality::Proprio(self.index);
         let mut obs = vec![
             Observable::f64(format!("{pf}joint_pos"), n, m, |r: &Robot, sim, out| {
                 for (o, &a) in out.iter_mut().zip(&r.joint_qpos) {

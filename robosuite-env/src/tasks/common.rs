@@ -5,7 +5,7 @@ use super::RewardConfig;
 use crate::assets::Assets;
 use crate::math::{conj, mat_from_row_major, mat2quat, pose_inv_of, quat_mul, quat_rotate, xyzw};
 use crate::models::objects::{CustomMaterial, ObjectModel};
-use crate::observables::Observable;
+use crate::observables::{Modality, Observable};
 use crate::robots::{Gripper, Robot};
 use crate::sim::{GeomSet, Sim, any_contact_between, body_id, geom_id, joint_id};
 use gym_core::{DType, Error, Result};
@@ -304,7 +304,7 @@ impl ObjectSensors {
             "world_pose_in_gripper",
             &[4, 4],
             DType::F64,
-            "object",
+            Modality::Object,
             move |t: &T, sim, out| out.copy_from_slice(&get(t).world_pose(sim)),
         )
         .inactive()
@@ -322,34 +322,28 @@ impl ObjectSensors {
         quat_dtype: DType,
     ) -> Vec<Observable<T>> {
         vec![
-            Observable::f64(
+            Observable::vec(
                 format!("{name}_to_robot0_eef_pos"),
-                3,
-                "object",
-                move |t: &T, sim, out| {
-                    out.copy_from_slice(&get(t).relative(sim, i).0);
-                },
+                Modality::Object,
+                move |t: &T, sim| get(t).relative(sim, i).0,
             ),
             Observable::new(
                 format!("{name}_to_robot0_eef_quat"),
                 &[4],
                 DType::F64,
-                "object",
+                Modality::Object,
                 move |t: &T, sim, out| out.copy_from_slice(&get(t).relative(sim, i).1),
             ),
-            Observable::f64(
+            Observable::vec(
                 format!("{name}_pos"),
-                3,
-                "object",
-                move |t: &T, sim, out| {
-                    out.copy_from_slice(&get(t).poses[i].pose(sim).0);
-                },
+                Modality::Object,
+                move |t: &T, sim| get(t).poses[i].pose(sim).0,
             ),
             Observable::new(
                 format!("{name}_quat"),
                 &[4],
                 quat_dtype,
-                "object",
+                Modality::Object,
                 move |t: &T, sim, out| out.copy_from_slice(&get(t).poses[i].pose(sim).1),
             ),
         ]

@@ -2,15 +2,15 @@
 //! (`environments/manipulation/door.py`, `DoorObject`).
 
 use super::common::{dist, eef_pos, scale_reward, sub};
-use super::lift::single_robot_table;
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::table::table_arena;
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::mjcf::tree::{self, format_number, set_attr};
 use crate::models::objects::{Joints, ObjType, ObjectModel, xml_object};
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use crate::robots::Robot;
 use crate::sim::{Sim, body_id, joint_id, site_id};
 use gym_core::{DType, EnvRng, Error, Result};
@@ -91,14 +91,8 @@ impl TaskSpec for DoorSpec {
         "Door"
     }
 
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let mut arena = single_robot_table(
-            assets,
-            robots,
-            TABLE_FULL_SIZE,
-            TABLE_FRICTION,
-            TABLE_OFFSET,
-        )?;
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
+        let mut arena = table_arena(assets, TABLE_FULL_SIZE, TABLE_FRICTION, TABLE_OFFSET)?;
         arena.set_camera("agentview", AGENTVIEW_POS, AGENTVIEW_QUAT)?;
         Ok(TaskScene {
             arena,
@@ -113,7 +107,7 @@ impl TaskSpec for DoorSpec {
             Ok(model.jnt_qposadr()[joint_id(model, &door.name_of(joint))?] as usize)
         };
         let root = body_id(model, &door.root_body())?;
-        let mut task = Door {
+        let task = Door {
             use_latch: self.use_latch,
             sampler: self
                 .placement_initializer
@@ -140,10 +134,9 @@ impl TaskSpec for DoorSpec {
                 None
             },
             eef_site: robots.first().map_or(0, |r| r.arm().eef_site()),
-            observables: Vec::new(),
         };
-        task.observables = task.make_observables();
-        Ok(Box::new(task))
+        let observables = task.make_observables();
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -170,7 +163,6 @@ pub struct Door {
     hinge_qpos: usize,
     latch_qpos: Option<usize>,
     eef_site: usize,
-    observables: Vec<Observable<Door>>,
 }
 
 impl Door {
@@ -179,26 +171,26 @@ impl Door {
     /// (door / handle − grip site, despite the names), and with the latch `handle_qpos`.
     fn make_observables(&self) -> Vec<Observable<Door>> {
         let mut obs = vec![
-            Observable::f64("door_pos", 3, "object", |t: &Door, sim, out| {
-                out.copy_from_slice(&t.door_pos(sim));
+            Observable::vec("door_pos", Modality::Object, |t: &Door, sim| {
+                t.door_pos(sim)
             }),
-            Observable::f64("handle_pos", 3, "object", |t: &Door, sim, out| {
-                out.copy_from_slice(&t.handle_pos(sim));
+            Observable::vec("handle_pos", Modality::Object, |t: &Door, sim| {
+                t.handle_pos(sim)
             }),
             Observable::new(
                 "hinge_qpos",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &Door, sim, out| {
                     out[0] = t.hinge_angle(sim);
                 },
             ),
-            Observable::f64("door_to_eef_pos", 3, "object", |t: &Door, sim, out| {
-                out.copy_from_slice(&sub(t.door_pos(sim), t.eef(sim)));
+            Observable::vec("door_to_eef_pos", Modality::Object, |t: &Door, sim| {
+                sub(t.door_pos(sim), t.eef(sim))
             }),
-            Observable::f64("handle_to_eef_pos", 3, "object", |t: &Door, sim, out| {
-                out.copy_from_slice(&sub(t.handle_pos(sim), t.eef(sim)));
+            Observable::vec("handle_to_eef_pos", Modality::Object, |t: &Door, sim| {
+                sub(t.handle_pos(sim), t.eef(sim))
             }),
         ];
         if self.use_latch {
@@ -206,7 +198,7 @@ impl Door {
                 "handle_qpos",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &Door, sim, out| out[0] = t.handle_angle(sim).unwrap_or(0.0),
             ));
         }
@@ -250,23 +242,11 @@ impl Door {
     }
 }
 
-impl Task for Door {
-    fn name(&self) -> &str {
-        "Door"
-    }
-
+impl TaskLogic for Door {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let (pos, quat) = self.sampler.sample(rng, &[self.extent], &[])?[0];
         self.write_pose(sim, pos, quat);
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

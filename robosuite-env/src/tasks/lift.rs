@@ -1,15 +1,16 @@
 //! robosuite's `Lift`: lift a small box off the table (`environments/manipulation/lift.py`).
 
-use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward, wood_material};
+use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward, sub, wood_material};
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, Rotation, UniformRandomSampler};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::table::{TABLE_OFFSET, table_arena};
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
-use crate::models::arenas::Arena;
+use crate::math::xyzw;
 use crate::models::objects::primitive::Primitive;
 use crate::models::objects::{ObjectModel, Shape};
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use crate::robots::Robot;
 use crate::sim::{BoxGeomUpdate, Sim, geom_id, resize_box_body};
 use gym_core::{EnvRng, Error, Result};
@@ -32,9 +33,6 @@ pub struct LiftSpec {
     #[serde(default)]
     pub placement_initializer: Option<UniformRandomSampler>,
 }
-
-/// robosuite's table top for Lift, Stack and ToolHang.
-pub(crate) const TABLE_OFFSET: [f64; 3] = [0.0, 0.0, 0.8];
 
 impl Default for LiftSpec {
     fn default() -> Self {
@@ -63,40 +61,6 @@ impl LiftSpec {
     }
 }
 
-/// Places robot 0 at its base offset for the arena, as every single-arm task of robosuite
-/// does (`robot_model.set_base_xpos(base_xpos_offset[arena])`).
-pub(crate) fn place_single_robot(robots: &mut [RobotModel], arena: &Arena) {
-    if let Some(robot) = robots.first_mut() {
-        let xpos = robot.info.base_offsets.for_arena(arena.kind);
-        robot.set_base_xpos(xpos);
-    }
-}
-
-/// The opening of a single-arm table task's `_load_model` (Lift, Stack, Door, ...):
-/// robosuite's `TableArena(table_full_size, table_friction, table_offset)`, robot 0 placed at
-/// its table base offset ([`place_single_robot`]), then `set_origin([0, 0, 0])`.
-///
-/// # Errors
-/// As [`Arena::table`].
-pub(crate) fn single_robot_table(
-    assets: &Assets,
-    robots: &mut [RobotModel],
-    full_size: [f64; 3],
-    friction: [f64; 3],
-    offset: [f64; 3],
-) -> Result<Arena> {
-    let mut arena = Arena::table(
-        assets,
-        "arenas/table_arena.xml",
-        full_size,
-        friction,
-        offset,
-    )?;
-    place_single_robot(robots, &arena);
-    arena.set_origin([0.0; 3])?;
-    Ok(arena)
-}
-
 impl TaskSpec for LiftSpec {
     fn options(&self) -> TaskOptions {
         options::to_options(self)
@@ -111,11 +75,10 @@ impl TaskSpec for LiftSpec {
         "Lift"
     }
 
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         self.validate()?;
-        let arena = single_robot_table(
+        let arena = table_arena(
             assets,
-            robots,
             self.table_full_size,
             self.table_friction,
             TABLE_OFFSET,
@@ -140,7 +103,7 @@ impl TaskSpec for LiftSpec {
             .collect::<Result<Vec<_>>>()?;
         let half = model.geom_size()[geoms[0]];
         let eef_site = robots.first().map_or(0, |r| r.arm().eef_site());
-        let mut task = Lift {
+        let task = Lift {
             spec: self.clone(),
             sampler: self
                 .placement_initializer
@@ -159,23 +122,16 @@ impl TaskSpec for LiftSpec {
             cube: body,
             cube_geoms: geoms,
             eef_site,
-            observables: Vec::new(),
         };
-        task.observables = vec![
-            Observable::f64("cube_pos", 3, "object", |t: &Lift, sim, out| {
-                out.copy_from_slice(&t.cube.pos(sim));
-            }),
-            Observable::f64("cube_quat", 4, "object", |t: &Lift, sim, out| {
-                out.copy_from_slice(&crate::math::xyzw(t.cube.quat(sim)));
-            }),
-            Observable::f64("gripper_to_cube_pos", 3, "object", |t: &Lift, sim, out| {
-                let (c, e) = (t.cube.pos(sim), sim.data().site_xpos()[t.eef_site]);
-                for i in 0..3 {
-                    out[i] = c[i] - e[i];
-                }
+        let object = Modality::Object;
+        let observables = vec![
+            Observable::vec("cube_pos", object, |t: &Lift, sim| t.cube.pos(sim)),
+            Observable::vec("cube_quat", object, |t: &Lift, sim| xyzw(t.cube.quat(sim))),
+            Observable::vec("gripper_to_cube_pos", object, |t: &Lift, sim| {
+                sub(t.cube.pos(sim), sim.data().site_xpos()[t.eef_site])
             }),
         ];
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -196,7 +152,6 @@ pub struct Lift {
     cube: FreeBody,
     cube_geoms: Vec<usize>,
     eef_site: usize,
-    observables: Vec<Observable<Lift>>,
 }
 
 impl Lift {
@@ -215,11 +170,7 @@ impl Lift {
     }
 }
 
-impl Task for Lift {
-    fn name(&self) -> &str {
-        "Lift"
-    }
-
+impl TaskLogic for Lift {
     fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let (lo, hi) = (self.spec.cube_size_min, self.spec.cube_size_max);
         let half: [f64; 3] = std::array::from_fn(|i| lo[i] + (hi[i] - lo[i]) * rng.random::<f64>());
@@ -227,7 +178,7 @@ impl Task for Lift {
     }
 
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
-        let extent = super::placement::PlacedObject {
+        let extent = PlacedObject {
             horizontal_radius: (self.half[0] * self.half[0] + self.half[1] * self.half[1]).sqrt(),
             bottom_offset: -self.half[2],
             top_offset: self.half[2],
@@ -235,14 +186,6 @@ impl Task for Lift {
         let (pos, quat) = self.sampler.sample(rng, &[extent], &[])?[0];
         self.cube.set_pose(sim, pos, quat);
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

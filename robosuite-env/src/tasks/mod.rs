@@ -14,10 +14,12 @@ pub mod mode_objects;
 mod nut_assembly;
 pub mod options;
 mod pick_place;
-pub mod placement;
+pub use crate::placement;
+mod robot_setup;
 mod stack;
+pub mod table;
 mod tool_hang;
-mod two_arm;
+pub mod two_arm;
 mod two_arm_handover;
 mod two_arm_lift;
 mod two_arm_peg_in_hole;
@@ -38,15 +40,15 @@ pub use two_arm_transport::{TwoArmTransport, TwoArmTransportSpec};
 pub use wipe::{Wipe, WipeConfig, WipeSpec};
 
 use crate::assets::Assets;
-use crate::config::EnvConfiguration;
 use crate::models::arenas::Arena;
 use crate::models::objects::ObjectModel;
-use crate::models::robots::{GripperChoice, RobotInfo, RobotModel};
-use crate::observables::ObsSpec;
+use crate::models::robots::{GripperChoice, RobotModel};
+use crate::observables::{ObsSpec, Observable, observe_all, specs};
 use crate::robots::Robot;
 use crate::sim::Sim;
 use gym_core::{EnvRng, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
+pub use robot_setup::RobotSetup;
 
 /// Reward settings shared by all tasks (robosuite's `reward_scale` and `reward_shaping`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,60 +97,12 @@ pub trait TaskSpec: TaskSpecClone + Send + Sync + std::fmt::Debug {
         }
     }
 
-    /// The number of robots the task takes by default (a Panda each when
-    /// [`crate::EnvConfig::robots`] is empty); [`TaskSpec::check_robots`] says what else it
-    /// takes (the two-arm tasks also take one bimanual robot).
-    fn num_robots(&self) -> usize {
-        1
-    }
-
-    /// robosuite's `_check_robot_configuration`: checks the robots and the requested
-    /// `env_configuration` and returns the configuration the task runs with. The default is
-    /// a single-arm task's: [`TaskSpec::num_robots`] single-arm robots and `"default"`.
-    ///
-    /// # Errors
-    /// [`gym_core::Error::InvalidArgument`] naming `robots` or `env_configuration` and
-    /// listing what is valid.
-    fn check_robots(
-        &self,
-        robots: &[RobotInfo],
-        configuration: EnvConfiguration,
-    ) -> Result<EnvConfiguration> {
-        let need = self.num_robots();
-        if robots.len() != need {
-            return Err(gym_core::Error::invalid_argument(
-                "robots",
-                format!(
-                    "{} needs {need} single-arm robot(s), got {} ({:?}); valid robots: {}",
-                    self.name(),
-                    robots.len(),
-                    robots.iter().map(|r| r.name).collect::<Vec<_>>(),
-                    crate::models::robots::single_arm_robot_names().join(", ")
-                ),
-            ));
-        }
-        if let Some(r) = robots.iter().find(|r| r.arms.len() != 1) {
-            return Err(gym_core::Error::invalid_argument(
-                "robots",
-                format!(
-                    "{} is a single-arm task and {} is bimanual; valid robots: {}",
-                    self.name(),
-                    r.name,
-                    crate::models::robots::single_arm_robot_names().join(", ")
-                ),
-            ));
-        }
-        if configuration != EnvConfiguration::Default {
-            return Err(gym_core::Error::invalid_argument(
-                "env_configuration",
-                format!(
-                    "{} is a single-arm task: only `default` is valid, got `{}`",
-                    self.name(),
-                    configuration.as_str()
-                ),
-            ));
-        }
-        Ok(configuration)
+    /// The robots the task takes and where they stand (robosuite's
+    /// `_check_robot_configuration` and the robot placement of its `_load_model`): the
+    /// environment checks the configured robots against it and places them in the arena
+    /// [`TaskSpec::build`] returns. The default is one single-arm robot.
+    fn robots(&self) -> RobotSetup {
+        RobotSetup::SingleArm
     }
 
     /// The gripper the task needs on arm `arm` of robot `robot` given the configured
@@ -176,50 +130,38 @@ pub trait TaskSpec: TaskSpecClone + Send + Sync + std::fmt::Debug {
         crate::models::scene::DEFAULT_MEMORY
     }
 
-    /// robosuite's `_load_model`: places the robots and builds the arena and the objects.
-    /// Sizes robosuite draws at every hard reset are built at a fixed value here and drawn
-    /// by [`Task::randomize_model`] at every reset instead, so equal configurations compose
-    /// equal scenes (and share one compiled model).
+    /// robosuite's `_load_model`: builds the arena and the objects (the environment then
+    /// places the robots as [`TaskSpec::robots`] says; a task may edit the robot models,
+    /// as TwoArmPegInHole attaches its peg and hole to the hands). Sizes robosuite draws at
+    /// every hard reset are built at a fixed value here and drawn by
+    /// [`TaskLogic::randomize_model`] at every reset instead, so equal configurations
+    /// compose equal scenes (and share one compiled model).
     ///
     /// # Errors
     /// [`gym_core::Error::Model`] when a model file is missing or malformed;
     /// [`gym_core::Error::InvalidArgument`] for an invalid task configuration.
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene>;
 
-    /// [`TaskSpec::build`] for the configuration [`TaskSpec::check_robots`] returned (how
-    /// two-arm tasks place their robots). The default ignores it.
-    ///
-    /// # Errors
-    /// As [`TaskSpec::build`].
-    fn build_configured(
-        &self,
-        assets: &Assets,
-        robots: &mut [RobotModel],
-        _configuration: EnvConfiguration,
-    ) -> Result<TaskScene> {
-        self.build(assets, robots)
-    }
-
     /// Binds the task to the compiled scene: resolves every body, joint, geom and site it
-    /// uses.
+    /// uses, and returns the run-time task with its observables
+    /// (`Ok(Bound::boxed(task, observables))`, see [`Bound`]).
     ///
     /// # Errors
     /// [`gym_core::Error::Model`] when the model lacks a name robosuite gives.
     fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>>;
 }
 
-/// A task bound to a compiled scene: the per-episode part of robosuite's environment
-/// classes.
+/// What a task does at run time (the per-episode part of robosuite's environment
+/// classes), written once per task; [`Bound`] pairs it with its observables into the
+/// [`Task`] the environment runs.
 ///
-/// The environment calls, on each reset, [`Task::randomize_model`] (before the robots draw
-/// their noise), then [`Task::place_objects`] (after); on each step [`Task::on_policy_step`]
-/// at the first substep, then after the physics [`Task::reward`], [`Task::after_reward`],
-/// [`Task::check_success`] and [`Task::check_terminated`]; and [`Task::observe`] whenever
-/// it builds an observation.
-pub trait Task: Send + std::fmt::Debug {
-    /// robosuite's environment name.
-    fn name(&self) -> &str;
-
+/// The environment calls, on each reset, [`TaskLogic::randomize_model`] (before the robots
+/// draw their noise), then [`TaskLogic::place_objects`] (after); on each step
+/// [`TaskLogic::on_policy_step`] at the first substep, then after the physics
+/// [`TaskLogic::reward`], [`TaskLogic::after_reward`], [`TaskLogic::check_success`] and
+/// [`TaskLogic::check_terminated`]; and around every observation pass
+/// [`TaskLogic::before_observe`] and [`TaskLogic::after_observe`].
+pub trait TaskLogic: Send + std::fmt::Debug + 'static {
     /// Re-draws model parameters (object sizes, marker layouts) without recompiling;
     /// called first in every reset. The default does nothing.
     ///
@@ -240,15 +182,14 @@ pub trait Task: Send + std::fmt::Debug {
     /// pass). The default has none.
     fn clear_observation_cache(&mut self) {}
 
-    /// The specs of the task's observables, in robosuite's order (object observables, and
-    /// robot ones a task adds, such as Wipe's `robot0_contact`).
-    fn observation_specs(&self) -> Vec<ObsSpec>;
+    /// Called before each observation pass reads the observables (Wipe computes what its
+    /// observables share). The default does nothing.
+    fn before_observe(&mut self, _sim: &Sim) {}
 
-    /// Writes the task's observables, in the order of [`Task::observation_specs`]: one
-    /// observation pass (after each step and each reset). Mutable because some of
-    /// robosuite's sensors read its observation cache, the values of the previous pass
-    /// (see [`common::ObjectSensors`]).
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]);
+    /// Called after each observation pass (robosuite's sensors that read the observation
+    /// cache remember the pass here, see [`common::ObjectSensors`]). The default does
+    /// nothing.
+    fn after_observe(&mut self, _sim: &Sim) {}
 
     /// The reward for the current state.
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64;
@@ -276,7 +217,7 @@ pub trait Task: Send + std::fmt::Debug {
         Vec::new()
     }
 
-    /// Restores a state from [`Task::save_state`], editing the model if needed; the
+    /// Restores a state from [`TaskLogic::save_state`], editing the model if needed; the
     /// environment restores the simulator state afterwards. The default accepts only an
     /// empty state.
     ///
@@ -289,13 +230,137 @@ pub trait Task: Send + std::fmt::Debug {
         } else {
             Err(gym_core::Error::invalid_argument(
                 "task state",
-                format!(
-                    "{} has no task state, got {} values",
-                    self.name(),
-                    state.len()
-                ),
+                format!("the task has no task state, got {} values", state.len()),
             ))
         }
+    }
+}
+
+/// A task bound to a compiled scene: its [`TaskLogic`] and its observables (in robosuite's
+/// order, read from the task). It implements [`Task`].
+#[derive(Debug, Clone)]
+pub struct Bound<T> {
+    logic: T,
+    observables: Vec<Observable<T>>,
+}
+
+impl<T: TaskLogic> Bound<T> {
+    /// `logic` with its `observables`.
+    pub fn new(logic: T, observables: Vec<Observable<T>>) -> Self {
+        Self { logic, observables }
+    }
+
+    /// [`Bound::new`], boxed as [`TaskSpec::bind`] returns it.
+    pub fn boxed(logic: T, observables: Vec<Observable<T>>) -> Box<dyn Task> {
+        Box::new(Self::new(logic, observables))
+    }
+
+    /// The task's logic.
+    pub fn logic(&self) -> &T {
+        &self.logic
+    }
+}
+
+/// A task bound to a compiled scene, as the environment runs it: [`Bound`] implements it
+/// for every [`TaskLogic`] (see there for what each method does).
+pub trait Task: Send + std::fmt::Debug {
+    /// [`TaskLogic::randomize_model`].
+    ///
+    /// # Errors
+    /// As [`TaskLogic::randomize_model`].
+    fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()>;
+
+    /// [`TaskLogic::place_objects`].
+    ///
+    /// # Errors
+    /// As [`TaskLogic::place_objects`].
+    fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()>;
+
+    /// [`TaskLogic::clear_observation_cache`].
+    fn clear_observation_cache(&mut self);
+
+    /// The specs of the task's observables, in robosuite's order (object observables, and
+    /// robot ones a task adds, such as Wipe's `robot0_contact`).
+    fn observation_specs(&self) -> Vec<ObsSpec>;
+
+    /// Writes the task's observables, in the order of [`Task::observation_specs`]: one
+    /// observation pass (after each step and each reset).
+    fn observe(&mut self, sim: &Sim, out: &mut [f64]);
+
+    /// [`TaskLogic::reward`].
+    fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64;
+
+    /// [`TaskLogic::check_success`].
+    fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool;
+
+    /// [`TaskLogic::check_terminated`].
+    fn check_terminated(&self, sim: &Sim, robots: &[Robot]) -> bool;
+
+    /// [`TaskLogic::on_policy_step`].
+    fn on_policy_step(&mut self, sim: &Sim, robots: &[Robot]);
+
+    /// [`TaskLogic::after_reward`].
+    fn after_reward(&mut self, sim: &mut Sim, robots: &[Robot], config: &RewardConfig);
+
+    /// [`TaskLogic::save_state`].
+    fn save_state(&self) -> Vec<f64>;
+
+    /// [`TaskLogic::load_state`].
+    ///
+    /// # Errors
+    /// As [`TaskLogic::load_state`].
+    fn load_state(&mut self, sim: &mut Sim, state: &[f64]) -> Result<()>;
+}
+
+impl<T: TaskLogic> Task for Bound<T> {
+    fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
+        self.logic.randomize_model(sim, rng)
+    }
+
+    fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
+        self.logic.place_objects(sim, rng)
+    }
+
+    fn clear_observation_cache(&mut self) {
+        self.logic.clear_observation_cache();
+    }
+
+    fn observation_specs(&self) -> Vec<ObsSpec> {
+        specs(&self.observables)
+    }
+
+    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
+        self.logic.before_observe(sim);
+        observe_all(&self.observables, &self.logic, sim, out);
+        self.logic.after_observe(sim);
+    }
+
+    fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
+        self.logic.reward(sim, robots, config)
+    }
+
+    fn check_success(&self, sim: &Sim, robots: &[Robot]) -> bool {
+        self.logic.check_success(sim, robots)
+    }
+
+    fn check_terminated(&self, sim: &Sim, robots: &[Robot]) -> bool {
+        self.logic.check_terminated(sim, robots)
+    }
+
+    fn on_policy_step(&mut self, sim: &Sim, robots: &[Robot]) {
+        self.logic.on_policy_step(sim, robots);
+    }
+
+    fn after_reward(&mut self, sim: &mut Sim, robots: &[Robot], config: &RewardConfig) {
+        self.logic.after_reward(sim, robots, config);
+    }
+
+    fn save_state(&self) -> Vec<f64> {
+        self.logic.save_state()
+    }
+
+    fn load_state(&mut self, sim: &mut Sim, state: &[f64]) -> Result<()> {
+        self.logic.load_state(sim, state)
     }
 }
 

@@ -7,7 +7,7 @@ use super::common::{
 };
 use super::options::{self, TaskOptions};
 use crate::models::objects::ObjectModel;
-use crate::observables::Observable;
+use crate::observables::{Modality, Observable};
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim};
 use gym_core::{DType, EnvRng, Error, Result};
@@ -298,7 +298,7 @@ impl ModeObjects {
                     format!("{single}_id"),
                     &[],
                     DType::I64,
-                    "object",
+                    Modality::Object,
                     move |t: &T, _sim, out| out[0] = active(t) as f64,
                 ));
                 obs

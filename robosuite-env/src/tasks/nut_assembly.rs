@@ -2,19 +2,17 @@
 //! on the round peg (`environments/manipulation/nut_assembly.py`).
 
 use super::common::{ObjectMode, ObjectSensors, dist, eef_pos};
-use super::lift::place_single_robot;
 use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
 use super::options::TaskOptions;
-use super::placement::{
-    Axis, PlacedObject, Rotation, SequentialCompositeSampler, UniformRandomSampler,
-};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::arenas::Arena;
 use crate::models::objects::{Joints, ObjType, ObjectModel, xml_object};
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::placement::{
+    Axis, PlacedObject, Rotation, SequentialCompositeSampler, UniformRandomSampler,
+};
 use crate::robots::Robot;
 use crate::sim::{Sim, body_id, site_id};
 use gym_core::{EnvRng, Error, Result};
@@ -181,7 +179,7 @@ impl TaskSpec for NutAssemblySpec {
     /// robosuite's `_load_model`: the robot at the table's base offset, `PegsArena` at the
     /// origin, then the nuts `SquareNut` and `RoundNut` (free joints with damping 0.0005,
     /// collision geoms doubled by visual copies).
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         Self::new(self.mode)?;
         let mut arena = Arena::table(
             assets,
@@ -190,7 +188,6 @@ impl TaskSpec for NutAssemblySpec {
             self.table_friction,
             self.table_offset,
         )?;
-        place_single_robot(robots, &arena);
         arena.set_origin([0.0; 3])?;
         let objects = NUTS
             .iter()
@@ -219,7 +216,7 @@ impl TaskSpec for NutAssemblySpec {
             .iter()
             .map(|nut| site_id(model, &nut.name_of("handle_site")))
             .collect::<Result<Vec<_>>>()?;
-        let mut task = NutAssembly {
+        let task = NutAssembly {
             spec: self.clone(),
             name: self.name().to_owned(),
             sampler: self.sampler(),
@@ -228,10 +225,9 @@ impl TaskSpec for NutAssemblySpec {
             handles,
             pegs: [body_id(model, "peg1")?, body_id(model, "peg2")?],
             table: body_id(model, "table")?,
-            observables: Vec::new(),
         };
         // robosuite's order: the inactive world pose first, then the nuts'.
-        task.observables =
+        let observables =
             std::iter::once(ObjectSensors::world_pose_observable(|t: &NutAssembly| {
                 t.nuts.sensors()
             }))
@@ -242,7 +238,7 @@ impl TaskSpec for NutAssemblySpec {
                 "nut",
             ))
             .collect();
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -272,7 +268,6 @@ pub struct NutAssembly {
     handles: Vec<usize>,
     pegs: [usize; 2],
     table: usize,
-    observables: Vec<Observable<NutAssembly>>,
 }
 
 impl NutAssembly {
@@ -331,11 +326,7 @@ impl NutAssembly {
     }
 }
 
-impl Task for NutAssembly {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
+impl TaskLogic for NutAssembly {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let poses = self.sampler.sample(rng, &self.extents)?;
         for (body, (pos, quat)) in self.nuts.bodies().iter().zip(poses) {
@@ -349,12 +340,7 @@ impl Task for NutAssembly {
         self.nuts.clear_cache();
     }
 
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
+    fn after_observe(&mut self, sim: &Sim) {
         self.nuts.remember(sim);
     }
 

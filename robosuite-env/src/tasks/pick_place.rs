@@ -2,17 +2,15 @@
 //! of the other (`environments/manipulation/pick_place.py`).
 
 use super::common::{ObjectMode, ObjectSensors, dist, eef_pos};
-use super::lift::place_single_robot;
 use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
 use super::options::TaskOptions;
-use super::placement::{Axis, PlacedObject, Pose, Rotation, UniformRandomSampler};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::arenas::Arena;
 use crate::models::objects::{Joints, ObjType, ObjectModel, xml_object};
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::placement::{Axis, PlacedObject, Pose, Rotation, UniformRandomSampler};
 use crate::robots::Robot;
 use crate::sim::{Sim, body_id};
 use gym_core::{EnvRng, Error, Result, rng_from_seed};
@@ -263,10 +261,9 @@ impl TaskSpec for PickPlaceSpec {
     /// origin, then the visual objects (`VisualMilk`, ...: visual geoms only, no joint) and
     /// the objects (`Milk`, ...: a free joint with damping 0.0005, collision geoms doubled
     /// by visual copies), robosuite's `visual_objects + objects`.
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         self.validate()?;
         let mut arena = Arena::bins(assets, self.bin1_pos, self.bin_size)?;
-        place_single_robot(robots, &arena);
         arena.set_origin([0.0; 3])?;
         let mut objects = Vec::with_capacity(2 * PICK_PLACE_OBJECTS.len());
         for (name, file) in PICK_PLACE_OBJECTS.iter().zip(OBJECT_FILES) {
@@ -316,7 +313,7 @@ impl TaskSpec for PickPlaceSpec {
                     .sample(&mut fixed_rng, &[v.placement()], &[])?[0])
             })
             .collect::<Result<Vec<Pose>>>()?;
-        let mut task = PickPlace {
+        let task = PickPlace {
             spec: self.clone(),
             name: self.name().to_owned(),
             sampler: self.object_sampler(),
@@ -328,21 +325,19 @@ impl TaskSpec for PickPlaceSpec {
             visual_bodies,
             visual_poses,
             bins: [body_id(model, "bin1")?, body_id(model, "bin2")?],
-            observables: Vec::new(),
         };
         // robosuite's order: the inactive world pose first, then the objects'.
-        task.observables =
-            std::iter::once(ObjectSensors::world_pose_observable(|t: &PickPlace| {
-                t.objects.sensors()
-            }))
-            .chain(task.objects.observables(
-                |t: &PickPlace| t.objects.sensors(),
-                |t: &PickPlace| t.objects.active(),
-                &PICK_PLACE_OBJECTS,
-                "obj",
-            ))
-            .collect();
-        Ok(Box::new(task))
+        let observables = std::iter::once(ObjectSensors::world_pose_observable(|t: &PickPlace| {
+            t.objects.sensors()
+        }))
+        .chain(task.objects.observables(
+            |t: &PickPlace| t.objects.sensors(),
+            |t: &PickPlace| t.objects.active(),
+            &PICK_PLACE_OBJECTS,
+            "obj",
+        ))
+        .collect();
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -375,7 +370,6 @@ pub struct PickPlace {
     visual_bodies: Vec<usize>,
     visual_poses: Vec<Pose>,
     bins: [usize; 2],
-    observables: Vec<Observable<PickPlace>>,
 }
 
 impl PickPlace {
@@ -444,11 +438,7 @@ impl PickPlace {
     }
 }
 
-impl Task for PickPlace {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
+impl TaskLogic for PickPlace {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let poses = self.sampler.sample(rng, &self.extents, &[])?;
         for (body, (pos, quat)) in self.objects.bodies().iter().zip(poses) {
@@ -463,12 +453,7 @@ impl Task for PickPlace {
         self.objects.clear_cache();
     }
 
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
+    fn after_observe(&mut self, sim: &Sim) {
         self.objects.remember(sim);
     }
 

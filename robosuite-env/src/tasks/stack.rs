@@ -4,16 +4,16 @@
 use super::common::{
     FreeBody, dist, dist_xy, eef_pos, robot0_grasps, scale_reward, sub, wood_material,
 };
-use super::lift::{TABLE_OFFSET, single_robot_table};
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::table::{TABLE_OFFSET, table_arena};
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::math::xyzw;
 use crate::models::objects::Shape;
 use crate::models::objects::primitive::Primitive;
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler};
 use crate::robots::Robot;
 use crate::sim::{Sim, any_contact_between};
 use gym_core::{EnvRng, Result};
@@ -61,10 +61,9 @@ impl TaskSpec for StackSpec {
         "Stack"
     }
 
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let arena = single_robot_table(
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
+        let arena = table_arena(
             assets,
-            robots,
             self.table_full_size,
             self.table_friction,
             TABLE_OFFSET,
@@ -84,7 +83,7 @@ impl TaskSpec for StackSpec {
 
     fn bind(&self, scene: &TaskScene, model: &MjModel, robots: &[Robot]) -> Result<Box<dyn Task>> {
         let [a, b] = [&scene.objects[0], &scene.objects[1]];
-        let mut task = Stack {
+        let task = Stack {
             sampler: self
                 .placement_initializer
                 .clone()
@@ -102,10 +101,9 @@ impl TaskSpec for StackSpec {
             cube_a: FreeBody::bind(model, a)?,
             cube_b: FreeBody::bind(model, b)?,
             eef_site: robots.first().map_or(0, |r| r.arm().eef_site()),
-            observables: Vec::new(),
         };
-        task.observables = Stack::make_observables();
-        Ok(Box::new(task))
+        let observables = Stack::make_observables();
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -127,7 +125,6 @@ pub struct Stack {
     cube_a: FreeBody,
     cube_b: FreeBody,
     eef_site: usize,
-    observables: Vec<Observable<Stack>>,
 }
 
 impl Stack {
@@ -136,26 +133,26 @@ impl Stack {
     /// (cube − grip site), each computed from values of the same observation pass.
     fn make_observables() -> Vec<Observable<Stack>> {
         vec![
-            Observable::f64("cubeA_pos", 3, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&t.cube_a.pos(sim));
+            Observable::vec("cubeA_pos", Modality::Object, |t: &Stack, sim| {
+                t.cube_a.pos(sim)
             }),
-            Observable::f64("cubeA_quat", 4, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&xyzw(t.cube_a.quat(sim)));
+            Observable::vec("cubeA_quat", Modality::Object, |t: &Stack, sim| {
+                xyzw(t.cube_a.quat(sim))
             }),
-            Observable::f64("cubeB_pos", 3, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&t.cube_b.pos(sim));
+            Observable::vec("cubeB_pos", Modality::Object, |t: &Stack, sim| {
+                t.cube_b.pos(sim)
             }),
-            Observable::f64("cubeB_quat", 4, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&xyzw(t.cube_b.quat(sim)));
+            Observable::vec("cubeB_quat", Modality::Object, |t: &Stack, sim| {
+                xyzw(t.cube_b.quat(sim))
             }),
-            Observable::f64("cubeA_to_cubeB", 3, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&sub(t.cube_b.pos(sim), t.cube_a.pos(sim)));
+            Observable::vec("cubeA_to_cubeB", Modality::Object, |t: &Stack, sim| {
+                sub(t.cube_b.pos(sim), t.cube_a.pos(sim))
             }),
-            Observable::f64("gripper_to_cubeA", 3, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&sub(t.cube_a.pos(sim), t.eef(sim)));
+            Observable::vec("gripper_to_cubeA", Modality::Object, |t: &Stack, sim| {
+                sub(t.cube_a.pos(sim), t.eef(sim))
             }),
-            Observable::f64("gripper_to_cubeB", 3, "object", |t: &Stack, sim, out| {
-                out.copy_from_slice(&sub(t.cube_b.pos(sim), t.eef(sim)));
+            Observable::vec("gripper_to_cubeB", Modality::Object, |t: &Stack, sim| {
+                sub(t.cube_b.pos(sim), t.eef(sim))
             }),
         ]
     }
@@ -197,24 +194,12 @@ impl Stack {
     }
 }
 
-impl Task for Stack {
-    fn name(&self) -> &str {
-        "Stack"
-    }
-
+impl TaskLogic for Stack {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let poses = self.sampler.sample(rng, &self.extents, &[])?;
         self.cube_a.set_pose(sim, poses[0].0, poses[0].1);
         self.cube_b.set_pose(sim, poses[1].0, poses[1].1);
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

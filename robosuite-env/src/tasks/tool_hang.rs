@@ -2,10 +2,9 @@
 //! wrench on the frame's hook (`environments/manipulation/tool_hang.py`).
 
 use super::common::{FreeBody, ObjectSensors, PoseRef, scale_reward, sub};
-use super::lift::{TABLE_OFFSET, place_single_robot};
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler, with_init_quat};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::table::TABLE_OFFSET;
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::arenas::Arena;
 use crate::models::objects::composite::GeneratedObject;
@@ -13,7 +12,8 @@ use crate::models::objects::hook_frame::HookFrame;
 use crate::models::objects::ratcheting_wrench::RatchetingWrench;
 use crate::models::objects::stand_with_mount::StandWithMount;
 use crate::models::robots::RobotModel;
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler, with_init_quat};
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, any_contact_between, body_id, geom_id, site_id};
 use gym_core::{DType, EnvRng, Result};
@@ -136,7 +136,7 @@ impl TaskSpec for ToolHangSpec {
         "ToolHang"
     }
 
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         let mut arena = Arena::table(
             assets,
             "arenas/table_arena.xml",
@@ -144,7 +144,6 @@ impl TaskSpec for ToolHangSpec {
             self.table_friction,
             TABLE_OFFSET,
         )?;
-        place_single_robot(robots, &arena);
         arena.set_origin([0.0; 3])?;
         arena.set_camera("agentview", AGENTVIEW_POS, CAMERA_QUAT)?;
         arena.set_camera("sideview", SIDEVIEW_POS, CAMERA_QUAT)?;
@@ -180,7 +179,7 @@ impl TaskSpec for ToolHangSpec {
                 fingers.extend_from_slice(arm.gripper().finger_geoms().ids());
             }
         }
-        let mut task = ToolHang {
+        let task = ToolHang {
             placements: self.placements(
                 &o.stand,
                 &o.frame,
@@ -214,7 +213,6 @@ impl TaskSpec for ToolHangSpec {
                 ],
                 robots,
             ),
-            observables: Vec::new(),
         };
         // robosuite's order: the inactive world pose first, then the objects'.
         let mut observables = vec![ObjectSensors::world_pose_observable(|t: &ToolHang| {
@@ -232,18 +230,17 @@ impl TaskSpec for ToolHangSpec {
             "frame_is_assembled",
             &[],
             DType::F64,
-            "object",
+            Modality::Object,
             |t: &ToolHang, sim, out| out[0] = f64::from(u8::from(t.frame_is_assembled(sim))),
         ));
         observables.push(Observable::new(
             "tool_on_frame",
             &[],
             DType::F64,
-            "object",
+            Modality::Object,
             |t: &ToolHang, sim, out| out[0] = f64::from(u8::from(t.tool_on_frame(sim))),
         ));
-        task.observables = observables;
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -308,7 +305,6 @@ pub struct ToolHang {
     robot_fingers: GeomSet,
     hanging_tolerance: f64,
     sensors: ObjectSensors,
-    observables: Vec<Observable<ToolHang>>,
 }
 
 impl ToolHang {
@@ -363,11 +359,7 @@ impl ToolHang {
     }
 }
 
-impl Task for ToolHang {
-    fn name(&self) -> &str {
-        "ToolHang"
-    }
-
+impl TaskLogic for ToolHang {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let bodies = [&self.stand, &self.frame, &self.tool];
         for (p, body) in self.placements.iter().zip(bodies) {
@@ -384,12 +376,7 @@ impl Task for ToolHang {
         self.sensors.clear();
     }
 
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
+    fn after_observe(&mut self, sim: &Sim) {
         self.sensors.remember(sim);
     }
 

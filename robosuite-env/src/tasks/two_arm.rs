@@ -1,6 +1,7 @@
 //! What robosuite's two-arm tasks share (`environments/manipulation/two_arm_env.py`): the
 //! robot set-ups of `env_configuration`, where the robots stand, and which arms are the
-//! task's "gripper 0" and "gripper 1".
+//! task's "gripper 0" and "gripper 1". A task takes them with
+//! [`RobotSetup::TwoArm`](super::RobotSetup::TwoArm).
 
 use crate::config::EnvConfiguration;
 use crate::math::euler2mat;
@@ -21,16 +22,6 @@ fn bimanual_robot_names() -> Vec<&'static str> {
         .collect()
 }
 
-/// The set-up a two-arm task takes when none is configured: one bimanual robot
-/// `single-robot`, two single-arm robots `opposed` (robosuite's `default`).
-pub(crate) fn default_configuration(robots: &[RobotModel]) -> EnvConfiguration {
-    if robots.len() == 1 {
-        EnvConfiguration::SingleRobot
-    } else {
-        EnvConfiguration::Opposed
-    }
-}
-
 /// robosuite's `TwoArmEnv._check_robot_configuration`: one bimanual robot (configuration
 /// `single-robot`, whatever was asked), or two single-arm robots `opposed` (also for
 /// `default`) or `parallel`.
@@ -39,7 +30,7 @@ pub(crate) fn default_configuration(robots: &[RobotModel]) -> EnvConfiguration {
 /// [`Error::InvalidArgument`] naming `robots` (a wrong count, a single-arm robot alone, a
 /// bimanual robot in a pair) or `env_configuration` (`single-robot` with two robots), and
 /// listing what is valid.
-pub(crate) fn check_two_arm_robots(
+pub fn check_two_arm_robots(
     task: &str,
     robots: &[RobotInfo],
     configuration: EnvConfiguration,
@@ -108,7 +99,7 @@ pub(crate) fn check_two_arm_robots(
 /// * `opposed`: the offsets rotated by +π/2 (robot 0) and −π/2 (robot 1) about z, the bases
 ///   turned the same, then shifted by `∓opposed_shift` along y;
 /// * `parallel`: the offsets shifted by `∓parallel_shift` along y.
-pub(crate) fn place_two_arm_robots(
+pub fn place_two_arm_robots(
     robots: &mut [RobotModel],
     configuration: EnvConfiguration,
     kind: ArenaKind,
@@ -144,7 +135,7 @@ pub(crate) fn place_two_arm_robots(
 
 /// One of a two-arm task's grippers: a robot's arm.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct ArmRef {
+pub struct ArmRef {
     /// The robot.
     pub robot: usize,
     /// The arm of the robot.
@@ -160,7 +151,7 @@ impl ArmRef {
 
 /// robosuite's "gripper 0" and "gripper 1" of a two-arm task: with one bimanual robot its
 /// right and its left arm, else the (first) arm of robot 0 and of robot 1.
-pub(crate) fn task_arms(robots: &[Robot]) -> [ArmRef; 2] {
+pub fn task_arms(robots: &[Robot]) -> [ArmRef; 2] {
     match robots {
         [one] => {
             let side = |s: &str| one.arms().iter().position(|a| a.side() == s).unwrap_or(0);

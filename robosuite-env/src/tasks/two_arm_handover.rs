@@ -3,17 +3,16 @@
 
 use super::common::{FreeBody, dist, is_grasped, scale_reward, sub};
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler, with_init_quat};
-use super::two_arm::{ArmRef, check_two_arm_robots, place_two_arm_robots, task_arms};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::two_arm::{ArmRef, task_arms};
+use super::{Bound, RewardConfig, RobotSetup, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
-use crate::config::EnvConfiguration;
 use crate::math::{quat2mat_f32, xyzw};
-use crate::models::arenas::{Arena, ArenaKind};
+use crate::models::arenas::Arena;
 use crate::models::objects::composite::GeneratedObject;
 use crate::models::objects::hammer::{Hammer, HammerFigures, HammerRanges};
-use crate::models::robots::{RobotInfo, RobotModel};
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::models::robots::RobotModel;
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, PlacedObject, Rotation, UniformRandomSampler, with_init_quat};
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, geom_id, reshape_body_from, site_id};
 use gym_core::{EnvRng, Error, Result};
@@ -102,39 +101,15 @@ impl TaskSpec for TwoArmHandoverSpec {
         "TwoArmHandover"
     }
 
-    fn num_robots(&self) -> usize {
-        2
+    fn robots(&self) -> RobotSetup {
+        RobotSetup::TwoArm {
+            opposed_shift: 0.25,
+            parallel_shift: 0.6,
+        }
     }
 
-    fn check_robots(
-        &self,
-        robots: &[RobotInfo],
-        configuration: EnvConfiguration,
-    ) -> Result<EnvConfiguration> {
-        check_two_arm_robots(self.name(), robots, configuration)
-    }
-
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let configuration = super::two_arm::default_configuration(robots);
-        self.build_configured(assets, robots, configuration)
-    }
-
-    fn build_configured(
-        &self,
-        assets: &Assets,
-        robots: &mut [RobotModel],
-        configuration: EnvConfiguration,
-    ) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         self.hammer.validate()?;
-        place_two_arm_robots(
-            robots,
-            configuration,
-            ArenaKind::Table {
-                length: self.table_full_size[0],
-            },
-            0.25,
-            0.6,
-        );
         let (true_size, offset) = self.table();
         let mut arena = Arena::table(
             assets,
@@ -184,7 +159,7 @@ impl TaskSpec for TwoArmHandoverSpec {
         )?;
         let donor = hammer.donor_model()?;
         let arms = task_arms(robots);
-        let mut task = TwoArmHandover {
+        let task = TwoArmHandover {
             spec: self.clone(),
             sampler: self
                 .placement_initializer
@@ -207,46 +182,33 @@ impl TaskSpec for TwoArmHandoverSpec {
             hammer,
             arms,
             eef_sites: arms.map(|a| robots[a.robot].arms()[a.arm].eef_site()),
-            observables: Vec::new(),
         };
-        task.observables = vec![
-            Observable::f64("hammer_pos", 3, "object", |t: &TwoArmHandover, sim, out| {
-                out.copy_from_slice(&t.body.pos(sim));
+        let observables = vec![
+            Observable::vec("hammer_pos", Modality::Object, |t: &TwoArmHandover, sim| {
+                t.body.pos(sim)
             }),
-            Observable::f64(
+            Observable::vec(
                 "hammer_quat",
-                4,
-                "object",
-                |t: &TwoArmHandover, sim, out| {
-                    out.copy_from_slice(&xyzw(t.body.quat(sim)));
-                },
+                Modality::Object,
+                |t: &TwoArmHandover, sim| xyzw(t.body.quat(sim)),
             ),
-            Observable::f64(
+            Observable::vec(
                 "handle_xpos",
-                3,
-                "object",
-                |t: &TwoArmHandover, sim, out| {
-                    out.copy_from_slice(&t.handle_pos(sim));
-                },
+                Modality::Object,
+                |t: &TwoArmHandover, sim| t.handle_pos(sim),
             ),
-            Observable::f64(
+            Observable::vec(
                 "gripper0_to_handle",
-                3,
-                "object",
-                |t: &TwoArmHandover, sim, out| {
-                    out.copy_from_slice(&t.gripper_to_handle(sim, 0));
-                },
+                Modality::Object,
+                |t: &TwoArmHandover, sim| t.gripper_to_handle(sim, 0),
             ),
-            Observable::f64(
+            Observable::vec(
                 "gripper1_to_handle",
-                3,
-                "object",
-                |t: &TwoArmHandover, sim, out| {
-                    out.copy_from_slice(&t.gripper_to_handle(sim, 1));
-                },
+                Modality::Object,
+                |t: &TwoArmHandover, sim| t.gripper_to_handle(sim, 1),
             ),
         ];
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -279,7 +241,6 @@ pub struct TwoArmHandover {
     donor_size: f64,
     arms: [ArmRef; 2],
     eef_sites: [usize; 2],
-    observables: Vec<Observable<TwoArmHandover>>,
 }
 
 /// `_get_task_info`: whether gripper 0 grasps any part, whether gripper 1 grasps the
@@ -340,11 +301,7 @@ impl TwoArmHandover {
     }
 }
 
-impl Task for TwoArmHandover {
-    fn name(&self) -> &str {
-        "TwoArmHandover"
-    }
-
+impl TaskLogic for TwoArmHandover {
     fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let figures = HammerFigures::draw(&self.spec.hammer, rng);
         self.reshape(sim, figures)
@@ -361,14 +318,6 @@ impl Task for TwoArmHandover {
         let quat = with_init_quat(quat, Hammer::init_quat(rng));
         self.body.set_pose(sim, pos, quat);
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

@@ -2,19 +2,18 @@
 //! (`environments/manipulation/two_arm_lift.py`).
 
 use super::common::{FreeBody, dist, geoms_of, is_grasped, scale_reward, sub};
-use super::lift::TABLE_OFFSET;
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, Rotation, UniformRandomSampler};
-use super::two_arm::{ArmRef, check_two_arm_robots, place_two_arm_robots, task_arms};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::table::TABLE_OFFSET;
+use super::two_arm::{ArmRef, task_arms};
+use super::{Bound, RewardConfig, RobotSetup, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
-use crate::config::EnvConfiguration;
 use crate::math::{quat2mat_f32, xyzw};
-use crate::models::arenas::{Arena, ArenaKind};
+use crate::models::arenas::Arena;
 use crate::models::objects::composite::GeneratedObject;
 use crate::models::objects::pot_with_handles::PotWithHandles;
-use crate::models::robots::{RobotInfo, RobotModel};
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::models::robots::RobotModel;
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, Rotation, UniformRandomSampler};
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, site_id};
 use gym_core::{EnvRng, Result};
@@ -58,38 +57,14 @@ impl TaskSpec for TwoArmLiftSpec {
         "TwoArmLift"
     }
 
-    fn num_robots(&self) -> usize {
-        2
+    fn robots(&self) -> RobotSetup {
+        RobotSetup::TwoArm {
+            opposed_shift: 0.0,
+            parallel_shift: 0.25,
+        }
     }
 
-    fn check_robots(
-        &self,
-        robots: &[RobotInfo],
-        configuration: EnvConfiguration,
-    ) -> Result<EnvConfiguration> {
-        check_two_arm_robots(self.name(), robots, configuration)
-    }
-
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let configuration = super::two_arm::default_configuration(robots);
-        self.build_configured(assets, robots, configuration)
-    }
-
-    fn build_configured(
-        &self,
-        assets: &Assets,
-        robots: &mut [RobotModel],
-        configuration: EnvConfiguration,
-    ) -> Result<TaskScene> {
-        place_two_arm_robots(
-            robots,
-            configuration,
-            ArenaKind::Table {
-                length: self.table_full_size[0],
-            },
-            0.0,
-            0.25,
-        );
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         let mut arena = Arena::table(
             assets,
             "arenas/table_arena.xml",
@@ -140,42 +115,35 @@ impl TaskSpec for TwoArmLiftSpec {
             table_top: site_id(model, "table_top")?,
             arms: task_arms(robots),
             eef_sites: [0; 2],
-            observables: Vec::new(),
         };
         for (site, arm) in task.eef_sites.iter_mut().zip(task.arms) {
             *site = robots[arm.robot].arms()[arm.arm].eef_site();
         }
-        task.observables = vec![
-            Observable::f64("pot_pos", 3, "object", |t: &TwoArmLift, sim, out| {
-                out.copy_from_slice(&t.pot.pos(sim));
+        let observables = vec![
+            Observable::vec("pot_pos", Modality::Object, |t: &TwoArmLift, sim| {
+                t.pot.pos(sim)
             }),
-            Observable::f64("pot_quat", 4, "object", |t: &TwoArmLift, sim, out| {
-                out.copy_from_slice(&xyzw(t.pot.quat(sim)));
+            Observable::vec("pot_quat", Modality::Object, |t: &TwoArmLift, sim| {
+                xyzw(t.pot.quat(sim))
             }),
-            Observable::f64("handle0_xpos", 3, "object", |t: &TwoArmLift, sim, out| {
-                out.copy_from_slice(&t.handle_pos(sim, 0));
+            Observable::vec("handle0_xpos", Modality::Object, |t: &TwoArmLift, sim| {
+                t.handle_pos(sim, 0)
             }),
-            Observable::f64("handle1_xpos", 3, "object", |t: &TwoArmLift, sim, out| {
-                out.copy_from_slice(&t.handle_pos(sim, 1));
+            Observable::vec("handle1_xpos", Modality::Object, |t: &TwoArmLift, sim| {
+                t.handle_pos(sim, 1)
             }),
-            Observable::f64(
+            Observable::vec(
                 "gripper0_to_handle0",
-                3,
-                "object",
-                |t: &TwoArmLift, sim, out| {
-                    out.copy_from_slice(&t.gripper_to_handle(sim, 0));
-                },
+                Modality::Object,
+                |t: &TwoArmLift, sim| t.gripper_to_handle(sim, 0),
             ),
-            Observable::f64(
+            Observable::vec(
                 "gripper1_to_handle1",
-                3,
-                "object",
-                |t: &TwoArmLift, sim, out| {
-                    out.copy_from_slice(&t.gripper_to_handle(sim, 1));
-                },
+                Modality::Object,
+                |t: &TwoArmLift, sim| t.gripper_to_handle(sim, 1),
             ),
         ];
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -194,7 +162,7 @@ impl TaskSpec for TwoArmLiftSpec {
 #[derive(Debug, Clone)]
 pub struct TwoArmLift {
     sampler: UniformRandomSampler,
-    extent: super::placement::PlacedObject,
+    extent: crate::placement::PlacedObject,
     pot: FreeBody,
     pot_top_offset: f64,
     handle_geoms: [GeomSet; 2],
@@ -203,7 +171,6 @@ pub struct TwoArmLift {
     table_top: usize,
     arms: [ArmRef; 2],
     eef_sites: [usize; 2],
-    observables: Vec<Observable<TwoArmLift>>,
 }
 
 impl TwoArmLift {
@@ -236,23 +203,11 @@ impl TwoArmLift {
     }
 }
 
-impl Task for TwoArmLift {
-    fn name(&self) -> &str {
-        "TwoArmLift"
-    }
-
+impl TaskLogic for TwoArmLift {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let (pos, quat) = self.sampler.sample(rng, &[self.extent], &[])?[0];
         self.pot.set_pose(sim, pos, quat);
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

@@ -3,17 +3,15 @@
 
 use super::common::{scale_reward, sub};
 use super::options::{self, TaskOptions};
-use super::two_arm::{check_two_arm_robots, place_two_arm_robots};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::{Bound, RewardConfig, RobotSetup, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
-use crate::config::EnvConfiguration;
 use crate::math::xyzw;
 use crate::mjcf::tree::{self, append, array_to_string, set_attr};
-use crate::models::arenas::{Arena, ArenaKind};
+use crate::models::arenas::Arena;
 use crate::models::objects::primitive::Primitive;
 use crate::models::objects::{CustomMaterial, Joints, ObjType, Shape, xml_object};
-use crate::models::robots::{GripperChoice, RobotInfo, RobotModel};
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::models::robots::{GripperChoice, RobotModel};
+use crate::observables::{Modality, Observable};
 use crate::robots::Robot;
 use crate::sim::{BoxGeomUpdate, Sim, body_id, resize_cylinder_body};
 use gym_core::{DType, EnvRng, Error, Result};
@@ -74,16 +72,11 @@ impl TaskSpec for TwoArmPegInHoleSpec {
         "TwoArmPegInHole"
     }
 
-    fn num_robots(&self) -> usize {
-        2
-    }
-
-    fn check_robots(
-        &self,
-        robots: &[RobotInfo],
-        configuration: EnvConfiguration,
-    ) -> Result<EnvConfiguration> {
-        check_two_arm_robots(self.name(), robots, configuration)
+    fn robots(&self) -> RobotSetup {
+        RobotSetup::TwoArm {
+            opposed_shift: 0.0,
+            parallel_shift: 0.25,
+        }
     }
 
     /// robosuite asserts `gripper_types is None`: the arms hold the peg and the plate.
@@ -105,18 +98,7 @@ impl TaskSpec for TwoArmPegInHoleSpec {
     }
 
     fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let configuration = super::two_arm::default_configuration(robots);
-        self.build_configured(assets, robots, configuration)
-    }
-
-    fn build_configured(
-        &self,
-        assets: &Assets,
-        robots: &mut [RobotModel],
-        configuration: EnvConfiguration,
-    ) -> Result<TaskScene> {
         self.validate()?;
-        place_two_arm_robots(robots, configuration, ArenaKind::Empty, 0.0, 0.25);
         let mut arena = Arena::empty(assets)?;
         arena.set_origin([0.0; 3])?;
         arena.set_camera(
@@ -200,38 +182,37 @@ impl TaskSpec for TwoArmPegInHoleSpec {
             .map(|g| crate::sim::geom_id(model, g))
             .collect::<Result<Vec<_>>>()?;
         let radius = model.geom_size()[peg_geoms[0]][0];
-        let mut task = TwoArmPegInHole {
+        let task = TwoArmPegInHole {
             spec: self.clone(),
             hole_body: body_id(model, &hole.root_body())?,
             peg_body: body_id(model, &peg.root_body())?,
             peg_geoms,
             radius,
-            observables: Vec::new(),
         };
-        task.observables = vec![
-            Observable::f64("hole_pos", 3, "object", |t: &TwoArmPegInHole, sim, out| {
-                out.copy_from_slice(&sim.data().xpos()[t.hole_body]);
+        let observables = vec![
+            Observable::vec("hole_pos", Modality::Object, |t: &TwoArmPegInHole, sim| {
+                sim.data().xpos()[t.hole_body]
             }),
-            Observable::f64("hole_quat", 4, "object", |t: &TwoArmPegInHole, sim, out| {
-                out.copy_from_slice(&xyzw(sim.data().xquat()[t.hole_body]));
+            Observable::vec("hole_quat", Modality::Object, |t: &TwoArmPegInHole, sim| {
+                xyzw(sim.data().xquat()[t.hole_body])
             }),
             Observable::f64(
                 "peg_to_hole",
                 3,
-                "object",
+                Modality::Object,
                 |t: &TwoArmPegInHole, sim, out| {
                     let d = sim.data();
                     out.copy_from_slice(&sub(d.xpos()[t.hole_body], d.xpos()[t.peg_body]));
                 },
             ),
-            Observable::f64("peg_quat", 4, "object", |t: &TwoArmPegInHole, sim, out| {
-                out.copy_from_slice(&xyzw(sim.data().xquat()[t.peg_body]));
+            Observable::vec("peg_quat", Modality::Object, |t: &TwoArmPegInHole, sim| {
+                xyzw(sim.data().xquat()[t.peg_body])
             }),
             Observable::new(
                 "angle",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &TwoArmPegInHole, sim, out| {
                     out[0] = t.orientation(sim).2;
                 },
@@ -240,7 +221,7 @@ impl TaskSpec for TwoArmPegInHoleSpec {
                 "t",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &TwoArmPegInHole, sim, out| {
                     out[0] = t.orientation(sim).0;
                 },
@@ -249,13 +230,13 @@ impl TaskSpec for TwoArmPegInHoleSpec {
                 "d",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &TwoArmPegInHole, sim, out| {
                     out[0] = t.orientation(sim).1;
                 },
             ),
         ];
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -278,7 +259,6 @@ pub struct TwoArmPegInHole {
     peg_body: usize,
     peg_geoms: Vec<usize>,
     radius: f64,
-    observables: Vec<Observable<TwoArmPegInHole>>,
 }
 
 fn column(m: &[f64; 9], j: usize) -> [f64; 3] {
@@ -340,11 +320,7 @@ impl TwoArmPegInHole {
     }
 }
 
-impl Task for TwoArmPegInHole {
-    fn name(&self) -> &str {
-        "TwoArmPegInHole"
-    }
-
+impl TaskLogic for TwoArmPegInHole {
     fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let [lo, hi] = self.spec.peg_radius;
         let radius = lo + (hi - lo) * rng.random::<f64>();
@@ -353,14 +329,6 @@ impl Task for TwoArmPegInHole {
 
     fn place_objects(&mut self, _sim: &mut Sim, _rng: &mut EnvRng) -> Result<()> {
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

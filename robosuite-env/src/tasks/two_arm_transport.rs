@@ -4,19 +4,18 @@
 
 use super::common::{FreeBody, PoseRef, scale_reward, sub};
 use super::options::{self, TaskOptions};
-use super::placement::{Axis, Rotation, UniformRandomSampler, with_init_quat};
-use super::two_arm::{check_two_arm_robots, place_two_arm_robots, task_arms};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::two_arm::task_arms;
+use super::{Bound, RewardConfig, RobotSetup, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
-use crate::config::EnvConfiguration;
-use crate::models::arenas::{Arena, ArenaKind};
+use crate::models::arenas::Arena;
 use crate::models::objects::bin::{bin, lid};
 use crate::models::objects::composite::GeneratedObject;
 use crate::models::objects::hammer::{Hammer, HammerFigures, HammerRanges};
 use crate::models::objects::primitive::Primitive;
 use crate::models::objects::{CustomMaterial, ObjectModel, Shape};
-use crate::models::robots::{RobotInfo, RobotModel};
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::models::robots::RobotModel;
+use crate::observables::{Modality, Observable};
+use crate::placement::{Axis, Rotation, UniformRandomSampler, with_init_quat};
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, any_contact_between, geom_id, reshape_body_from};
 use gym_core::{DType, EnvRng, Error, Result};
@@ -93,37 +92,15 @@ impl TaskSpec for TwoArmTransportSpec {
         "TwoArmTransport"
     }
 
-    fn num_robots(&self) -> usize {
-        2
+    fn robots(&self) -> RobotSetup {
+        RobotSetup::TwoArm {
+            opposed_shift: 0.25,
+            parallel_shift: 0.6,
+        }
     }
 
-    fn check_robots(
-        &self,
-        robots: &[RobotInfo],
-        configuration: EnvConfiguration,
-    ) -> Result<EnvConfiguration> {
-        check_two_arm_robots(self.name(), robots, configuration)
-    }
-
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
-        let configuration = super::two_arm::default_configuration(robots);
-        self.build_configured(assets, robots, configuration)
-    }
-
-    fn build_configured(
-        &self,
-        assets: &Assets,
-        robots: &mut [RobotModel],
-        configuration: EnvConfiguration,
-    ) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         let table = self.table_full_size();
-        place_two_arm_robots(
-            robots,
-            configuration,
-            ArenaKind::Table { length: table[0] },
-            0.25,
-            0.6,
-        );
         let mut arena =
             Arena::multi_table(assets, &self.table_offsets(), table, self.table_friction)?;
         arena.set_origin([0.0; 3])?;
@@ -242,7 +219,7 @@ impl TaskSpec for TwoArmTransportSpec {
             (TRASH_BIN_I, sampler(table[0] * 0.25, 1, 0.0, 0.0, Axis::Z)),
         ];
         let arms = task_arms(robots);
-        let mut task = TwoArmTransport {
+        let task = TwoArmTransport {
             samplers,
             extents: o.iter().map(ObjectModel::placement).collect(),
             payload_geoms: bodies[PAYLOAD_I].geoms.clone(),
@@ -257,7 +234,6 @@ impl TaskSpec for TwoArmTransportSpec {
             donor_size,
             eef_sites: arms.map(|a| robots[a.robot].arms()[a.arm].eef_site()),
             shaping_off: Cell::new(false),
-            observables: Vec::new(),
         };
         let pos = |f: fn(&TwoArmTransport, &Sim) -> [f64; 3]| {
             move |t: &TwoArmTransport, sim: &Sim, out: &mut [f64]| {
@@ -269,7 +245,7 @@ impl TaskSpec for TwoArmTransportSpec {
                 name,
                 &[4],
                 DType::F32,
-                "object",
+                Modality::Object,
                 move |t: &TwoArmTransport, sim: &Sim, out: &mut [f64]| {
                     out.copy_from_slice(&f(t).pose(sim).1);
                 },
@@ -280,7 +256,7 @@ impl TaskSpec for TwoArmTransportSpec {
                 name,
                 &[],
                 DType::Bool,
-                "object",
+                Modality::Object,
                 move |t: &TwoArmTransport, sim: &Sim, out: &mut [f64]| {
                     out[0] = f64::from(u8::from(f(t, sim)));
                 },
@@ -290,18 +266,18 @@ impl TaskSpec for TwoArmTransportSpec {
             Observable::f64(
                 name,
                 3,
-                "object",
+                Modality::Object,
                 move |t: &TwoArmTransport, sim: &Sim, out: &mut [f64]| {
                     let e = sim.data().site_xpos()[t.eef_sites[arm]];
                     out.copy_from_slice(&sub(f(t, sim), e));
                 },
             )
         };
-        task.observables = vec![
+        let observables = vec![
             Observable::f64(
                 "payload_pos",
                 3,
-                "object",
+                Modality::Object,
                 pos(|t, s| t.bodies[PAYLOAD_I].pos(s)),
             ),
             quat("payload_quat", |t| {
@@ -310,27 +286,27 @@ impl TaskSpec for TwoArmTransportSpec {
             Observable::f64(
                 "trash_pos",
                 3,
-                "object",
+                Modality::Object,
                 pos(|t, s| t.bodies[TRASH_I].pos(s)),
             ),
             quat("trash_quat", |t| PoseRef::BodyFrame(t.bodies[TRASH_I].body)),
             Observable::f64(
                 "lid_handle_pos",
                 3,
-                "object",
+                Modality::Object,
                 pos(TwoArmTransport::lid_handle_pos),
             ),
             quat("lid_handle_quat", |t| PoseRef::Geom(t.lid_handle)),
             Observable::f64(
                 "target_bin_pos",
                 3,
-                "object",
+                Modality::Object,
                 pos(|t, s| s.data().geom_xpos()[t.target_base_id]),
             ),
             Observable::f64(
                 "trash_bin_pos",
                 3,
-                "object",
+                Modality::Object,
                 pos(|t, s| s.data().geom_xpos()[t.trash_base_id]),
             ),
             flag(
@@ -343,7 +319,7 @@ impl TaskSpec for TwoArmTransportSpec {
             to("gripper1_to_payload", 1, |t, s| t.bodies[PAYLOAD_I].pos(s)),
             to("gripper1_to_trash", 1, |t, s| t.bodies[TRASH_I].pos(s)),
         ];
-        Ok(Box::new(task))
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -363,7 +339,7 @@ impl TaskSpec for TwoArmTransportSpec {
 #[derive(Debug)]
 pub struct TwoArmTransport {
     samplers: Vec<(usize, UniformRandomSampler)>,
-    extents: Vec<super::placement::PlacedObject>,
+    extents: Vec<crate::placement::PlacedObject>,
     bodies: Vec<FreeBody>,
     payload_geoms: GeomSet,
     trash_geoms: GeomSet,
@@ -376,7 +352,6 @@ pub struct TwoArmTransport {
     donor_size: f64,
     eef_sites: [usize; 2],
     shaping_off: Cell<bool>,
-    observables: Vec<Observable<TwoArmTransport>>,
 }
 
 impl TwoArmTransport {
@@ -406,11 +381,7 @@ impl TwoArmTransport {
     }
 }
 
-impl Task for TwoArmTransport {
-    fn name(&self) -> &str {
-        "TwoArmTransport"
-    }
-
+impl TaskLogic for TwoArmTransport {
     fn randomize_model(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         let figures = HammerFigures::draw(&PAYLOAD, rng);
         self.reshape(sim, figures)
@@ -435,14 +406,6 @@ impl Task for TwoArmTransport {
             self.bodies[*i].set_pose(sim, pos, quat);
         }
         Ok(())
-    }
-
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {

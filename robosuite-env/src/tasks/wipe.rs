@@ -2,13 +2,12 @@
 //! (`environments/manipulation/wipe.py`).
 
 use super::common::{eef_pos, sub};
-use super::lift::place_single_robot;
 use super::options::{self, TaskOptions};
-use super::{RewardConfig, Task, TaskScene, TaskSpec};
+use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
 use crate::models::robots::{GripperChoice, RobotModel};
 use crate::models::wipe_arena::{MarkerWalk, WipeArenaConfig, marker_name, wipe_arena};
-use crate::observables::{ObsSpec, Observable, observe_all, specs};
+use crate::observables::{Modality, Observable};
 use crate::robots::Robot;
 use crate::sim::{GeomSet, Sim, any_contact_with, body_id, geom_id, sensor_adr, site_id};
 use gym_core::{DType, EnvRng, Error, Result};
@@ -297,10 +296,9 @@ impl TaskSpec for WipeSpec {
         true
     }
 
-    fn build(&self, assets: &Assets, robots: &mut [RobotModel]) -> Result<TaskScene> {
+    fn build(&self, assets: &Assets, _robots: &mut [RobotModel]) -> Result<TaskScene> {
         self.task_config.validate()?;
         let mut arena = wipe_arena(assets, &self.task_config.arena())?;
-        place_single_robot(robots, &arena);
         arena.set_origin([0.0; 3])?;
         Ok(TaskScene {
             arena,
@@ -343,7 +341,7 @@ impl TaskSpec for WipeSpec {
             })
             .collect::<Result<Vec<_>>>()?;
         let pf = format!("robot{}_", robot.index());
-        let mut task = Wipe {
+        let task = Wipe {
             walk: MarkerWalk {
                 table_half: [
                     config.table_full_size[0] / 2.0,
@@ -373,11 +371,10 @@ impl TaskSpec for WipeSpec {
             step_force: [0.0; 3],
             force_bias: [0.0; 3],
             observed: WipeInfo::default(),
-            observables: Vec::new(),
             config,
         };
-        task.observables = task.make_observables(&pf);
-        Ok(Box::new(task))
+        let observables = task.make_observables(&pf, robot.index());
+        Ok(Bound::boxed(task, observables))
     }
 }
 
@@ -449,7 +446,6 @@ pub struct Wipe {
     force_bias: [f64; 3],
     /// The wipe information of the last observation pass.
     observed: WipeInfo,
-    observables: Vec<Observable<Wipe>>,
 }
 
 impl Wipe {
@@ -458,7 +454,7 @@ impl Wipe {
     /// `gripper_to_wipe_centroid` (with `use_robot_obs`) — or, without
     /// `use_condensed_obj_obs`, per marker `marker{i}_pos`, `marker{i}_wiped` (int64) and
     /// `gripper_to_marker{i}`. All exist only with `use_object_obs`, as in robosuite.
-    fn make_observables(&self, pf: &str) -> Vec<Observable<Wipe>> {
+    fn make_observables(&self, pf: &str, robot: usize) -> Vec<Observable<Wipe>> {
         let mut obs = Vec::new();
         if self.config.use_contact_obs {
             obs.push(
@@ -466,7 +462,7 @@ impl Wipe {
                     format!("{pf}contact"),
                     &[],
                     DType::Bool,
-                    &format!("{pf}proprio"),
+                    Modality::Proprio(robot),
                     |t: &Wipe, sim, out| out[0] = f64::from(u8::from(t.has_gripper_contact(sim))),
                 )
                 .only_with_object_obs(),
@@ -477,7 +473,7 @@ impl Wipe {
                 "proportion_wiped",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &Wipe, _, out| {
                     out[0] = t.wiped_count as f64 / t.config.num_markers as f64;
                 },
@@ -486,24 +482,21 @@ impl Wipe {
                 "wipe_radius",
                 &[],
                 DType::F64,
-                "object",
+                Modality::Object,
                 |t: &Wipe, _, out| {
                     out[0] = t.observed.radius;
                 },
             ));
-            obs.push(Observable::f64(
+            obs.push(Observable::vec(
                 "wipe_centroid",
-                3,
-                "object",
-                |t: &Wipe, _, out| {
-                    out.copy_from_slice(&t.observed.centroid);
-                },
+                Modality::Object,
+                |t: &Wipe, _| t.observed.centroid,
             ));
             if self.config.use_robot_obs {
                 obs.push(Observable::f64(
                     "gripper_to_wipe_centroid",
                     3,
-                    "object",
+                    Modality::Object,
                     |t: &Wipe, sim, out| {
                         let eef = sim.data().site_xpos()[t.eef_site];
                         for k in 0..3 {
@@ -514,19 +507,16 @@ impl Wipe {
             }
         } else {
             for i in 0..self.markers.len() {
-                obs.push(Observable::f64(
+                obs.push(Observable::vec(
                     format!("marker{i}_pos"),
-                    3,
-                    "object",
-                    move |t: &Wipe, sim, out| {
-                        out.copy_from_slice(&sim.data().xpos()[t.markers[i].body]);
-                    },
+                    Modality::Object,
+                    move |t: &Wipe, sim| sim.data().xpos()[t.markers[i].body],
                 ));
                 obs.push(Observable::new(
                     format!("marker{i}_wiped"),
                     &[],
                     DType::I64,
-                    "object",
+                    Modality::Object,
                     move |t: &Wipe, _, out| {
                         out[0] = f64::from(u8::from(t.wiped[i]));
                     },
@@ -535,7 +525,7 @@ impl Wipe {
                     obs.push(Observable::f64(
                         format!("gripper_to_marker{i}"),
                         3,
-                        "object",
+                        Modality::Object,
                         move |t: &Wipe, sim, out| {
                             let d = sim.data();
                             let (m, eef) = (d.xpos()[t.markers[i].body], d.site_xpos()[t.eef_site]);
@@ -693,11 +683,7 @@ impl Wipe {
     }
 }
 
-impl Task for Wipe {
-    fn name(&self) -> &str {
-        "Wipe"
-    }
-
+impl TaskLogic for Wipe {
     fn place_objects(&mut self, sim: &mut Sim, rng: &mut EnvRng) -> Result<()> {
         self.walk.lay(rng, &mut self.path)?;
         self.wiped.fill(false);
@@ -712,15 +698,10 @@ impl Task for Wipe {
         Ok(())
     }
 
-    fn observation_specs(&self) -> Vec<ObsSpec> {
-        specs(&self.observables)
-    }
-
-    fn observe(&mut self, sim: &Sim, out: &mut [f64]) {
+    fn before_observe(&mut self, sim: &Sim) {
         self.latest_force = self.force_now(sim);
         let eef = sim.data().site_xpos()[self.eef_site];
         self.observed = self.wipe_information(sim, eef, |i| self.wiped[i]);
-        observe_all(&self.observables, self, sim, out);
     }
 
     fn on_policy_step(&mut self, _sim: &Sim, _robots: &[Robot]) {

@@ -264,3 +264,46 @@ pub fn replay(env: &mut RobosuiteEnv, rollout: &Rollout) -> ReplayErrors {
     }
     e
 }
+
+/// One observation key of robosuite: its name, shape and dtype.
+pub type ObsEntry = (String, Vec<usize>, gym_core::DType);
+
+/// One task's entry of `observations.json`.
+#[derive(Debug, Deserialize)]
+struct RecordedObservations {
+    action_dim: usize,
+    obs: Vec<(String, Vec<usize>, String)>,
+}
+
+fn recorded_observations(task: &str) -> RecordedObservations {
+    let path = fixture_dir().join("observations.json");
+    let text = std::fs::read_to_string(&path).expect("observations.json is readable");
+    let mut all: IndexMap<String, RecordedObservations> =
+        serde_json::from_str(&text).expect("observations.json parses");
+    all.remove(task)
+        .unwrap_or_else(|| panic!("observations.json has no entry {task}"))
+}
+
+/// robosuite 1.5.2's observation keys of `task` made with its defaults, in order, with
+/// their shapes and dtypes (`observations.json`).
+pub fn robosuite_observations(task: &str) -> Vec<ObsEntry> {
+    recorded_observations(task)
+        .obs
+        .into_iter()
+        .map(|(key, shape, dtype)| {
+            let dtype = match dtype.as_str() {
+                "float64" => gym_core::DType::F64,
+                "float32" => gym_core::DType::F32,
+                "int64" => gym_core::DType::I64,
+                "bool" => gym_core::DType::Bool,
+                other => panic!("{task} {key}: unexpected dtype {other}"),
+            };
+            (key, shape, dtype)
+        })
+        .collect()
+}
+
+/// robosuite 1.5.2's action dimension of `task` made with its defaults.
+pub fn robosuite_action_dim(task: &str) -> usize {
+    recorded_observations(task).action_dim
+}

@@ -159,18 +159,18 @@ pub struct Waypoint {
 pub fn assert_observation_layout(
     env: &RobosuiteEnv,
     obs: &DictValue,
-    expected: &[(&str, &[usize], gym_core::DType)],
+    expected: &[fixtures::ObsEntry],
 ) {
     use gym_core::Space;
     let keys: Vec<&str> = obs.keys().map(String::as_str).collect();
-    let want: Vec<&str> = expected.iter().map(|(k, _, _)| *k).collect();
+    let want: Vec<&str> = expected.iter().map(|(k, _, _)| k.as_str()).collect();
     assert_eq!(keys, want);
     assert_eq!(env.observation_keys(), want);
     for (key, shape, dtype) in expected {
-        let a = obs[*key]
+        let a = obs[key.as_str()]
             .as_array()
             .unwrap_or_else(|| panic!("{key} is not an array"));
-        assert_eq!(a.shape(), *shape, "{key}");
+        assert_eq!(a.shape(), shape.as_slice(), "{key}");
         assert_eq!(a.dtype(), *dtype, "{key}");
     }
     assert!(env.observation_space().contains(obs));

@@ -54,11 +54,7 @@ pub fn expected_obs(objects: &[&str], id_key: Option<&str>) -> Vec<(String, Vec<
 pub fn assert_obs_layout(env: &mut RobosuiteEnv, objects: &[&str], id_key: Option<&str>) {
     let expected = expected_obs(objects, id_key);
     let (obs, _) = env.reset(Some(0), None).unwrap();
-    let layout: Vec<(&str, &[usize], DType)> = expected
-        .iter()
-        .map(|(k, shape, dtype)| (k.as_str(), shape.as_slice(), *dtype))
-        .collect();
-    assert_observation_layout(env, &obs, &layout);
+    assert_observation_layout(env, &obs, &expected);
     let concat = |range: std::ops::Range<usize>| -> Vec<f64> {
         expected[range]
             .iter()

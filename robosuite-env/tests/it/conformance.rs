@@ -117,7 +117,10 @@ fn every_task_reports_success_in_info() {
 /// two-arm tasks with two of it, `opposed`).
 fn every_task_on(robot: &str) {
     for name in ENV_NAMES {
-        let count = robosuite_env::make_task(name).unwrap().num_robots();
+        let count = robosuite_env::make_task(name)
+            .unwrap()
+            .robots()
+            .num_robots();
         let mut env = make_with(
             name,
             EnvConfig::default()

@@ -1,37 +1,15 @@
 //! Door: observation layout, the door placed through the model, reward and success on
 //! hand-set states, the latch, a scripted policy that opens the door, state round trips.
 
+use crate::common::fixtures::robosuite_observations;
 use crate::common::{
     action, assert_observation_layout, assert_snapshot_replays, finger_yaw, get, wrap_half,
 };
-use gym_core::{DType, Env, Error, Space, rng_from_seed};
+use gym_core::{Env, Error, Space, rng_from_seed};
 use robosuite_env::sim::{body_id, joint_id};
 use robosuite_env::tasks::DoorSpec;
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
 use std::f64::consts::FRAC_PI_2;
-
-/// robosuite 1.5.2's Door observation keys, shapes and dtypes, in order
-/// (`robosuite-1.5.2-observations.json`, entry "Door").
-const DOOR_OBS: &[(&str, &[usize], DType)] = &[
-    ("robot0_joint_pos", &[7], DType::F64),
-    ("robot0_joint_pos_cos", &[7], DType::F64),
-    ("robot0_joint_pos_sin", &[7], DType::F64),
-    ("robot0_joint_vel", &[7], DType::F64),
-    ("robot0_joint_acc", &[7], DType::F64),
-    ("robot0_eef_pos", &[3], DType::F64),
-    ("robot0_eef_quat", &[4], DType::F64),
-    ("robot0_eef_quat_site", &[4], DType::F32),
-    ("robot0_gripper_qpos", &[2], DType::F64),
-    ("robot0_gripper_qvel", &[2], DType::F64),
-    ("door_pos", &[3], DType::F64),
-    ("handle_pos", &[3], DType::F64),
-    ("hinge_qpos", &[], DType::F64),
-    ("door_to_eef_pos", &[3], DType::F64),
-    ("handle_to_eef_pos", &[3], DType::F64),
-    ("handle_qpos", &[], DType::F64),
-    ("robot0_proprio-state", &[50], DType::F64),
-    ("object-state", &[14], DType::F64),
-];
 
 /// `[time, qpos, qvel]` indices: arm 7, fingers 2, hinge, latch.
 const HINGE: usize = 1 + 9;
@@ -64,7 +42,7 @@ fn sizes_and_observations_match_robosuite() {
     );
     assert_eq!(m.jnt_range()[hinge], [0.0, 0.4]);
     let (obs, _) = env.reset(Some(0), None).unwrap();
-    assert_observation_layout(&env, &obs, DOOR_OBS);
+    assert_observation_layout(&env, &obs, &robosuite_observations("Door"));
     let (door_pos, handle, eef) = (
         get(&obs, "door_pos"),
         get(&obs, "handle_pos"),

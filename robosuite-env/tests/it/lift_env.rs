@@ -1,32 +1,13 @@
 //! Lift: observation layout, seeding, episode mechanics, reward / success, state, errors.
 
+use crate::common::fixtures::robosuite_observations;
 use crate::common::{action, get, zero};
-use gym_core::{DType, Env, Error, Info, Space, Value};
+use gym_core::{Env, Error, Info, Space, Value};
 use robosuite_env::sim::{Sim, check_mujoco_version};
 use robosuite_env::{
     EnvConfig, InitNoise, RobosuiteEnv, make, make_from_scene_xml, make_with, scene_xml,
 };
 use serde_json::json;
-
-/// robosuite 1.5.2's Lift observation keys, shapes and dtypes, in order (transcribed from
-/// `robosuite-1.5.2-observations.json`, entry "Lift").
-const LIFT_OBS: &[(&str, usize, DType)] = &[
-    ("robot0_joint_pos", 7, DType::F64),
-    ("robot0_joint_pos_cos", 7, DType::F64),
-    ("robot0_joint_pos_sin", 7, DType::F64),
-    ("robot0_joint_vel", 7, DType::F64),
-    ("robot0_joint_acc", 7, DType::F64),
-    ("robot0_eef_pos", 3, DType::F64),
-    ("robot0_eef_quat", 4, DType::F64),
-    ("robot0_eef_quat_site", 4, DType::F32),
-    ("robot0_gripper_qpos", 2, DType::F64),
-    ("robot0_gripper_qvel", 2, DType::F64),
-    ("cube_pos", 3, DType::F64),
-    ("cube_quat", 4, DType::F64),
-    ("gripper_to_cube_pos", 3, DType::F64),
-    ("robot0_proprio-state", 50, DType::F64),
-    ("object-state", 10, DType::F64),
-];
 
 fn lift(config: EnvConfig) -> RobosuiteEnv {
     make_with("Lift", config).expect("Lift builds")
@@ -87,28 +68,29 @@ fn observation_keys_shapes_and_dtypes_match_robosuite() {
     let mut env = lift(EnvConfig::default());
     let space = env.observation_space().clone();
     let keys: Vec<&str> = space.keys().collect();
-    let expected: Vec<&str> = LIFT_OBS.iter().map(|(k, _, _)| *k).collect();
+    let lift_obs = robosuite_observations("Lift");
+    let expected: Vec<&str> = lift_obs.iter().map(|(k, _, _)| k.as_str()).collect();
     assert_eq!(keys, expected);
     let (obs, info) = env.reset(Some(0), None).unwrap();
     assert_eq!(info.get_bool("success"), Some(false));
     assert_eq!(obs.keys().map(String::as_str).collect::<Vec<_>>(), expected);
-    for (key, len, dtype) in LIFT_OBS {
-        let Value::Array(a) = &obs[*key] else {
+    for (key, shape, dtype) in &lift_obs {
+        let Value::Array(a) = &obs[key.as_str()] else {
             panic!("{key} is not an array")
         };
-        assert_eq!(a.shape(), [*len], "{key}");
+        assert_eq!(a.shape(), shape.as_slice(), "{key}");
         assert_eq!(a.dtype(), *dtype, "{key}");
     }
     assert!(space.contains(&obs));
     // The concatenations hold the sensor values in order.
     let proprio = get(&obs, "robot0_proprio-state");
-    let parts: Vec<f64> = LIFT_OBS[..10]
+    let parts: Vec<f64> = lift_obs[..10]
         .iter()
         .flat_map(|(k, _, _)| get(&obs, k))
         .collect();
     assert_eq!(proprio, parts);
     let object = get(&obs, "object-state");
-    let parts: Vec<f64> = LIFT_OBS[10..13]
+    let parts: Vec<f64> = lift_obs[10..13]
         .iter()
         .flat_map(|(k, _, _)| get(&obs, k))
         .collect();
@@ -138,9 +120,10 @@ fn object_observations_can_be_turned_off() {
     let mut env = lift(EnvConfig::default().with_object_obs(false));
     let (obs, _) = env.reset(Some(0), None).unwrap();
     let keys: Vec<&str> = obs.keys().map(String::as_str).collect();
-    let expected: Vec<&str> = LIFT_OBS
+    let lift_obs = robosuite_observations("Lift");
+    let expected: Vec<&str> = lift_obs
         .iter()
-        .map(|(k, _, _)| *k)
+        .map(|(k, _, _)| k.as_str())
         .filter(|k| !k.starts_with("cube") && !k.starts_with("gripper_to") && *k != "object-state")
         .collect();
     assert_eq!(keys, expected);

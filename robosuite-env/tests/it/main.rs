@@ -15,6 +15,7 @@ mod controller_replay;
 mod door_env;
 mod lift_env;
 mod nut_assembly_env;
+mod observation_layouts;
 mod pick_place_env;
 mod reliability;
 mod render;

@@ -290,8 +290,8 @@ fn world_pose_in_gripper_is_enabled_inactive_and_the_inverse_gripper_pose() {
         let o = &infos[first_task];
         assert_eq!(o.spec.key, "world_pose_in_gripper", "{task}");
         assert_eq!(
-            (o.spec.shape.as_slice(), o.spec.modality.as_str()),
-            (&[4, 4][..], "object")
+            (o.spec.shape.as_slice(), o.spec.modality.name()),
+            (&[4, 4][..], "object".to_owned())
         );
         assert!(o.enabled && !o.active, "{task}");
         let (obs, _) = e.reset(Some(1), None).unwrap();

@@ -1,36 +1,13 @@
 //! Stack: observation layout, placement, reward and success on hand-set states, a scripted
 //! policy, state round trips.
 
+use crate::common::fixtures::robosuite_observations;
 use crate::common::{
     action, assert_observation_layout, assert_snapshot_replays, dist3, finger_yaw, get, move_to,
     wrap_to_quarter, yaw_of,
 };
-use gym_core::{DType, Env, Error, Space, rng_from_seed};
+use gym_core::{Env, Error, Space, rng_from_seed};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
-
-/// robosuite 1.5.2's Stack observation keys, shapes and dtypes, in order
-/// (`robosuite-1.5.2-observations.json`, entry "Stack").
-const STACK_OBS: &[(&str, &[usize], DType)] = &[
-    ("robot0_joint_pos", &[7], DType::F64),
-    ("robot0_joint_pos_cos", &[7], DType::F64),
-    ("robot0_joint_pos_sin", &[7], DType::F64),
-    ("robot0_joint_vel", &[7], DType::F64),
-    ("robot0_joint_acc", &[7], DType::F64),
-    ("robot0_eef_pos", &[3], DType::F64),
-    ("robot0_eef_quat", &[4], DType::F64),
-    ("robot0_eef_quat_site", &[4], DType::F32),
-    ("robot0_gripper_qpos", &[2], DType::F64),
-    ("robot0_gripper_qvel", &[2], DType::F64),
-    ("cubeA_pos", &[3], DType::F64),
-    ("cubeA_quat", &[4], DType::F64),
-    ("cubeB_pos", &[3], DType::F64),
-    ("cubeB_quat", &[4], DType::F64),
-    ("cubeA_to_cubeB", &[3], DType::F64),
-    ("gripper_to_cubeA", &[3], DType::F64),
-    ("gripper_to_cubeB", &[3], DType::F64),
-    ("robot0_proprio-state", &[50], DType::F64),
-    ("object-state", &[23], DType::F64),
-];
 
 fn stack(config: EnvConfig) -> RobosuiteEnv {
     make_with("Stack", config).expect("Stack builds")
@@ -44,8 +21,9 @@ fn sizes_and_observations_match_robosuite() {
     assert_eq!(env.action_dim(), 7);
     let (obs, info) = env.reset(Some(0), None).unwrap();
     assert_eq!(info.get_bool("success"), Some(false));
-    assert_observation_layout(&env, &obs, STACK_OBS);
-    let object: Vec<f64> = STACK_OBS[10..17]
+    let stack_obs = robosuite_observations("Stack");
+    assert_observation_layout(&env, &obs, &stack_obs);
+    let object: Vec<f64> = stack_obs[10..17]
         .iter()
         .flat_map(|(k, _, _)| get(&obs, k))
         .collect();
@@ -64,9 +42,9 @@ fn sizes_and_observations_match_robosuite() {
     let mut bare = stack(EnvConfig::default().with_object_obs(false));
     let (obs, _) = bare.reset(Some(0), None).unwrap();
     let keys: Vec<&str> = obs.keys().map(String::as_str).collect();
-    let robot: Vec<&str> = STACK_OBS[..10]
+    let robot: Vec<&str> = stack_obs[..10]
         .iter()
-        .map(|(k, _, _)| *k)
+        .map(|(k, _, _)| k.as_str())
         .chain(["robot0_proprio-state"])
         .collect();
     assert_eq!(keys, robot);

@@ -1,42 +1,12 @@
 //! ToolHang: observation layout, placement, the frame and tool checks on hand-set states,
 //! reward, task state, a scripted grasp of the tool, and scenes supplied as XML.
 
+use crate::common::fixtures::robosuite_observations;
 use crate::common::{action, get, wrap_half, zero};
-use gym_core::{DType, Env, Error, Space, Value};
+use gym_core::{Env, Error, Space, Value};
 use robosuite_env::sim::{body_id, geom_id, site_id};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_from_scene_xml, make_with, scene_xml};
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
-
-/// robosuite 1.5.2's ToolHang observation keys, shapes and dtypes, in order (transcribed from
-/// `robosuite-1.5.2-observations.json`, entry "ToolHang").
-const TOOL_HANG_OBS: &[(&str, &[usize], DType)] = &[
-    ("robot0_joint_pos", &[7], DType::F64),
-    ("robot0_joint_pos_cos", &[7], DType::F64),
-    ("robot0_joint_pos_sin", &[7], DType::F64),
-    ("robot0_joint_vel", &[7], DType::F64),
-    ("robot0_joint_acc", &[7], DType::F64),
-    ("robot0_eef_pos", &[3], DType::F64),
-    ("robot0_eef_quat", &[4], DType::F64),
-    ("robot0_eef_quat_site", &[4], DType::F32),
-    ("robot0_gripper_qpos", &[2], DType::F64),
-    ("robot0_gripper_qvel", &[2], DType::F64),
-    ("base_to_robot0_eef_pos", &[3], DType::F64),
-    ("base_to_robot0_eef_quat", &[4], DType::F64),
-    ("base_pos", &[3], DType::F64),
-    ("base_quat", &[4], DType::F32),
-    ("frame_to_robot0_eef_pos", &[3], DType::F64),
-    ("frame_to_robot0_eef_quat", &[4], DType::F64),
-    ("frame_pos", &[3], DType::F64),
-    ("frame_quat", &[4], DType::F32),
-    ("tool_to_robot0_eef_pos", &[3], DType::F64),
-    ("tool_to_robot0_eef_quat", &[4], DType::F64),
-    ("tool_pos", &[3], DType::F64),
-    ("tool_quat", &[4], DType::F32),
-    ("frame_is_assembled", &[], DType::F64),
-    ("tool_on_frame", &[], DType::F64),
-    ("robot0_proprio-state", &[50], DType::F64),
-    ("object-state", &[44], DType::F64),
-];
 
 /// Offsets into `[time, qpos, qvel]` of the objects' free joints (after 7 arm and 2 finger
 /// joints).
@@ -91,19 +61,20 @@ fn model_matches_robosuite() {
 #[test]
 fn observation_keys_shapes_and_dtypes_match_robosuite() {
     let mut env = tool_hang(EnvConfig::default());
-    let expected: Vec<&str> = TOOL_HANG_OBS.iter().map(|(k, _, _)| *k).collect();
+    let tool_hang_obs = robosuite_observations("ToolHang");
+    let expected: Vec<&str> = tool_hang_obs.iter().map(|(k, _, _)| k.as_str()).collect();
     assert_eq!(env.observation_space().keys().collect::<Vec<_>>(), expected);
     let (obs, _) = env.reset(Some(0), None).unwrap();
     assert_eq!(obs.keys().map(String::as_str).collect::<Vec<_>>(), expected);
-    for (key, shape, dtype) in TOOL_HANG_OBS {
-        let Value::Array(a) = &obs[*key] else {
+    for (key, shape, dtype) in &tool_hang_obs {
+        let Value::Array(a) = &obs[key.as_str()] else {
             panic!("{key} is not an array")
         };
-        assert_eq!(a.shape(), *shape, "{key}");
+        assert_eq!(a.shape(), shape.as_slice(), "{key}");
         assert_eq!(a.dtype(), *dtype, "{key}");
     }
     assert!(env.observation_space().contains(&obs));
-    let parts: Vec<f64> = TOOL_HANG_OBS[10..24]
+    let parts: Vec<f64> = tool_hang_obs[10..24]
         .iter()
         .flat_map(|(k, _, _)| get(&obs, k))
         .collect();

@@ -1,7 +1,7 @@
 //! Wipe: the wiping tool, the marker walk, observations (and their one-step lag), reward,
 //! success, early termination, configuration and state round trips.
 
-use crate::common::fixtures::{env_for, load, values};
+use crate::common::fixtures::{env_for, load, robosuite_observations, values};
 use crate::common::{assert_observation_layout, assert_snapshot_replays, get};
 use gym_core::{DType, Env, Error};
 use ndarray::{ArrayD, IxDyn};
@@ -9,29 +9,6 @@ use robosuite_env::models::robots::GripperChoice;
 use robosuite_env::sim::{body_id, geom_id};
 use robosuite_env::tasks::{WipeConfig, WipeSpec};
 use robosuite_env::{EnvConfig, RobosuiteEnv, make, make_with};
-
-/// robosuite 1.5.2's Wipe observation keys, shapes and dtypes, in order
-/// (`robosuite-1.5.2-observations.json`, entry "Wipe"); `robot0_contact` is a bool, as
-/// robosuite's.
-const WIPE_OBS: &[(&str, &[usize], DType)] = &[
-    ("robot0_joint_pos", &[7], DType::F64),
-    ("robot0_joint_pos_cos", &[7], DType::F64),
-    ("robot0_joint_pos_sin", &[7], DType::F64),
-    ("robot0_joint_vel", &[7], DType::F64),
-    ("robot0_joint_acc", &[7], DType::F64),
-    ("robot0_eef_pos", &[3], DType::F64),
-    ("robot0_eef_quat", &[4], DType::F64),
-    ("robot0_eef_quat_site", &[4], DType::F32),
-    ("robot0_gripper_qpos", &[0], DType::F64),
-    ("robot0_gripper_qvel", &[0], DType::F64),
-    ("robot0_contact", &[], DType::Bool),
-    ("proportion_wiped", &[], DType::F64),
-    ("wipe_radius", &[], DType::F64),
-    ("wipe_centroid", &[3], DType::F64),
-    ("gripper_to_wipe_centroid", &[3], DType::F64),
-    ("robot0_proprio-state", &[47], DType::F64),
-    ("object-state", &[8], DType::F64),
-];
 
 fn act(v: [f64; 6]) -> ArrayD<f64> {
     ArrayD::from_shape_vec(IxDyn(&[6]), v.to_vec()).unwrap()
@@ -70,7 +47,7 @@ fn sizes_and_observations_match_robosuite() {
     assert_eq!(env.action_dim(), 6);
     let (obs, info) = env.reset(Some(0), None).unwrap();
     assert_eq!(info.get_bool("success"), Some(false));
-    assert_observation_layout(&env, &obs, WIPE_OBS);
+    assert_observation_layout(&env, &obs, &robosuite_observations("Wipe"));
     // robot0_contact is part of the proprio concatenation, at its end.
     let proprio = get(&obs, "robot0_proprio-state");
     assert_eq!(proprio[46], get(&obs, "robot0_contact")[0]);

@@ -26,7 +26,7 @@ pub use material::CustomMaterial;
 pub use xml::{ObjType, xml_object};
 
 use crate::mjcf::{Element, ElementNames};
-use crate::tasks::placement::PlacedObject;
+use crate::placement::PlacedObject;
 
 /// The joints an object gets (robosuite's `joints` argument).
 #[derive(Debug, Clone, PartialEq)]

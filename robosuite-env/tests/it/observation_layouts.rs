@@ -1,0 +1,55 @@
+//! Every task's observation layout against robosuite's (`fixtures/robosuite/observations.json`):
+//! keys in order, shapes, dtypes and the action dimension.
+
+use crate::common::assert_observation_layout;
+use crate::common::fixtures::{ObsEntry, robosuite_action_dim, robosuite_observations};
+use gym_core::Env;
+use robosuite_env::{ENV_NAMES, EnvConfig, EnvConfiguration, make_with};
+
+/// The keys of the single-object mode 1 variants: robosuite names them after the object
+/// drawn at each reset (recorded: one of them), this crate's fixed observation space after
+/// the task's single-object prefix (`nut_*`, `obj_*`); shapes and dtypes are the same.
+fn with_single_object_prefix(task: &str, mut expected: Vec<ObsEntry>) -> Vec<ObsEntry> {
+    let prefix = match task {
+        "NutAssemblySingle" => "nut",
+        "PickPlaceSingle" => "obj",
+        _ => return expected,
+    };
+    let drawn = expected
+        .iter()
+        .find_map(|(k, _, _)| k.strip_suffix("_to_robot0_eef_pos"))
+        .expect("an object's relative position")
+        .to_owned();
+    for (key, _, _) in &mut expected {
+        if let Some(rest) = key.strip_prefix(&format!("{drawn}_")) {
+            *key = format!("{prefix}_{rest}");
+        }
+    }
+    expected
+}
+
+#[test]
+fn every_task_lays_out_its_observations_as_robosuite() {
+    for &task in ENV_NAMES {
+        let expected = with_single_object_prefix(task, robosuite_observations(task));
+        // The two-arm tasks were recorded `opposed`; `parallel` lays out the same keys.
+        let configs = if task.starts_with("TwoArm") {
+            [EnvConfiguration::Opposed, EnvConfiguration::Parallel]
+                .map(|c| {
+                    EnvConfig::default()
+                        .with_robots(["Panda", "Panda"])
+                        .with_env_configuration(c)
+                })
+                .to_vec()
+        } else {
+            vec![EnvConfig::default()]
+        };
+        for config in configs {
+            let what = format!("{task} {}", config.env_configuration.as_str());
+            let mut env = make_with(task, config).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let (obs, _) = env.reset(Some(1), None).unwrap();
+            assert_observation_layout(&env, &obs, &expected);
+            assert_eq!(env.action_dim(), robosuite_action_dim(task), "{what}");
+        }
+    }
+}
