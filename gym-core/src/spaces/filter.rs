@@ -97,6 +97,11 @@ pub trait FilterableSpace: Space {
         *out = self.filter_element(keys, filtered, x.clone())?;
         Ok(())
     }
+
+    /// Part `i` of an element of this space, borrowed: the `i`-th Dict entry in the space's
+    /// key order (found by name when the element's keys are in another order) or the
+    /// `i`-th Tuple item; `None` past the end or for an element of another structure.
+    fn element_part<'a>(&self, x: &'a Self::Element, i: usize) -> Option<&'a Value>;
 }
 
 fn empty() -> Error {
@@ -211,6 +216,14 @@ impl FilterableSpace for DictSpace {
         }
         Ok(())
     }
+
+    fn element_part<'a>(&self, x: &'a DictValue, i: usize) -> Option<&'a Value> {
+        let key = self.keys().nth(i)?;
+        match x.get_index(i) {
+            Some((k, v)) if k == key => Some(v),
+            _ => x.get(key),
+        }
+    }
 }
 
 /// A dict observation that lacks a selected key.
@@ -259,6 +272,10 @@ impl FilterableSpace for TupleSpace {
                 })
             })
             .collect()
+    }
+
+    fn element_part<'a>(&self, x: &'a Vec<Value>, i: usize) -> Option<&'a Value> {
+        x.get(i)
     }
 }
 
@@ -321,6 +338,14 @@ impl FilterableSpace for AnySpace {
                 *out = self.filter_element(keys, filtered, x.clone())?;
                 Ok(())
             }
+        }
+    }
+
+    fn element_part<'a>(&self, x: &'a Value, i: usize) -> Option<&'a Value> {
+        match (self, x) {
+            (AnySpace::Dict(d), Value::Dict(v)) => d.element_part(v, i),
+            (AnySpace::Tuple(t), Value::Tuple(v)) => t.element_part(v, i),
+            _ => None,
         }
     }
 }
