@@ -23,7 +23,7 @@ pub enum Padding<O> {
 ///
 /// An observation wrapper ([`ObservationWrapper`], with
 /// [`ObservationWrapper::reset_observation`] refilling the stack): the frames live in one
-/// batch used as a ring, and [`Env::step_into`](gym_core::Env::step_into) keeps the inner
+/// batch used as a ring, and [`Env::step_into`] keeps the inner
 /// observation between steps and writes the stack into the caller's observation in place,
 /// so a loop of `step_into` over array observations allocates nothing after its first
 /// step. `step` and `reset` return a fresh stack.
