@@ -349,3 +349,49 @@ impl FilterableSpace for AnySpace {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spaces::{BoxSpace, Discrete};
+
+    #[test]
+    fn element_part_by_position_with_name_fallback() {
+        let space = DictSpace::new([
+            ("b", AnySpace::from(BoxSpace::<f32>::unbounded(&[1]))),
+            ("a", Discrete::new(3).unwrap().into()),
+        ])
+        .unwrap();
+        let b = Value::from(ndarray::arr1(&[1.0f32]).into_dyn());
+        let ordered: DictValue = [
+            ("b".to_owned(), b.clone()),
+            ("a".to_owned(), Value::Discrete(2)),
+        ]
+        .into_iter()
+        .collect();
+        let shuffled: DictValue = [
+            ("a".to_owned(), Value::Discrete(2)),
+            ("b".to_owned(), b.clone()),
+        ]
+        .into_iter()
+        .collect();
+        for x in [&ordered, &shuffled] {
+            assert_eq!(space.element_part(x, 0), Some(&b));
+            assert_eq!(space.element_part(x, 1), Some(&Value::Discrete(2)));
+            assert_eq!(space.element_part(x, 2), None);
+        }
+        let any = AnySpace::from(space);
+        assert_eq!(
+            any.element_part(&Value::Dict(shuffled), 1),
+            Some(&Value::Discrete(2))
+        );
+        assert_eq!(any.element_part(&Value::Discrete(0), 0), None);
+        let tuple = TupleSpace::new(vec![Discrete::new(2).unwrap().into()]);
+        let items = vec![Value::Discrete(1)];
+        assert_eq!(tuple.element_part(&items, 0), Some(&Value::Discrete(1)));
+        assert_eq!(
+            AnySpace::from(tuple).element_part(&Value::Tuple(items), 0),
+            Some(&Value::Discrete(1))
+        );
+    }
+}
