@@ -1,8 +1,7 @@
 //! [`FrameStackObservation`]: the last `stack_size` observations, stacked.
 
 use crate::batch::{BatchOf, BatchSpace};
-use gym_core::{Env, Error, Info, ResetOptions, Result, Space, Step};
-use std::collections::VecDeque;
+use gym_core::{Env, Error, ObservationWrapper, Observations, Result, Space, Wrapper};
 
 /// How the stack is filled after a reset (Gymnasium's `padding_type`).
 #[derive(Debug, Clone, PartialEq)]
@@ -20,7 +19,14 @@ pub enum Padding<O> {
 /// The observation space is `batch_space(env.observation_space, stack_size)` (a Box gains
 /// a leading axis, a Discrete becomes a MultiDiscrete, ...). `reset` fills the stack with
 /// `stack_size - 1` padding observations followed by the reset observation; each step drops
-/// the oldest and appends the new one. Each returned stack is a fresh value.
+/// the oldest and appends the new one.
+///
+/// An observation wrapper ([`ObservationWrapper`], with
+/// [`ObservationWrapper::reset_observation`] refilling the stack): the frames live in one
+/// batch used as a ring, and [`Env::step_into`] keeps the inner
+/// observation between steps and writes the stack into the caller's observation in place,
+/// so a loop of `step_into` over array observations allocates nothing after its first
+/// step. `step` and `reset` return a fresh stack.
 #[derive(Debug, Clone)]
 pub struct FrameStackObservation<E: Env>
 where
@@ -30,7 +36,12 @@ where
     stack_size: usize,
     padding: Padding<E::Obs>,
     padding_value: E::Obs,
-    queue: VecDeque<E::Obs>,
+    /// The last `stack_size` observations, item `(head + i) % stack_size` the `i`-th oldest.
+    frames: BatchOf<E::ObsSpace>,
+    head: usize,
+    /// One frame read out of `frames` on its way to the caller's stack.
+    scratch: E::Obs,
+    kept: Option<E::Obs>,
     space: <E::ObsSpace as BatchSpace>::Batched,
 }
 
@@ -62,13 +73,19 @@ where
             Padding::Reset | Padding::Zero => single.zero_element(),
         };
         let space = single.batch_space(stack_size)?;
-        let queue = std::iter::repeat_n(padding_value.clone(), stack_size).collect();
+        let mut frames = single.create_empty_batch(stack_size);
+        for i in 0..stack_size {
+            single.write_item(&mut frames, i, &padding_value)?;
+        }
         Ok(Self {
+            scratch: padding_value.clone(),
             env,
             stack_size,
             padding,
             padding_value,
-            queue,
+            frames,
+            head: 0,
+            kept: None,
             space,
         })
     }
@@ -78,70 +95,42 @@ where
         self.stack_size
     }
 
-    fn stacked(&self) -> Result<BatchOf<E::ObsSpace>> {
+    /// Drops the oldest frame and appends `obs`, in place.
+    fn push(&mut self, obs: &E::Obs) -> Result<()> {
         let single = self.env.observation_space();
-        let mut batch = single.create_empty_batch(self.stack_size);
-        for (i, o) in self.queue.iter().enumerate() {
-            single.write_item(&mut batch, i, o)?;
+        single.write_item(&mut self.frames, self.head, obs)?;
+        self.head = (self.head + 1) % self.stack_size;
+        Ok(())
+    }
+
+    /// Writes the frames, oldest first, into `out`.
+    fn write_stack(&mut self, out: &mut BatchOf<E::ObsSpace>) -> Result<()> {
+        let single = self.env.observation_space();
+        for i in 0..self.stack_size {
+            let j = (self.head + i) % self.stack_size;
+            single.read_item_into(&self.frames, j, &mut self.scratch)?;
+            single.write_item(out, i, &self.scratch)?;
         }
+        Ok(())
+    }
+
+    /// The frames, oldest first, as a new batch.
+    fn stacked(&mut self) -> Result<BatchOf<E::ObsSpace>> {
+        let mut batch = self
+            .env
+            .observation_space()
+            .create_empty_batch(self.stack_size);
+        self.write_stack(&mut batch)?;
         Ok(batch)
     }
 }
 
-impl<E: Env> gym_core::CustomWrapper for FrameStackObservation<E>
+impl<E: Env> Wrapper for FrameStackObservation<E>
 where
     E::ObsSpace: BatchSpace,
-    BatchOf<E::ObsSpace>: Send,
-{
-    type Observation = BatchOf<E::ObsSpace>;
-    type Action = E::Act;
-    type ObservationSpace = <E::ObsSpace as BatchSpace>::Batched;
-    type ActionSpace = E::ActSpace;
-
-    fn observation_space(this: &Self) -> &Self::ObservationSpace {
-        &this.space
-    }
-
-    fn action_space(this: &Self) -> &E::ActSpace {
-        this.env.action_space()
-    }
-
-    fn reset(
-        this: &mut Self,
-        seed: Option<u64>,
-        options: Option<&ResetOptions>,
-    ) -> Result<(Self::Observation, Info)> {
-        let (obs, info) = this.env.reset(seed, options)?;
-        if matches!(this.padding, Padding::Reset) {
-            this.padding_value = obs.clone();
-        }
-        this.queue.clear();
-        this.queue.extend(std::iter::repeat_n(
-            this.padding_value.clone(),
-            this.stack_size - 1,
-        ));
-        this.queue.push_back(obs);
-        Ok((this.stacked()?, info))
-    }
-
-    fn step(this: &mut Self, action: &E::Act) -> Result<Step<Self::Observation>> {
-        let step = this.env.step(action)?;
-        if this.queue.len() == this.stack_size {
-            this.queue.pop_front();
-        }
-        this.queue.push_back(step.observation.clone());
-        let stacked = this.stacked()?;
-        Ok(step.map_observation(|_| stacked))
-    }
-}
-
-impl<E: Env> gym_core::Wrapper for FrameStackObservation<E>
-where
-    E::ObsSpace: BatchSpace,
-    BatchOf<E::ObsSpace>: Send,
 {
     type Inner = E;
-    type Kind = gym_core::Custom;
+    type Kind = Observations;
     fn inner(&self) -> &E {
         &self.env
     }
@@ -150,6 +139,52 @@ where
     }
     fn into_inner(self) -> E {
         self.env
+    }
+}
+
+impl<E: Env> ObservationWrapper for FrameStackObservation<E>
+where
+    E::ObsSpace: BatchSpace,
+{
+    type Space = <E::ObsSpace as BatchSpace>::Batched;
+
+    fn space(&self) -> &Self::Space {
+        &self.space
+    }
+
+    fn reset_observation(&mut self, observation: E::Obs) -> Result<BatchOf<E::ObsSpace>> {
+        if matches!(self.padding, Padding::Reset) {
+            self.padding_value = observation.clone();
+        }
+        let single = self.env.observation_space();
+        for i in 0..self.stack_size - 1 {
+            single.write_item(&mut self.frames, i, &self.padding_value)?;
+        }
+        single.write_item(&mut self.frames, self.stack_size - 1, &observation)?;
+        self.head = 0;
+        self.stacked()
+    }
+
+    fn observation(&mut self, observation: E::Obs) -> Result<BatchOf<E::ObsSpace>> {
+        self.push(&observation)?;
+        self.stacked()
+    }
+
+    fn observation_into(
+        &mut self,
+        observation: &E::Obs,
+        out: &mut BatchOf<E::ObsSpace>,
+    ) -> Result<()> {
+        self.push(observation)?;
+        if self.write_stack(out).is_err() {
+            // `out` is not a stack of this space's layout (a caller's fresh buffer).
+            *out = self.stacked()?;
+        }
+        Ok(())
+    }
+
+    fn inner_buffer(&mut self) -> Option<&mut Option<E::Obs>> {
+        Some(&mut self.kept)
     }
 }
 
@@ -203,5 +238,41 @@ mod tests {
             FrameStackObservation::new(CountEnv::new(None, None), 2, Padding::Custom(a64(&[-1.0])))
                 .is_err()
         );
+    }
+
+    #[test]
+    fn step_into_equals_step_and_reset_refills() {
+        use crate::toy::a32;
+        let make =
+            || FrameStackObservation::new(crate::toy::WalkEnv::new(6), 3, Padding::Reset).unwrap();
+        let (mut by_step, mut by_into) = (make(), make());
+        for seed in [1, 2] {
+            let (first, _) = by_step.reset(Some(seed), None).unwrap();
+            let (mut obs, mut info) = by_into.reset(Some(seed), None).unwrap();
+            assert_eq!(first, obs);
+            assert_eq!(
+                first.index_axis(ndarray::Axis(0), 0),
+                first.index_axis(ndarray::Axis(0), 2)
+            );
+            for k in 0..4 {
+                let a = a32(&[0.5, -0.25 * k as f32]);
+                let step = by_step.step(&a).unwrap();
+                let t = by_into.step_into(&a, &mut obs, &mut info).unwrap();
+                assert_eq!(step.observation, obs, "seed {seed}, step {k}");
+                assert_eq!(step.info, info);
+                assert_eq!(
+                    (step.reward, step.terminated, step.truncated),
+                    (t.reward, t.terminated, t.truncated)
+                );
+                assert!(by_into.observation_space().contains(&obs));
+            }
+        }
+        // A buffer of another layout is replaced by the stack.
+        let mut odd = ndarray::ArrayD::zeros(ndarray::IxDyn(&[1]));
+        let mut info = gym_core::Info::new();
+        let _ = by_into
+            .step_into(&a32(&[0.0, 0.0]), &mut odd, &mut info)
+            .unwrap();
+        assert_eq!(odd.shape(), [3, 2]);
     }
 }

@@ -24,18 +24,22 @@
 //! in a [`BoxSpace<f32>`], for code that wants the flat vector without matching on a
 //! `Value`.
 //!
-//! Both are compositions of Gymnasium's wrappers: the selection is
-//! [`FilterObservation::keeping_order`] (the keys in the order given, as robosuite
-//! concatenates them), the flat observation [`FlattenObservation`] (the keys' arrays
-//! concatenated, each row-major; a Discrete key flattens to its one-hot) cast to `f32` by
-//! [`DtypeObservation`], under an `f32` action cast. Each layer keeps its inner observation
-//! between steps, so `step_into` allocates nothing after its first step.
+//! Both are compositions of wrappers: the selection is [`FilterObservation::keeping_order`]
+//! (the keys in the order given, as robosuite concatenates them) under an `f32` action
+//! cast, and the flat observation a concatenation layer over it: robosuite's
+//! `np.concatenate([np.array(obs[k]).flatten() for k in keys])` cast to `f32`, so each key
+//! contributes its values row-major (a Discrete key its scalar value, a MultiDiscrete or
+//! MultiBinary key its entries; not Gymnasium's one-hot [`FlattenObservation`]). Each layer
+//! keeps its inner observation between steps, so `step_into` allocates nothing after its
+//! first step.
 
-use crate::{DtypeObservation, FilterObservation, FlattenObservation};
+use crate::FilterObservation;
+#[cfg(doc)]
+use crate::FlattenObservation;
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, FilterKeys, FilterableSpace, NumericSpace};
 use gym_core::{
-    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ResetOptions, Result,
-    Step, Transition, Value, Wrapper,
+    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ObservationWrapper,
+    Observations, ResetOptions, Result, Scalar, Space, Step, Transition, Value, Wrapper,
 };
 use ndarray::{ArrayD, IxDyn};
 
@@ -147,8 +151,122 @@ where
 /// The selected keys, in the order given, over `f32` actions.
 type Selected<E> = FilterObservation<F32Actions<E>>;
 
-/// The selected keys flattened and cast to `f32`.
-type Flat<E> = DtypeObservation<FlattenObservation<Selected<E>>, f32>;
+/// The selected keys concatenated as `f32`, as robosuite's wrapper flattens them: each
+/// key's values row-major, a Discrete key its scalar value. The inner (selected)
+/// observation is kept between steps and written into the caller's vector in place.
+#[derive(Debug, Clone)]
+struct Concat<E: Env> {
+    env: E,
+    /// Each key's number of values, in order.
+    sizes: Vec<usize>,
+    space: BoxSpace<f32>,
+    kept: Option<E::Obs>,
+}
+
+impl<E: Env> Concat<E> {
+    fn new(env: E, sizes: Vec<usize>) -> Self {
+        let space = BoxSpace::unbounded(&[sizes.iter().sum()]);
+        Self {
+            env,
+            sizes,
+            space,
+            kept: None,
+        }
+    }
+}
+
+impl<E: Env> Wrapper for Concat<E>
+where
+    E::ObsSpace: FilterableSpace,
+{
+    type Inner = E;
+    type Kind = Observations;
+    fn inner(&self) -> &E {
+        &self.env
+    }
+    fn inner_mut(&mut self) -> &mut E {
+        &mut self.env
+    }
+    fn into_inner(self) -> E {
+        self.env
+    }
+}
+
+impl<E: Env> ObservationWrapper for Concat<E>
+where
+    E::ObsSpace: FilterableSpace,
+{
+    type Space = BoxSpace<f32>;
+
+    fn space(&self) -> &BoxSpace<f32> {
+        &self.space
+    }
+
+    fn observation(&mut self, observation: E::Obs) -> Result<ArrayD<f32>> {
+        let mut out = ArrayD::zeros(IxDyn(&[self.space.flatdim()]));
+        self.observation_into(&observation, &mut out)?;
+        Ok(out)
+    }
+
+    fn observation_into(&mut self, observation: &E::Obs, out: &mut ArrayD<f32>) -> Result<()> {
+        let total = self.space.flatdim();
+        if out.shape() != [total] || !out.is_standard_layout() {
+            *out = ArrayD::zeros(IxDyn(&[total]));
+        }
+        let flat = out.as_slice_mut().expect("a standard-layout vector");
+        let space = self.env.observation_space();
+        let mut at = 0;
+        for (j, &size) in self.sizes.iter().enumerate() {
+            let value = space.element_part(observation, j).ok_or_else(|| {
+                Error::from(gym_core::SpaceError::InvalidArgument(format!(
+                    "the observation has no part {j} of the selected keys"
+                )))
+            })?;
+            let n = match value {
+                Value::Array(a) => {
+                    let n = a.len();
+                    if n == size {
+                        let dst = &mut flat[at..at + n];
+                        gym_core::for_each_array!(a, arr => dst
+                            .iter_mut()
+                            .zip(arr.iter())
+                            .for_each(|(d, v)| *d = v.to_f64() as f32));
+                    }
+                    n
+                }
+                Value::Discrete(d) => {
+                    if size == 1 {
+                        flat[at] = *d as f32;
+                    }
+                    1
+                }
+                other => {
+                    return Err(gym_core::SpaceError::WrongKind {
+                        expected: "array",
+                        got: other.kind(),
+                    }
+                    .into());
+                }
+            };
+            if n != size {
+                return Err(Error::Contract {
+                    check: "GymWrapper".into(),
+                    message: format!("observation part {j} has {n} elements, its space {size}")
+                        .into(),
+                });
+            }
+            at += n;
+        }
+        Ok(())
+    }
+
+    fn inner_buffer(&mut self) -> Option<&mut Option<E::Obs>> {
+        Some(&mut self.kept)
+    }
+}
+
+/// The selected keys concatenated as `f32`.
+type Flat<E> = Concat<Selected<E>>;
 
 /// Checks the environment and keys as robosuite's wrapper needs them and selects the keys:
 /// the selection, the keys and each key's flat size.
@@ -194,7 +312,12 @@ where
             ),
         ));
     }
-    let sizes = selected.iter().map(|(_, s)| s.flatdim()).collect();
+    // robosuite's `np.array(obs[k]).flatten()`: each key's number of values (1 for a
+    // Discrete scalar), not Gymnasium's flat dimension (a Discrete one-hot).
+    let sizes = selected
+        .iter()
+        .map(|(_, s)| s.shape().map_or(1, |s| s.iter().product()))
+        .collect();
     let actions = F32Actions {
         space: f32_action_space(env.action_space())?,
         env,
@@ -204,14 +327,14 @@ where
     Ok((stack, keys, sizes))
 }
 
-/// The flat stack over a selection.
-fn flat<E>(selected: Selected<E>) -> Result<Flat<E>>
+/// The flat stack over a selection whose keys have `sizes` values.
+fn flat<E>(selected: Selected<E>, sizes: Vec<usize>) -> Flat<E>
 where
     E: Env,
     E::ObsSpace: FilterableSpace,
     E::ActSpace: NumericSpace,
 {
-    DtypeObservation::new(FlattenObservation::new(selected))
+    Concat::new(selected, sizes)
 }
 
 /// [`Env::step`] of a flat stack through its `step_into` (one new array).
@@ -285,7 +408,7 @@ where
         let (stack, observation_space) = if flatten_obs {
             let n = sizes.iter().sum();
             let space = BoxSpace::<f32>::unbounded(&[n]).into();
-            (Stack::Flat(flat(selected)?), space)
+            (Stack::Flat(flat(selected, sizes)), space)
         } else {
             let space = selected.observation_space().to_any();
             (Stack::Dict(selected, None), space)
@@ -419,19 +542,19 @@ where
     fn inner(&self) -> &E {
         match &self.stack {
             Stack::Dict(s, _) => env_of(s),
-            Stack::Flat(s) => env_of(s.inner().inner()),
+            Stack::Flat(s) => env_of(s.inner()),
         }
     }
     fn inner_mut(&mut self) -> &mut E {
         match &mut self.stack {
             Stack::Dict(s, _) => s.inner_mut().inner_mut(),
-            Stack::Flat(s) => s.inner_mut().inner_mut().inner_mut().inner_mut(),
+            Stack::Flat(s) => s.inner_mut().inner_mut().inner_mut(),
         }
     }
     fn into_inner(self) -> E {
         match self.stack {
             Stack::Dict(s, _) => s.into_inner().into_inner(),
-            Stack::Flat(s) => s.into_inner().into_inner().into_inner().into_inner(),
+            Stack::Flat(s) => s.into_inner().into_inner().into_inner(),
         }
     }
 }
@@ -468,7 +591,7 @@ where
         let (selected, keys, sizes) = select(env, keys, true)?;
         let observation_space = BoxSpace::unbounded(&[sizes.iter().sum()]);
         Ok(Self {
-            stack: flat(selected)?,
+            stack: flat(selected, sizes.clone()),
             keys,
             sizes,
             observation_space,
@@ -545,17 +668,13 @@ where
     type Inner = E;
     type Kind = gym_core::Custom;
     fn inner(&self) -> &E {
-        env_of(self.stack.inner().inner())
+        env_of(self.stack.inner())
     }
     fn inner_mut(&mut self) -> &mut E {
-        self.stack.inner_mut().inner_mut().inner_mut().inner_mut()
+        self.stack.inner_mut().inner_mut().inner_mut()
     }
     fn into_inner(self) -> E {
-        self.stack
-            .into_inner()
-            .into_inner()
-            .into_inner()
-            .into_inner()
+        self.stack.into_inner().into_inner().into_inner()
     }
 }
 
@@ -768,6 +887,76 @@ mod tests {
         assert_eq!(
             shuffled.key_slices()[1],
             ("robot0_proprio-state".to_owned(), 3..7)
+        );
+    }
+
+    #[test]
+    fn discrete_keys_flatten_to_their_values_as_robosuite() {
+        use crate::toy::{ScriptEnv, unit_actions};
+        use gym_core::spaces::{Discrete, MultiBinary, MultiDiscrete};
+        let space = DictSpace::new([
+            ("pos", AnySpace::from(BoxSpace::<f64>::unbounded(&[2]))),
+            ("mode", Discrete::new(4).unwrap().into()),
+            (
+                "gears",
+                MultiDiscrete::new(ndarray::arr1(&[3i64, 5]).into_dyn())
+                    .unwrap()
+                    .into(),
+            ),
+            ("flags", MultiBinary::new(&[3]).unwrap().into()),
+        ])
+        .unwrap();
+        let obs = |t: f64, mode: i64| -> gym_core::DictValue {
+            [
+                ("pos".to_owned(), Value::from(crate::toy::a64(&[t, -t]))),
+                ("mode".to_owned(), Value::Discrete(mode)),
+                (
+                    "gears".to_owned(),
+                    Value::from(ndarray::arr1(&[2i64, 4]).into_dyn()),
+                ),
+                (
+                    "flags".to_owned(),
+                    Value::from(ndarray::arr1(&[1i8, 0, 1]).into_dyn()),
+                ),
+            ]
+            .into_iter()
+            .collect()
+        };
+        let script = ScriptEnv::new(
+            space,
+            unit_actions(),
+            vec![obs(0.5, 3), obs(1.5, 1)],
+            vec![0.0],
+        );
+        let keys: Vec<String> = ["mode", "pos", "gears", "flags"]
+            .map(str::to_owned)
+            .to_vec();
+        // robosuite's `np.concatenate([np.array(obs[k]).flatten() for k in keys])`: the
+        // Discrete key is its scalar, MultiDiscrete and MultiBinary their entries.
+        let want_reset = [3.0f32, 0.5, -0.5, 2.0, 4.0, 1.0, 0.0, 1.0];
+        let want_step = [1.0f32, 1.5, -1.5, 2.0, 4.0, 1.0, 0.0, 1.0];
+        let mut dynamic = GymWrapper::new(script.clone(), Some(keys.clone()), true).unwrap();
+        assert_eq!(
+            dynamic.observation_space().to_string(),
+            "Box(-inf, inf, [8], float32)"
+        );
+        let (first, _) = dynamic.reset(None, None).unwrap();
+        assert_eq!(first, Value::from(a32(&want_reset)));
+        let (mut o, mut info) = dynamic.reset(None, None).unwrap();
+        let a = a32(&[0.0, 0.0]);
+        let _ = dynamic.step_into(&a, &mut o, &mut info).unwrap();
+        assert_eq!(o, Value::from(a32(&want_step)));
+        let mut typed = FlatGymWrapper::new(script, Some(keys)).unwrap();
+        assert_eq!(typed.observation_space().shape(), Some(&[8usize][..]));
+        assert_eq!(typed.reset(None, None).unwrap().0, a32(&want_reset));
+        assert_eq!(typed.step(&a).unwrap().observation, a32(&want_step));
+        assert_eq!(
+            typed
+                .key_slices()
+                .into_iter()
+                .map(|(_, r)| r)
+                .collect::<Vec<_>>(),
+            [0..1, 1..3, 3..5, 5..8]
         );
     }
 }

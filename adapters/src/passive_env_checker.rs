@@ -1,9 +1,9 @@
 //! [`PassiveEnvChecker`]: validates every `reset` and `step` against the environment's
-//! spaces and reports violations as typed errors. The checks themselves are the
-//! conformance suite's ([`conformance_tests::check_space`], [`conformance_tests::check_obs`]
-//! and [`conformance_tests::passive`]), the same ones `check_env` runs.
+//! spaces and reports violations as typed errors. The checks themselves are gym-core's
+//! ([`gym_core::check`]: [`check_space`], [`check_obs`] and the [`gym_core::check::passive`]
+//! checks), the same ones conformance-tests' `check_env` runs.
 
-use conformance_tests::{
+use gym_core::check::{
     Failure, SpaceType, Warning, check_info_types, check_obs, check_render_metadata,
     check_render_return, check_reward, check_space,
 };

@@ -163,18 +163,7 @@ fn close(x: f64, y: f64, cmp: Compare) -> bool {
     }
 }
 
-/// Index `flat` of an array of `shape`, as `[i, j, k]`.
-pub(crate) fn unravel(flat: usize, shape: &[usize]) -> Vec<usize> {
-    let mut idx = vec![0; shape.len()];
-    let mut rest = flat;
-    for (i, &d) in shape.iter().enumerate().rev() {
-        if d > 0 {
-            idx[i] = rest % d;
-            rest /= d;
-        }
-    }
-    idx
-}
+pub(crate) use gym_core::check::unravel;
 
 macro_rules! same_variant {
     ($a:expr, $b:expr, |$x:ident, $y:ident| $body:expr, $otherwise:expr) => {

@@ -9,7 +9,8 @@
 //!   are reported apart, with Gymnasium's wording.
 //! * [`passive`] holds Gymnasium's passive checks on single values, shared with the
 //!   `PassiveEnvChecker` wrapper of the `adapters` crate (with [`check_space`] and
-//!   [`check_obs`]), so the wrapper and `check_env` apply one checker.
+//!   [`check_obs`]), so the wrapper and `check_env` apply one checker. They live in
+//!   [`gym_core::check`] and are re-exported here at their old paths.
 //! * [`prop`] (feature `prop`, on by default) runs property-based checks with proptest over random seeds and action
 //!   sequences, shrinking to a minimal failing sequence: observations stay in their
 //!   space, replays are bit-identical, state get/set round-trips, time limits truncate
@@ -56,14 +57,12 @@ pub mod broken;
 pub mod data;
 pub mod env_checker;
 pub mod invalid;
-pub mod obs;
+pub use gym_core::check::{obs, passive, spaces};
 pub mod options;
-pub mod passive;
 #[cfg(feature = "prop")]
 pub mod prop;
 pub mod report;
 pub mod sb3;
-pub mod spaces;
 #[cfg(feature = "prop")]
 pub mod toy;
 

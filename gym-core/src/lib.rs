@@ -11,6 +11,8 @@
 //! * The dynamic layer ([`DynEnv`], [`BoxedEnv`], [`Value`], [`AnySpace`]) and the
 //!   [`registry`], so any typed env can be boxed, made by id, and exported to Python.
 //! * Typed errors ([`Error`], [`SpaceError`]).
+//! * Gymnasium's passive environment checks on spaces and values ([`check`]), which the
+//!   `PassiveEnvChecker` wrapper and conformance-tests' `check_env` apply.
 //! * With the `proptest-support` feature, proptest strategies for every space and its
 //!   elements (values that shrink) in the `proptest` module.
 //!
@@ -25,6 +27,7 @@
 //! # Ok::<(), gym_core::SpaceError>(())
 //! ```
 
+pub mod check;
 pub mod dtype;
 pub mod dynamic;
 pub mod env;

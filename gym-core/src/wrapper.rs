@@ -113,6 +113,19 @@ pub trait ObservationWrapper: Wrapper<Kind = Observations> {
         observation: <Self::Inner as Env>::Obs,
     ) -> Result<<Self::Space as Space>::Element>;
 
+    /// Maps the observation of a `reset` of the inner environment. The default is
+    /// [`ObservationWrapper::observation`]; a wrapper whose mapping carries state from step
+    /// to step (`FrameStackObservation`'s stack) starts it again here.
+    ///
+    /// # Errors
+    /// As [`ObservationWrapper::observation`].
+    fn reset_observation(
+        &mut self,
+        observation: <Self::Inner as Env>::Obs,
+    ) -> Result<<Self::Space as Space>::Element> {
+        self.observation(observation)
+    }
+
     /// Maps a borrowed observation of the inner environment into `out`, the previous
     /// observation, reusing its storage: what [`Env::step_into`] calls. The default clones
     /// the observation and calls [`ObservationWrapper::observation`]; override it (and opt
@@ -382,7 +395,7 @@ impl<W: ObservationWrapper> WrapperKind<W> for Observations {
         options: Option<&ResetOptions>,
     ) -> Result<(Self::Obs, Info)> {
         let (observation, info) = w.inner_mut().reset(seed, options)?;
-        Ok((w.observation(observation)?, info))
+        Ok((w.reset_observation(observation)?, info))
     }
     fn step(w: &mut W, action: &Self::Act) -> Result<Step<Self::Obs>> {
         if w.inner_buffer().is_none() {

@@ -21,7 +21,7 @@
 //!
 //! The extension module `robosuite_rs._native` is the `robosuite-native` crate
 //! (`python/native`, built by maturin from the repository's `pyproject.toml`): one call of
-//! [`module::init`].
+//! `module::init` (feature `python`).
 
 pub mod fork;
 pub mod shared;

@@ -1,5 +1,6 @@
 //! The hot paths do not touch the heap: the substep loop (`mj_step1` → controllers →
-//! `mj_step2`), a robosuite env's `step_into`, and `step_into` through the flat GymWrapper.
+//! `mj_step2`), a robosuite env's `step_into`, and `step_into` through the flat GymWrapper
+//! (alone and under FrameStackObservation).
 //! Allocations are counted per thread, so tests running in parallel do not disturb each
 //! other.
 
@@ -204,6 +205,35 @@ fn flat_gym_wrapper_step_into_does_not_allocate_and_equals_step() {
     let bad = ArrayD::zeros(ndarray::IxDyn(&[3]));
     assert!(a.step_into(&bad, &mut obs, &mut info).is_err());
     assert!(a.step_into(&actions[1], &mut obs, &mut info).is_ok());
+}
+
+#[test]
+fn frame_stack_step_into_does_not_allocate_and_equals_step() {
+    let make = || {
+        make_with("Lift", EnvConfig::default())
+            .unwrap()
+            .flat_gym_wrapper(None)
+            .unwrap()
+            .frame_stack_observation(3, adapters::Padding::Reset)
+            .unwrap()
+    };
+    let (mut a, mut b) = (make(), make());
+    let (mut obs, mut info) = a.reset(Some(2), None).unwrap();
+    assert_eq!(obs, b.reset(Some(2), None).unwrap().0);
+    let mut rng = rng_from_seed(5);
+    let actions: Vec<ArrayD<f32>> = (0..12).map(|_| a.action_space().sample(&mut rng)).collect();
+    // The first step fills the wrappers' inner buffers.
+    let _ = a.step_into(&actions[0], &mut obs, &mut info).unwrap();
+    let _ = b.step(&actions[0]).unwrap();
+    for (i, action) in actions.iter().enumerate().skip(1) {
+        let mut t = None;
+        let n = allocations(|| t = Some(a.step_into(action, &mut obs, &mut info).unwrap()));
+        let t = t.unwrap();
+        let step = b.step(action).unwrap();
+        assert_eq!(obs, step.observation, "step {i}");
+        assert_eq!(t.reward.to_bits(), step.reward.to_bits(), "step {i}");
+        assert_eq!(n, 0, "step_into {i} allocated {n} times");
+    }
 }
 
 #[test]

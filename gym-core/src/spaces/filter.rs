@@ -97,6 +97,11 @@ pub trait FilterableSpace: Space {
         *out = self.filter_element(keys, filtered, x.clone())?;
         Ok(())
     }
+
+    /// Part `i` of an element of this space, borrowed: the `i`-th Dict entry in the space's
+    /// key order (found by name when the element's keys are in another order) or the
+    /// `i`-th Tuple item; `None` past the end or for an element of another structure.
+    fn element_part<'a>(&self, x: &'a Self::Element, i: usize) -> Option<&'a Value>;
 }
 
 fn empty() -> Error {
@@ -211,6 +216,14 @@ impl FilterableSpace for DictSpace {
         }
         Ok(())
     }
+
+    fn element_part<'a>(&self, x: &'a DictValue, i: usize) -> Option<&'a Value> {
+        let key = self.keys().nth(i)?;
+        match x.get_index(i) {
+            Some((k, v)) if k == key => Some(v),
+            _ => x.get(key),
+        }
+    }
 }
 
 /// A dict observation that lacks a selected key.
@@ -259,6 +272,10 @@ impl FilterableSpace for TupleSpace {
                 })
             })
             .collect()
+    }
+
+    fn element_part<'a>(&self, x: &'a Vec<Value>, i: usize) -> Option<&'a Value> {
+        x.get(i)
     }
 }
 
@@ -322,5 +339,59 @@ impl FilterableSpace for AnySpace {
                 Ok(())
             }
         }
+    }
+
+    fn element_part<'a>(&self, x: &'a Value, i: usize) -> Option<&'a Value> {
+        match (self, x) {
+            (AnySpace::Dict(d), Value::Dict(v)) => d.element_part(v, i),
+            (AnySpace::Tuple(t), Value::Tuple(v)) => t.element_part(v, i),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spaces::{BoxSpace, Discrete};
+
+    #[test]
+    fn element_part_by_position_with_name_fallback() {
+        let space = DictSpace::new([
+            ("b", AnySpace::from(BoxSpace::<f32>::unbounded(&[1]))),
+            ("a", Discrete::new(3).unwrap().into()),
+        ])
+        .unwrap();
+        let b = Value::from(ndarray::arr1(&[1.0f32]).into_dyn());
+        let ordered: DictValue = [
+            ("b".to_owned(), b.clone()),
+            ("a".to_owned(), Value::Discrete(2)),
+        ]
+        .into_iter()
+        .collect();
+        let shuffled: DictValue = [
+            ("a".to_owned(), Value::Discrete(2)),
+            ("b".to_owned(), b.clone()),
+        ]
+        .into_iter()
+        .collect();
+        for x in [&ordered, &shuffled] {
+            assert_eq!(space.element_part(x, 0), Some(&b));
+            assert_eq!(space.element_part(x, 1), Some(&Value::Discrete(2)));
+            assert_eq!(space.element_part(x, 2), None);
+        }
+        let any = AnySpace::from(space);
+        assert_eq!(
+            any.element_part(&Value::Dict(shuffled), 1),
+            Some(&Value::Discrete(2))
+        );
+        assert_eq!(any.element_part(&Value::Discrete(0), 0), None);
+        let tuple = TupleSpace::new(vec![Discrete::new(2).unwrap().into()]);
+        let items = vec![Value::Discrete(1)];
+        assert_eq!(tuple.element_part(&items, 0), Some(&Value::Discrete(1)));
+        assert_eq!(
+            AnySpace::from(tuple).element_part(&Value::Tuple(items), 0),
+            Some(&Value::Discrete(1))
+        );
     }
 }

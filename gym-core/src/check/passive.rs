@@ -1,10 +1,10 @@
 //! Gymnasium's passive checks (`gymnasium.utils.passive_env_checker`) on single values: the
-//! pieces that both [`check_env`](crate::check_env) and the `PassiveEnvChecker` wrapper of
+//! pieces that both conformance-tests' `check_env` and the `PassiveEnvChecker` wrapper of
 //! the `adapters` crate run, so that the two never disagree. The space and observation
-//! checks are [`check_space`](crate::check_space) and [`check_obs`](crate::check_obs).
+//! checks are [`check_space`](super::check_space) and [`check_obs`](super::check_obs).
 
-use crate::report::{Check, Failure, Warning, WarningKind};
-use gym_core::{Frame, Info, InfoValue, Metadata, RenderMode};
+use super::report::{Check, Failure, Warning, WarningKind};
+use crate::{Frame, Info, InfoValue, Metadata, RenderMode};
 
 /// Info keys with a conventional type: `(key, kind)` with the kind as
 /// [`InfoValue::kind`] names it.

@@ -1,9 +1,9 @@
 //! Gymnasium's `check_obs(obs, observation_space, method_name)`, on dynamic values, with
 //! the reason an observation is not in its space spelled out.
 
-use crate::data::unravel;
-use crate::report::{Check, Failure, Warning, WarningKind};
-use gym_core::{AnyBox, AnySpace, ArrayValue, Space, Value};
+use super::report::{Check, Failure, Warning, WarningKind};
+use super::unravel;
+use crate::{AnyBox, AnySpace, ArrayValue, Space, Value};
 
 /// Checks an observation returned by `method` (`"reset"` or `"step"`) against its space.
 ///
@@ -263,7 +263,7 @@ fn check_box_obs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use gym_core::{BoxSpace, DictSpace, Discrete};
+    use crate::{BoxSpace, DictSpace, Discrete};
     use ndarray::arr1;
 
     fn space() -> AnySpace {
@@ -316,7 +316,7 @@ mod tests {
             ])
             .unwrap(),
         );
-        let mut v = gym_core::DictValue::new();
+        let mut v = crate::DictValue::new();
         v.insert("a".into(), Value::from(arr1(&[0.0f32, 0.0]).into_dyn()));
         assert_eq!(
             check_obs(&Value::Dict(v.clone()), &d, "reset")

@@ -7,8 +7,8 @@
 //! assertions are still made, so a space that reached this crate some other way is
 //! caught.
 
-use crate::report::{Check, Failure, Warning, WarningKind};
-use gym_core::{AnyBox, AnySpace, Space};
+use super::report::{Check, Failure, Warning, WarningKind};
+use crate::{AnyBox, AnySpace, Space};
 use std::fmt;
 
 /// Whether a space is the observation or the action space (Gymnasium's `space_type`).
@@ -268,7 +268,7 @@ fn walk_limit(space: &AnySpace, ty: SpaceType, path: &str, warnings: &mut Vec<Wa
 #[cfg(test)]
 mod tests {
     use super::*;
-    use gym_core::{BoxSpace, DictSpace, Discrete, TupleSpace};
+    use crate::{BoxSpace, DictSpace, Discrete, TupleSpace};
 
     fn bx(low: f64, high: f64) -> AnySpace {
         BoxSpace::<f32>::uniform(low, high, &[2]).unwrap().into()
