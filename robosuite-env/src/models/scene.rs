@@ -227,23 +227,17 @@ pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
     } else {
         None
     };
-    let mut made = None;
     if let Some(sk) = &skeleton
         && let Some((base_xml, base_sk, base)) = cache.near.get(&sk.key)
         && let Ok(Some(model)) = patch::patched(base, base_xml, base_sk, xml, sk)
     {
+        // Not cached: patching again costs no more than copying a cached model.
         PATCHED.fetch_add(1, Ordering::SeqCst);
-        made = Some(model);
+        return Ok((model, Arc::from(xml)));
     }
-    let model = match made {
-        Some(model) => model,
-        None => {
-            let mut model = MjModel::from_xml_string(xml)
-                .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
-            use_robosuites_collision_defaults(&mut model);
-            model
-        }
-    };
+    let mut model = MjModel::from_xml_string(xml)
+        .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
+    use_robosuites_collision_defaults(&mut model);
     if cache.exact.len() >= CACHE_CAPACITY {
         cache.exact.clear();
     }

@@ -17,7 +17,7 @@
 //! a full compile's to rounding (checked field by field by the Python tests on the recorded
 //! demonstrations).
 
-use crate::sim::{BoxGeomUpdate, Sim, resize_box_body};
+use crate::sim::{BoxGeomUpdate, resized_box_bodies};
 use gym_core::Result;
 use mujoco_rs::wrappers::mj_model::MjModel;
 use std::collections::HashMap;
@@ -240,19 +240,18 @@ pub(super) fn patched(
             return Ok(None);
         }
     }
-    let mut sim = Sim::new(MjModel::clone(base))?;
     let mut order: Vec<_> = bodies.into_iter().collect();
     order.sort_unstable_by_key(|(b, _)| *b);
-    for (body, (geoms, half, _)) in &order {
-        resize_box_body(
-            &mut sim,
-            BoxGeomUpdate {
+    let targets: Vec<_> = order
+        .iter()
+        .map(|(body, (geoms, half, _))| {
+            let update = BoxGeomUpdate {
                 body: *body,
                 geoms,
                 density: DEFAULT_DENSITY,
-            },
-            *half,
-        )?;
-    }
-    Ok(Some(MjModel::clone(sim.model())))
+            };
+            (update, *half)
+        })
+        .collect();
+    resized_box_bodies(base, &targets).map(Some)
 }
