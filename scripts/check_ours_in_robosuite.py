@@ -14,9 +14,10 @@ recording script's scratch virtualenv):
 Writes python/tests/fixtures/demonstrations/ours_in_robosuite.json (see the README there):
 per demo, robosuite's playback from the states (every state set, the state read back, the
 observations robosuite computes compared with ours on the same states) and from the actions
-(robosuite's per-step divergence ``‖states[j+1] − state after action j‖`` and its largest
-component, in free space and over the whole demo, and whether robosuite finds the task
-solved at the end).
+(robosuite's per-step divergence ``‖states[j+1] − state after action j‖``, its largest
+component, the largest joint-position difference of the arm, the fingers and the cube, over
+the first 10 steps and over the whole demo, and whether robosuite finds the task solved at
+the end).
 """
 
 from __future__ import annotations
@@ -146,13 +147,31 @@ def robosuite_playback(path: str, obs_out: str) -> None:
             env.sim.reset()
             env.sim.set_state_from_flattened(states[0])
             env.sim.forward()
+            m = env.sim.model
+            groups = {
+                "arm": [f"robot0_joint{i}" for i in range(1, 8)],
+                "fingers": ["gripper0_right_finger_joint1", "gripper0_right_finger_joint2"],
+                "cube": ["cube_joint0"],
+            }
+            qpos_idx = {}
+            for g, joints in groups.items():
+                idx = []
+                for jn in joints:
+                    jid = m.joint_name2id(jn)
+                    adr = m.jnt_qposadr[jid]
+                    width = 7 if m.jnt_type[jid] == 0 else 1
+                    idx += list(range(1 + adr, 1 + adr + width))
+                qpos_idx[g] = idx
             norms, maxabs = [], []
+            per_group = {g: [] for g in groups}
             for j, action in enumerate(actions):
                 env.step(action)
                 if j < len(actions) - 1:
                     d = states[j + 1] - env.sim.get_state().flatten()
                     norms.append(float(np.linalg.norm(d)))
                     maxabs.append(float(np.abs(d).max()))
+                    for g, idx in qpos_idx.items():
+                        per_group[g].append(float(np.abs(d[idx]).max()))
             report["demos"][ep] = {
                 "states": int(len(states)),
                 "actions": int(len(actions)),
@@ -160,6 +179,8 @@ def robosuite_playback(path: str, obs_out: str) -> None:
                 "from_actions_max_divergence_norm": max(norms),
                 "from_actions_max_abs_first_10_steps": max(maxabs[:10]),
                 "from_actions_max_abs": max(maxabs),
+                "from_actions_max_abs_qpos_first_10_steps": {g: max(v[:10]) for g, v in per_group.items()},
+                "from_actions_max_abs_qpos": {g: max(v) for g, v in per_group.items()},
                 "from_actions_success_at_end": bool(env._check_success()),
             }
     np.savez(obs_out, **{k: np.array(v) for k, v in saved.items()})
