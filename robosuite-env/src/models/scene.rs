@@ -187,11 +187,14 @@ pub fn scenes_patched() -> usize {
     PATCHED.load(Ordering::SeqCst)
 }
 
+/// A scene compiled in full: its text, its skeleton and its model.
+type NearEntry = (Arc<str>, Arc<patch::Skeleton>, Arc<MjModel>);
+
 /// The compiled scenes: by full text, and by skeleton (the text without its geom sizes).
 #[derive(Default)]
 struct Cache {
     exact: HashMap<Arc<str>, Arc<MjModel>>,
-    near: HashMap<String, (Arc<str>, Arc<patch::Skeleton>, Arc<MjModel>)>,
+    near: HashMap<String, NearEntry>,
 }
 
 fn cache() -> &'static Mutex<Cache> {
@@ -217,23 +220,37 @@ pub fn compile_cached(xml: &str) -> Result<MjModel> {
 /// As [`compile_cached`].
 pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
     check_mujoco_version()?;
-    // One compilation at a time: MuJoCo's XML loader keeps global state.
-    let mut cache = cache().lock().unwrap_or_else(PoisonError::into_inner);
-    if let Some((key, model)) = cache.exact.get_key_value(xml) {
-        return Ok((MjModel::clone(model), Arc::clone(key)));
-    }
     let skeleton = if PATCHING.load(Ordering::SeqCst) {
         patch::skeleton(xml)
     } else {
         None
     };
-    if let Some(sk) = &skeleton
-        && let Some((base_xml, base_sk, base)) = cache.near.get(&sk.key)
-        && let Ok(Some(model)) = patch::patched(base, base_xml, base_sk, xml, sk)
+    // Copies and patches run outside the lock (several threads load scenes at once); only
+    // full compilations hold it.
+    let lock = || cache().lock().unwrap_or_else(PoisonError::into_inner);
+    let base = {
+        let cache = lock();
+        if let Some((key, model)) = cache.exact.get_key_value(xml) {
+            let (key, model) = (Arc::clone(key), Arc::clone(model));
+            drop(cache);
+            return Ok((MjModel::clone(&model), key));
+        }
+        skeleton
+            .as_ref()
+            .and_then(|sk| cache.near.get(&sk.key).cloned())
+    };
+    if let (Some(sk), Some((base_xml, base_sk, base))) = (&skeleton, base)
+        && let Ok(Some(model)) = patch::patched(&base, &base_xml, &base_sk, xml, sk)
     {
         // Not cached: patching again costs no more than copying a cached model.
         PATCHED.fetch_add(1, Ordering::SeqCst);
         return Ok((model, Arc::from(xml)));
+    }
+    // One compilation at a time: MuJoCo's XML loader keeps global state.
+    let mut cache = lock();
+    if let Some((key, model)) = cache.exact.get_key_value(xml) {
+        // compiled by another thread meanwhile
+        return Ok((MjModel::clone(model), Arc::clone(key)));
     }
     let mut model = MjModel::from_xml_string(xml)
         .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
@@ -256,5 +273,6 @@ pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
                 .insert(k, (Arc::clone(&key), Arc::new(sk), Arc::clone(&model)));
         }
     }
+    drop(cache);
     Ok((MjModel::clone(&model), key))
 }

@@ -67,8 +67,7 @@ pub fn resized_box_bodies(
     // SAFETY: only the arena size of this private copy changes, before any data is made for
     // it; it is put back on the copy returned.
     unsafe { copy.ffi_mut().narena = narena.min(SCRATCH_ARENA) };
-    let data =
-        Data::new(copy).map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
+    let data = Data::new(copy).map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
     let mut sim = Sim { data, failed: None };
     for (target, half) in targets {
         resize_box_body(&mut sim, *target, *half)?;

@@ -62,9 +62,16 @@ pub(super) struct Skeleton {
     pub(super) sizes: Vec<SizeAttr>,
 }
 
+/// An attribute of a tag: its name, its value and the value's byte range.
+type Attribute = (String, String, Range<usize>);
+
+/// The box geoms of one body to resize: their ids, their new half-extents and the geom that
+/// carries the mass.
+type BodyBoxes = (Vec<usize>, [f64; 3], Option<usize>);
+
 /// The attributes of the tag whose attribute text starts at `from`, and the index of its
 /// closing `>`; `None` for text that is not a well-formed tag.
-fn attributes(xml: &str, from: usize) -> Option<(Vec<(String, String, Range<usize>)>, usize)> {
+fn attributes(xml: &str, from: usize) -> Option<(Vec<Attribute>, usize)> {
     let b = xml.as_bytes();
     let mut i = from;
     let mut out = Vec::new();
@@ -167,14 +174,16 @@ pub(super) fn patched(
     if base_sk.key != sk.key || base_sk.sizes.len() != sk.sizes.len() {
         return Ok(None);
     }
-    // body id -> (geom ids, new half-extents, index of the mass-bearing geom)
-    let mut bodies: HashMap<usize, (Vec<usize>, [f64; 3], Option<usize>)> = HashMap::new();
+    let mut bodies: HashMap<usize, BodyBoxes> = HashMap::new();
     for (old, new) in base_sk.sizes.iter().zip(&sk.sizes) {
         let (old_text, new_text) = (&base_xml[old.value.clone()], &xml[new.value.clone()]);
         if old_text == new_text {
             continue;
         }
-        if new.attrs.iter().any(|(n, _)| !ALLOWED.contains(&n.as_str()))
+        if new
+            .attrs
+            .iter()
+            .any(|(n, _)| !ALLOWED.contains(&n.as_str()))
             || attr(new, "type") != Some("box")
         {
             return Ok(None);
