@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """states_to_obs throughput (low-dim) against robosuite 1.5.2's loop, on the recorded Lift
 demonstrations (python/tests/fixtures/demonstrations/lift.hdf5) repeated ``--copies``
-times.
+times, each copy with its cube scaled by 1 + 1e-4 * copy (so that no two demos share a
+scene, as in a recorded dataset).
 
     .venv/bin/python scripts/bench_datasets.py                      # robosuite_rs.datasets.states_to_obs, 1 and N workers
     .bench-venv/robosuite/bin/python scripts/bench_datasets.py      # robosuite 1.5.2 (robomimic's per-demo sequence)
 
 With robosuite_rs importable it runs ``states_to_obs(..., done_mode=2)`` with 1 worker and
-with every core; with robosuite 1.5.2 it runs what robomimic's ``dataset_states_to_obs.py``
+with every core, each in a fresh process (``--full-compile``: every scene compiled in full,
+as before scene patching); with robosuite 1.5.2 it runs what robomimic's ``dataset_states_to_obs.py``
 does per demo (env.reset, reset_from_xml_string(model_file), sim.reset, then per state
 set_state_from_flattened + forward + _get_observations(force_update=True) + reward +
 _check_success; the hdf5 writing left out), in one process (robomimic's script). Prints
@@ -18,7 +20,10 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import shutil
+import subprocess
+import sys
 import tempfile
 import time
 
@@ -36,11 +41,22 @@ def make_dataset(folder: str, copies: int) -> str:
         for k, v in src["data"].attrs.items():
             data.attrs[k] = v
         n = 0
-        for _ in range(copies):
+        for c in range(copies):
             for ep in sorted(src["data"]):
                 n += 1
                 src.copy(f"data/{ep}", data, name=f"demo_{n}")
+                if c > 0:  # each demo its own cube size (as in a real dataset): no scene repeats
+                    g = data[f"demo_{n}"]
+                    g.attrs["model_file"] = _resize_cube(str(g.attrs["model_file"]), 1.0 + 1e-4 * c)
     return path
+
+
+def _resize_cube(xml: str, scale: float) -> str:
+    def sub(m: re.Match) -> str:
+        size = " ".join(f"{float(v) * scale:.7g}" for v in m.group(2).split())
+        return f'{m.group(1)}"{size}"'
+
+    return re.sub(r'(name="cube_g0(?:_vis)?" size=)"([^"]*)"', sub, xml)
 
 
 def bench_robosuite(path: str) -> None:
@@ -76,12 +92,16 @@ def bench_robosuite(path: str) -> None:
           f"{states_total / (t2 - t1):.0f} states/s after env creation")
 
 
-def bench_ours(path: str, workers: list[int]) -> None:
+def bench_ours(path: str, workers: list[int], full_compile: bool) -> None:
+    from robosuite_rs import _native
     from robosuite_rs import datasets as D
 
+    # with scene patching off, every demo's scene is compiled in full (the cost before it)
+    _native.set_scene_patching(not full_compile)
     for w in workers:
         r = D.states_to_obs(path, output_name=f"out{w}.hdf5", done_mode=2, num_workers=w, overwrite=True)
-        print(f"robosuite_rs states_to_obs, {r.num_workers} worker(s): {r.states} states, "
+        print(f"robosuite_rs states_to_obs{' (full compiles)' if full_compile else ''}, "
+              f"{r.num_workers} worker(s): {r.states} states, "
               f"{r.states / r.seconds:.0f} states/s overall ({r.seconds:.2f} s), "
               f"{r.states / (r.seconds - r.setup):.0f} states/s after the first env")
 
@@ -89,16 +109,30 @@ def bench_ours(path: str, workers: list[int]) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--copies", type=int, default=4, help="how many times the two Lift demos are repeated")
+    ap.add_argument("--full-compile", action="store_true",
+                    help="robosuite_rs: compile every demo's scene in full (no patching of cached scenes)")
+    ap.add_argument("--workers", type=int, default=None,
+                    help="robosuite_rs: this many workers only (default: 1 and every core, each in a fresh process)")
     args = ap.parse_args()
+    try:
+        import robosuite_rs  # noqa: F401
+    except ImportError:
+        ours = False
+    else:
+        ours = True
+    if ours and args.workers is None:
+        # a fresh process per run: no scene compiled by an earlier run is cached
+        for w in (1, len(os.sched_getaffinity(0))):
+            cmd = [sys.executable, os.path.abspath(__file__), "--copies", str(args.copies), "--workers", str(w)]
+            subprocess.run(cmd + (["--full-compile"] if args.full_compile else []), check=True)
+        return
     folder = tempfile.mkdtemp()
     try:
         path = make_dataset(folder, args.copies)
-        try:
-            import robosuite_rs  # noqa: F401
-        except ImportError:
-            bench_robosuite(path)
+        if ours:
+            bench_ours(path, [args.workers], args.full_compile)
         else:
-            bench_ours(path, [1, len(os.sched_getaffinity(0))])
+            bench_robosuite(path)
     finally:
         shutil.rmtree(folder)
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import random
 import time
 from typing import Any, Sequence
@@ -77,6 +78,18 @@ class Wrapper:
         return orig_attr
 
 
+_ACTUATOR_INPUT = re.compile(
+    r"(<(?:general|motor|position|velocity|intvelocity|damper|cylinder|muscle|adhesion)\b[^>]*?)\s+input=\"[^\"]*\""
+)
+
+
+def _robosuite_readable_xml(xml: str) -> str:
+    """``xml`` as robosuite 1.5.2's MuJoCo (3.3.7) reads it: without the actuators'
+    ``input`` attribute that MuJoCo 3.17 writes (3.3.7 rejects the file with it; without it
+    only ``actuator_ctrlspec`` changes, which robosuite's own scenes leave at 0 as well)."""
+    return _ACTUATOR_INPUT.sub(r"\1", xml)
+
+
 class DataCollectionWrapper(Wrapper):
     """robosuite's ``DataCollectionWrapper``: saves the simulator states and actions of
     every episode to disk, in robosuite's format, so that robosuite's
@@ -85,7 +98,8 @@ class DataCollectionWrapper(Wrapper):
 
     Per episode (from its first ``step``), a folder ``<directory>/ep_<t1>_<t2>`` (the
     ``time.time()`` of the first step) holding ``model.xml`` (``env.sim.model.get_xml()``
-    at the reset), ``ep_meta.json`` (``env.get_ep_meta()``) and ``state_<t1>_<t2>.npz``
+    at the reset, without what robosuite 1.5.2's MuJoCo 3.3.7 cannot read: the actuators'
+    ``input`` attribute), ``ep_meta.json`` (``env.get_ep_meta()``) and ``state_<t1>_<t2>.npz``
     files, each with ``states`` (flat ``[time, qpos, qvel]`` rows: the reset state, then the
     state after every ``collect_freq``-th step), ``action_infos`` (per collected step a dict
     ``{"actions": action}``, plus ``"actions_abs"`` when the step's info has
@@ -128,7 +142,7 @@ class DataCollectionWrapper(Wrapper):
             self._flush()
         self.t = 0
         self.has_interaction = False
-        self._current_task_instance_xml = self.env.sim.model.get_xml()
+        self._current_task_instance_xml = _robosuite_readable_xml(self.env.sim.model.get_xml())
         self._current_task_instance_state = np.array(self.env.sim.get_state().flatten())
         # robosuite's trick for deterministic open-loop playback of the recorded actions
         self.env.set_ep_meta(self.env.get_ep_meta())

@@ -227,6 +227,33 @@ fn scene_xml(
         .map_err(to_pyerr)
 }
 
+/// Turns on (the default) or off the patching of cached scenes (a scene that differs from
+/// one compiled before only in generated box sizes is made by resizing a copy of it); also
+/// empties the cache of compiled scenes.
+#[pyfunction]
+fn set_scene_patching(enabled: bool) {
+    robosuite_env::models::scene::set_scene_patching(enabled);
+}
+
+/// How many scenes were made by patching a cached one since the process started.
+#[pyfunction]
+fn scenes_patched() -> usize {
+    robosuite_env::models::scene::scenes_patched()
+}
+
+/// Compiles (through the cache, as envs do) the MJCF text `xml` and saves the model as an
+/// MJB file at `path` (for comparing models field by field).
+#[pyfunction]
+fn save_scene_model(py: Python<'_>, xml: &str, path: PathBuf) -> PyResult<()> {
+    py.detach(|| {
+        let model = robosuite_env::models::scene::compile_cached(xml)?;
+        model
+            .save_to_file(&path)
+            .map_err(|e| gym_core::Error::model(format!("cannot save {}: {e}", path.display())))
+    })
+    .map_err(to_pyerr)
+}
+
 /// The folder of robosuite's package whose model files the envs are built from (what
 /// robosuite's `edit_model_xml` points scene asset paths at).
 #[pyfunction]
@@ -365,6 +392,9 @@ pub fn init(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyRobosuiteEnv>()?;
     m.add_function(wrap_pyfunction!(make_robosuite, m)?)?;
     m.add_function(wrap_pyfunction!(robosuite_package_dir, m)?)?;
+    m.add_function(wrap_pyfunction!(set_scene_patching, m)?)?;
+    m.add_function(wrap_pyfunction!(scenes_patched, m)?)?;
+    m.add_function(wrap_pyfunction!(save_scene_model, m)?)?;
     m.add_function(wrap_pyfunction!(make_robosuite_vec, m)?)?;
     m.add_function(wrap_pyfunction!(make_robosuite_pool, m)?)?;
     m.add_function(wrap_pyfunction!(make_registered, m)?)?;

@@ -13,7 +13,7 @@ Needs h5py (``pip install robosuite-rs[datasets]``).
 * :func:`convert_to_robomimic`: robomimic's ``convert_robosuite.py`` (``env_args``,
   ``num_samples``, ``total``, a ``mask/train`` / ``mask/valid`` split) into a new file.
 * :func:`states_to_obs`: robomimic's ``dataset_states_to_obs.py`` (same arguments, same
-  output), on several worker processes; also ``python -m robosuite_rs.datasets
+  output), on several worker threads; also ``python -m robosuite_rs.datasets
   states-to-obs ...``.
 
 Inputs are opened read-only and never modified. Outputs are written under a temporary name
@@ -601,7 +601,9 @@ class _Extractor:
         env.set_ep_meta(json.loads(item["ep_meta"]) if item["ep_meta"] is not None else {})
         env.reset()
         try:
-            env.reset_from_xml_string(env.edit_model_xml(item["model_file"]))
+            # reset_from_xml_string applies edit_model_xml itself (robomimic calls it first;
+            # a second pass changes nothing)
+            env.reset_from_xml_string(item["model_file"])
         except Exception as e:  # noqa: BLE001
             raise DatasetError(f"{where} attribute model_file: the scene does not load ({e})") from None
         env.sim.reset()
@@ -636,19 +638,6 @@ class _Extractor:
             "camera_info": camera_info,
             "num_states": n,
         }
-
-
-_WORKER: _Extractor | None = None
-
-
-def _worker_init(env_meta: dict[str, Any], opts: _Options, where: str) -> None:
-    global _WORKER
-    _WORKER = _Extractor(env_meta, opts, where)
-
-
-def _worker_run(item: dict[str, Any]) -> dict[str, Any]:
-    assert _WORKER is not None
-    return _WORKER.run(item)
 
 
 @dataclass
@@ -743,8 +732,9 @@ def states_to_obs(
     robomimic does (scene reloaded from ``model_file``, each state set and observed, the last
     ``next_obs`` by stepping the last action), so the values equal robomimic's on robosuite.
 
-    ``num_workers`` (default: every core; capped at the number of demos) worker processes
-    each hold one env and take demos as they come; the parent writes the results in demo
+    ``num_workers`` (default: every core; capped at the number of demos) worker threads
+    each hold one env and take demos as they come (the native work, scene loading included,
+    runs without the GIL); the parent writes the results in demo
     order, so the output does not depend on ``num_workers``. A worker's error stops the run
     with that error (naming the demo). ``progress`` shows a bar on stderr (tqdm when
     installed, else a line of text).
@@ -867,24 +857,44 @@ def _results(
     where: str,
     workers: int,
 ) -> Iterator[tuple[dict[str, Any], dict[str, Any]]]:
-    """``(item, trajectory)`` in the order of ``items``: here with one worker, else from a
-    pool of ``workers`` processes (spawned: each imports robosuite_rs and makes its env),
-    at most ``2 * workers`` demos in flight."""
+    """``(item, trajectory)`` in the order of ``items``: here with one worker, else from
+    ``workers`` threads (the first uses ``local``, each other makes its own env; the native
+    calls, scene loading, ``forward`` and observations, release the GIL), at most
+    ``2 * workers`` demos in flight."""
     if workers == 1:
         for item in items:
             yield item, local.run(item)
         return
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor
+    import queue
+    import threading
+    from concurrent.futures import ThreadPoolExecutor
 
-    ctx = mp.get_context("spawn")
-    with ProcessPoolExecutor(workers, mp_context=ctx, initializer=_worker_init, initargs=(env_meta, opts, where)) as pool:
+    spare: queue.SimpleQueue[_Extractor] = queue.SimpleQueue()
+    spare.put(local)
+    lock = threading.Lock()
+    made = [1]
+
+    def run(item: dict[str, Any]) -> dict[str, Any]:
+        # an idle extractor, or a new one while fewer than ``workers`` exist
+        try:
+            ex = spare.get_nowait()
+        except queue.Empty:
+            with lock:
+                make = made[0] < workers
+                made[0] += make
+            ex = _Extractor(env_meta, opts, where) if make else spare.get()
+        try:
+            return ex.run(item)
+        finally:
+            spare.put(ex)
+
+    with ThreadPoolExecutor(workers, thread_name_prefix="states-to-obs") as pool:
         pending: list[Any] = []
         nxt = 0
         try:
             for i, item in enumerate(items):
                 while nxt < len(items) and nxt < i + 2 * workers:
-                    pending.append(pool.submit(_worker_run, items[nxt]))
+                    pending.append(pool.submit(run, items[nxt]))
                     nxt += 1
                 yield item, pending[i].result()
                 pending[i] = None

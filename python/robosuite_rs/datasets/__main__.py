@@ -35,7 +35,7 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--copy_dones", action="store_true", help="(optional) copy dones from source file")
     p.add_argument("--exclude-next-obs", action="store_true", help="(optional) exclude next obs in dataset")
     p.add_argument("--compress", action="store_true", help="(optional) compress observations with gzip")
-    p.add_argument("--num_workers", type=int, default=None, help="worker processes (default: every core)")
+    p.add_argument("--num_workers", type=int, default=None, help="worker threads (default: every core)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 

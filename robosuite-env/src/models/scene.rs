@@ -15,7 +15,10 @@ use crate::sim::check_mujoco_version;
 use gym_core::{Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+
+mod patch;
 
 /// robosuite's simulation timestep (`macros.SIMULATION_TIMESTEP`).
 pub const SIMULATION_TIMESTEP: f64 = 0.002;
@@ -158,6 +161,47 @@ fn use_robosuites_collision_defaults(model: &mut MjModel) {
     model.opt_mut().disableflags |= multiccd;
 }
 
+/// Whether [`compile_cached`] may patch a cached model instead of compiling (see
+/// [`set_scene_patching`]).
+static PATCHING: AtomicBool = AtomicBool::new(true);
+
+/// How many scenes were made by patching a cached model since the process started.
+static PATCHED: AtomicUsize = AtomicUsize::new(0);
+
+/// Turns on (the default) or off the patching of cached scenes: with it on, a text that
+/// differs from one compiled before only in the sizes of generated box objects (the cube
+/// sizes robosuite's resets draw, saved in each episode's scene) is made by copying that
+/// model and resizing the boxes in place, as the tasks' resets do, rather than by a full
+/// compile. Either way also empties the cache, so that the next compilations follow the new
+/// setting (for comparisons).
+pub fn set_scene_patching(enabled: bool) {
+    PATCHING.store(enabled, Ordering::SeqCst);
+    let mut cache = cache().lock().unwrap_or_else(PoisonError::into_inner);
+    cache.exact.clear();
+    cache.near.clear();
+}
+
+/// How many scenes [`compile_cached`] made by patching a cached model (see
+/// [`set_scene_patching`]) since the process started.
+pub fn scenes_patched() -> usize {
+    PATCHED.load(Ordering::SeqCst)
+}
+
+/// A scene compiled in full: its text, its skeleton and its model.
+type NearEntry = (Arc<str>, Arc<patch::Skeleton>, Arc<MjModel>);
+
+/// The compiled scenes: by full text, and by skeleton (the text without its geom sizes).
+#[derive(Default)]
+struct Cache {
+    exact: HashMap<Arc<str>, Arc<MjModel>>,
+    near: HashMap<String, NearEntry>,
+}
+
+fn cache() -> &'static Mutex<Cache> {
+    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
+    CACHE.get_or_init(Default::default)
+}
+
 /// Compiles MJCF text, or copies the model compiled from the same text before.
 ///
 /// # Errors
@@ -168,28 +212,67 @@ pub fn compile_cached(xml: &str) -> Result<MjModel> {
 }
 
 /// As [`compile_cached`], also returning the text compiled, shared (one allocation) with
-/// every other compilation of the same text that is still cached.
+/// every other compilation of the same text that is still cached. A text that differs from
+/// a cached one only in the sizes of generated boxes is made by patching (see
+/// [`set_scene_patching`]).
 ///
 /// # Errors
 /// As [`compile_cached`].
 pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
-    type Cache = HashMap<Arc<str>, Arc<MjModel>>;
-    static CACHE: OnceLock<Mutex<Cache>> = OnceLock::new();
     check_mujoco_version()?;
-    let cache = CACHE.get_or_init(Default::default);
+    let skeleton = if PATCHING.load(Ordering::SeqCst) {
+        patch::skeleton(xml)
+    } else {
+        None
+    };
+    // Copies and patches run outside the lock (several threads load scenes at once); only
+    // full compilations hold it.
+    let lock = || cache().lock().unwrap_or_else(PoisonError::into_inner);
+    let base = {
+        let cache = lock();
+        if let Some((key, model)) = cache.exact.get_key_value(xml) {
+            let (key, model) = (Arc::clone(key), Arc::clone(model));
+            drop(cache);
+            return Ok((MjModel::clone(&model), key));
+        }
+        skeleton
+            .as_ref()
+            .and_then(|sk| cache.near.get(&sk.key).cloned())
+    };
+    if let (Some(sk), Some((base_xml, base_sk, base))) = (&skeleton, base)
+        && let Ok(Some(model)) = patch::patched(&base, &base_xml, &base_sk, xml, sk)
+    {
+        // Not cached: patching again costs no more than copying a cached model.
+        PATCHED.fetch_add(1, Ordering::SeqCst);
+        return Ok((model, Arc::from(xml)));
+    }
     // One compilation at a time: MuJoCo's XML loader keeps global state.
-    let mut map = cache.lock().unwrap_or_else(PoisonError::into_inner);
-    if let Some((key, model)) = map.get_key_value(xml) {
+    let mut cache = lock();
+    if let Some((key, model)) = cache.exact.get_key_value(xml) {
+        // compiled by another thread meanwhile
         return Ok((MjModel::clone(model), Arc::clone(key)));
     }
     let mut model = MjModel::from_xml_string(xml)
         .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
     use_robosuites_collision_defaults(&mut model);
-    if map.len() >= CACHE_CAPACITY {
-        map.clear();
+    if cache.exact.len() >= CACHE_CAPACITY {
+        cache.exact.clear();
+    }
+    if cache.near.len() >= CACHE_CAPACITY {
+        cache.near.clear();
     }
     let model = Arc::new(model);
     let key: Arc<str> = Arc::from(xml);
-    map.insert(Arc::clone(&key), Arc::clone(&model));
+    cache.exact.insert(Arc::clone(&key), Arc::clone(&model));
+    if let Some(sk) = skeleton {
+        // The first compile of a skeleton stays its base (a full compile, unless evicted).
+        if !cache.near.contains_key(&sk.key) {
+            let k = sk.key.clone();
+            cache
+                .near
+                .insert(k, (Arc::clone(&key), Arc::new(sk), Arc::clone(&model)));
+        }
+    }
+    drop(cache);
     Ok((MjModel::clone(&model), key))
 }

@@ -407,6 +407,24 @@ impl Data {
     }
 }
 
+impl Data {
+    /// Frees the data and gives the model back; `None` (both freed as on drop) when either
+    /// belongs to another owner.
+    pub(crate) fn into_model(self) -> Option<MjModel> {
+        if self.model_owner.is_some() || self.data_owner.is_some() {
+            return None;
+        }
+        let mut this = ManuallyDrop::new(self);
+        // SAFETY: the data was made by `mj_makeData` here and is freed once; the model is
+        // taken out of its `ManuallyDrop` once, and `this` is never dropped (its owners are
+        // `None`, so nothing else is left to free).
+        unsafe {
+            mj_deleteData(this.data.as_ptr());
+            Some(*ManuallyDrop::take(&mut this.model))
+        }
+    }
+}
+
 impl Drop for Data {
     fn drop(&mut self) {
         if self.data_owner.is_none() {

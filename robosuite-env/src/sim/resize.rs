@@ -2,8 +2,9 @@
 //! a model whose primitive was drawn with another size (robosuite re-draws Lift's cube and
 //! TwoArmPegInHole's peg at every hard reset).
 
-use super::Sim;
+use super::{Data, Sim};
 use gym_core::{Error, Result};
+use mujoco_rs::wrappers::mj_model::MjModel;
 
 /// The box geoms and their body that [`resize_box_body`] edits.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,6 +45,39 @@ pub fn resize_box_body(sim: &mut Sim, target: BoxGeomUpdate<'_>, half: [f64; 3])
     ];
     let rbound = (x * x + y * y + z * z).sqrt();
     resize_body(sim, target, half, half, rbound, mass, inertia)
+}
+
+/// The arena of the scratch data [`resized_box_bodies`] works in: enough for `mj_setConst`
+/// and a mass matrix (scenes may reserve a gigabyte for contacts, which is never touched
+/// here but would be allocated and cleared).
+const SCRATCH_ARENA: i64 = 16 << 20;
+
+/// A copy of `model` with each box body of `targets` resized as [`resize_box_body`] does
+/// (`(update, half-extents)`), computed in a scratch data of small arena; the copy keeps
+/// every size of `model` (its arena included).
+///
+/// # Errors
+/// As [`resize_box_body`]; [`Error::Model`] when MuJoCo cannot allocate the scratch data.
+pub fn resized_box_bodies(
+    model: &MjModel,
+    targets: &[(BoxGeomUpdate<'_>, [f64; 3])],
+) -> Result<MjModel> {
+    let mut copy = MjModel::clone(model);
+    let narena = model.ffi().narena;
+    // SAFETY: only the arena size of this private copy changes, before any data is made for
+    // it; it is put back on the copy returned.
+    unsafe { copy.ffi_mut().narena = narena.min(SCRATCH_ARENA) };
+    let data = Data::new(copy).map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
+    let mut sim = Sim { data, failed: None };
+    for (target, half) in targets {
+        resize_box_body(&mut sim, *target, *half)?;
+    }
+    let Some(mut out) = sim.data.into_model() else {
+        return Err(Error::model("the scratch data does not own its model"));
+    };
+    // SAFETY: as above: the arena size of the model's own copy, no data made for it yet.
+    unsafe { out.ffi_mut().narena = narena };
+    Ok(out)
 }
 
 /// As [`resize_box_body`] for cylinder geoms (at the body's origin, along its z axis):
