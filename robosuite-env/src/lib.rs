@@ -14,11 +14,9 @@
 //!
 //! Layout:
 //! * [`assets`]: where robosuite's own model files are (fetched by the build);
-//! * [`mjcf`]: robosuite's MJCF processing (default classes, prefixes, merges);
 //! * [`models`]: robosuite's model classes (arenas, robots, mounts, grippers, objects) and
 //!   the scene composed from them;
 //! * [`sim`]: the simulator an environment owns, name lookups, contacts, in-place model edits;
-//! * [`math`]: rotations and the linear algebra of the controllers;
 //! * [`controllers`]: the arm controller abstraction, robosuite's six arm controllers and
 //!   `GRIP`, and robosuite's controller configs;
 //! * [`robots`]: robots bound to a compiled scene, with arms, grippers and observables;
@@ -31,7 +29,6 @@
 //!   the tasks;
 //! * [`placement`]: robosuite's placement samplers;
 //! * [`prelude`]: what a user and a task author need, in one import;
-//! * [`saved`]: an env's whole run-time state as text (pickling, deep copies);
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
 //!   [`register_envs`]), all reading one table of tasks ([`TASKS`]).
 
@@ -40,7 +37,12 @@ pub mod cameras;
 pub mod config;
 pub mod controllers;
 pub mod env;
+// Internals the public modules are built on (hidden from the documentation, not
+// part of the extension surface): robosuite's float32 rotation helpers, its MJCF
+// processing, and the saved-state text format behind pickling.
+#[doc(hidden)]
 pub mod math;
+#[doc(hidden)]
 pub mod mjcf;
 pub mod models;
 pub mod observables;
@@ -50,6 +52,7 @@ pub mod registry;
 #[cfg(feature = "render")]
 pub mod render;
 pub mod robots;
+#[doc(hidden)]
 pub mod saved;
 pub mod sim;
 pub mod tasks;
