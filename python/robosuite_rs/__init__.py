@@ -155,7 +155,7 @@ class RobosuiteEnv:
         """robosuite's ``MjSim`` over this env's own memory: ``sim.model._model`` and
         ``sim.data._data`` are a ``mujoco.MjModel`` and ``mujoco.MjData`` shared with the
         Rust env (see :mod:`robosuite_rs.binding_utils`)."""
-        if self._sim is None:  # made on first use; reset_from_xml_string makes a new one
+        if self._sim is None:  # made on first use; made anew when a scene gets a new model
             from .binding_utils import MjSim
 
             self._sim = MjSim(self._native)
@@ -210,7 +210,10 @@ class RobosuiteEnv:
         """robosuite's ``reset_from_xml_string``: reloads the env from a scene's MJCF (such
         as ``env.sim.model.get_xml()`` saved by robosuite or by this package, on any
         machine), then resets deterministically (robots at ``init_qpos``, objects as the
-        scene places them).
+        scene places them). A scene that differs from the current one only in the sizes of
+        generated boxes (the demonstrations of one task) is loaded into the current model
+        in place: ``env.sim`` and views of its arrays stay valid and show the new scene;
+        any other scene gets a new model and data (``env.sim`` is then a new object).
 
         Raises:
             ValueError / RuntimeError: for text that is not a scene of this task (the
@@ -218,15 +221,18 @@ class RobosuiteEnv:
         """
         if not isinstance(xml_string, str):
             raise TypeError(f"xml_string must be a str, got {type(xml_string).__name__}")
-        xml = self.edit_model_xml(xml_string)
+        # the native load points asset paths through a `robosuite/` folder at the local
+        # model files (what edit_model_xml does), so the text goes as given
+        xml = xml_string
         for processor in self._xml_processors:
             xml = processor(xml)
             if not isinstance(xml, str):
                 raise TypeError(f"an xml processor returned {type(xml).__name__}, not str")
-        self._native.reset_from_xml_string(xml)
+        _, in_place = self._native.reset_from_xml_string(xml)
         self._obsv.native_replaced()
-        self._sim = None
-        self._robots = None
+        if not in_place:  # a new model and data: env.sim and env.robots are made anew
+            self._sim = None
+            self._robots = None
 
     def get_ep_meta(self) -> dict[str, Any]:
         """Episode metadata (a copy), ``{}`` unless set."""
