@@ -1,7 +1,8 @@
 """Records what robosuite 1.5.2's VisualizationWrapper, ``env.visualize`` and modders do,
 for ``python/tests/test_visual_wrappers.py``:
 
-* per task: the visualization settings, the sites each setting toggles (objects', robots',
+* per task (Lift, TwoArmLift, Stack, Door, NutAssemblySquare, PickPlaceCan): the
+  visualization settings, the sites each setting toggles (objects', robots',
   grippers'), the state after the wrapper's reset, each site's rgba after a sequence of
   ``env.visualize`` calls at that state (the grip site coloured by its distance to the
   target), the indicator sites the wrapper adds;
@@ -188,6 +189,10 @@ def main() -> None:
         "tasks": {
             "Lift": record_task("Lift", robots="Panda"),
             "TwoArmLift": record_task("TwoArmLift", robots=["Panda", "Panda"]),
+            "Stack": record_task("Stack", robots="Panda"),
+            "Door": record_task("Door", robots="Panda"),
+            "NutAssemblySquare": record_task("NutAssemblySquare", robots="Panda"),
+            "PickPlaceCan": record_task("PickPlaceCan", robots="Panda"),
         },
         "modders": record_modders(),
     }

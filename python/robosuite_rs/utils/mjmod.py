@@ -483,13 +483,17 @@ class TextureModder(BaseModder):
         callbacks = {"rgb": self.rand_rgb, "checker": self.rand_checker, "noise": self.rand_noise,
                      "gradient": self.rand_gradient}
         self._texture_variation_callbacks = {k: callbacks[k] for k in self.texture_variations}
+        # Textures changed during randomize() / restore_defaults(), uploaded once at the end
+        # (geoms share textures); None outside those calls (set_texture uploads at once).
+        self._pending: set[int] | None = None
         self.save_defaults()
 
     def save_defaults(self) -> None:
         """Saves the current textures, materials and colours as the defaults."""
         self.textures = [Texture(self.model, i) for i in range(self.model.ntex)]
         self._default_texture_bitmaps = [np.array(t.bitmap) for t in self.textures]
-        self._texture_checker_mats = [self._make_checker_matrices(t.height, t.width) for t in self.textures]
+        # Each texture's checker masks, made when first used (robosuite makes them all here).
+        self._texture_checker_mats: list[Any] = [None] * len(self.textures)
         self._defaults: dict[Any, dict[str, Any]] = {k: {} for k in self.geom_names}
         if self.randomize_skybox:
             self._defaults["skybox"] = {}
@@ -504,6 +508,28 @@ class TextureModder(BaseModder):
 
     def restore_defaults(self) -> None:
         """Writes the saved defaults back (and uploads the textures)."""
+        with self._uploads():
+            self._restore_defaults()
+
+    def _uploads(self) -> Any:
+        """A context in which changed textures are uploaded once, at its end."""
+        import contextlib
+
+        @contextlib.contextmanager
+        def batch() -> Any:
+            self._pending = set()
+            try:
+                yield
+            finally:
+                pending, self._pending = self._pending, None
+                native = getattr(self.sim, "_native", None)
+                if native is not None:
+                    for tex_id in sorted(pending):
+                        native.upload_texture(tex_id)
+
+        return batch()
+
+    def _restore_defaults(self) -> None:
         for name in self.geom_names:
             if self._check_geom_for_texture(name):
                 self.set_texture(name, self._defaults[name]["texture"], perturb=False)
@@ -515,6 +541,10 @@ class TextureModder(BaseModder):
 
     def randomize(self) -> None:
         """Randomizes every selected geom's texture or colour, and the skybox."""
+        with self._uploads():
+            self._randomize()
+
+    def _randomize(self) -> None:
         self.whiten_materials()
         for name in self.geom_names:
             if self._check_geom_for_texture(name):
@@ -629,7 +659,11 @@ class TextureModder(BaseModder):
 
     def get_checker_matrices(self, name: Any) -> Any:
         """The two checker masks of the texture of ``name``."""
-        return self._texture_checker_mats[self._name_to_tex_id(name)]
+        tex_id = self._name_to_tex_id(name)
+        if self._texture_checker_mats[tex_id] is None:
+            t = self.textures[tex_id]
+            self._texture_checker_mats[tex_id] = self._make_checker_matrices(t.height, t.width)
+        return self._texture_checker_mats[tex_id]
 
     def set_checker(self, name: Any, rgb1: Any, rgb2: Any, perturb: bool = False) -> None:
         """A checker pattern of ``rgb1`` and ``rgb2``."""
@@ -667,9 +701,13 @@ class TextureModder(BaseModder):
     def upload_texture(self, name: Any, device_id: int = 0) -> None:
         """Uploads the texture of ``name`` to the env's renderers (MuJoCo's
         ``mjr_uploadTexture``), so that frames show it."""
+        tex_id = self.get_texture(name).id
+        if self._pending is not None:
+            self._pending.add(tex_id)
+            return
         native = getattr(self.sim, "_native", None)
         if native is not None:
-            native.upload_texture(self.get_texture(name).id)
+            native.upload_texture(tex_id)
 
     def _check_geom_for_texture(self, name: Any) -> bool:
         geom_id = self.model.geom_name2id(name)
