@@ -60,9 +60,13 @@ def _check_indicator(i: int, config: Any) -> dict[str, Any]:
         raise ModderError("Name must be specified for all indicator object configurations!")
     unknown = sorted(set(config) - _SITE_ATTRIBUTES)
     if unknown:
-        raise ModderError(f"indicator {config['name']!r}: unknown site attribute(s) {unknown}; valid: {sorted(_SITE_ATTRIBUTES)}")
+        raise ModderError(
+            f"indicator {config['name']!r}: unknown site attribute(s) {unknown}; valid: {sorted(_SITE_ATTRIBUTES)}"
+        )
     if "type" in config and config["type"] not in _SITE_TYPES:
-        raise ModderError(f"indicator {config['name']!r}: type must be one of {sorted(_SITE_TYPES)}, got {config['type']!r}")
+        raise ModderError(
+            f"indicator {config['name']!r}: type must be one of {sorted(_SITE_TYPES)}, got {config['type']!r}"
+        )
     for key in ("pos", "size", "rgba", "quat", "euler", "axisangle", "xyaxes", "zaxis", "fromto"):
         if key in config:
             try:
@@ -191,7 +195,8 @@ class VisualizationWrapper(Wrapper):
                 continue
             if name in sites:
                 raise ModderError(f"indicator {name!r}: the scene has a site of that name")
-            body = ET.SubElement(worldbody, "body", {"name": name + "_body", "pos": _to_string(config.pop("pos", (0, 0, 0)))})
+            pos = _to_string(config.pop("pos", (0, 0, 0)))
+            body = ET.SubElement(worldbody, "body", {"name": name + "_body", "pos": pos})
             attrs = {"pos": (0, 0, 0), "size": (0.005,), "rgba": (1, 0, 0, 1)}  # robosuite's new_site defaults
             attrs.update(config)
             ET.SubElement(body, "site", {k: _to_string(v) for k, v in attrs.items() if v is not None})
@@ -356,10 +361,14 @@ class DomainRandomizationWrapper(Wrapper):
         sim = self.env.sim
         # Every modder is made (and its arguments checked) before anything changes.
         if self.randomize_color:
-            self.tex_modder = _modder(TextureModder, "color_randomization_args", color_randomization_args, sim, random_state)
+            self.tex_modder = _modder(
+                TextureModder, "color_randomization_args", color_randomization_args, sim, random_state
+            )
             self.modders.append(self.tex_modder)
         if self.randomize_camera:
-            self.camera_modder = _modder(CameraModder, "camera_randomization_args", camera_randomization_args, sim, random_state)
+            self.camera_modder = _modder(
+                CameraModder, "camera_randomization_args", camera_randomization_args, sim, random_state
+            )
             self.modders.append(self.camera_modder)
         if self.randomize_lighting:
             self.light_modder = _modder(

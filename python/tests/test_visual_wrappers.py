@@ -91,7 +91,12 @@ def test_visualize_toggles_and_colours_as_robosuite(wrapped: Any) -> None:
     env.sim.set_state_from_flattened(np.array(ref["state"]))
     env.sim.forward()
     for settings, want in zip(
-        [ALL_ON, {"env": True, "robots": False, "grippers": True}, ALL_OFF, {"env": False, "robots": True, "grippers": True}],
+        [
+            ALL_ON,
+            {"env": True, "robots": False, "grippers": True},
+            ALL_OFF,
+            {"env": False, "robots": True, "grippers": True},
+        ],
         ref["sequence"],
     ):
         env.env.visualize(vis_settings=settings)
@@ -120,7 +125,10 @@ def test_frames_show_indicators_and_sites_where_robosuites_do() -> None:
         for label in ("indicator", "shown"):
             m_ours, area_ours, c_ours = mask_figures(frames[label][camera], frames["hidden"][camera])
             m_theirs, area_theirs, c_theirs = mask_figures(theirs[label], theirs["hidden"])
-            where = f"{camera} {label}: ours {area_ours:.0f} px at {c_ours}, robosuite {area_theirs:.0f} px at {c_theirs}"
+            where = (
+                f"{camera} {label}: ours {area_ours:.0f} px at {c_ours}, "
+                f"robosuite {area_theirs:.0f} px at {c_theirs}"
+            )
             assert area_theirs >= 3 and area_ours >= 3, where
             assert 0.6 <= area_ours / area_theirs <= 1.6, where
             assert np.linalg.norm(c_ours - c_theirs) <= 1.5, where
@@ -237,7 +245,9 @@ def test_dynamics_modder_draws_robosuites_perturbations(lift: Any) -> None:
     defaults = {
         "body": {n: [d["position"], d["quaternion"], d["inertia"], d["mass"]] for n, d in dyn.body_defaults.items()},
         "geom": {n: [d["friction"], d["solref"], d["solimp"]] for n, d in dyn.geom_defaults.items()},
-        "joint": {n: [d["stiffness"], d["frictionloss"], d["damping"], d["armature"]] for n, d in dyn.joint_defaults.items()},
+        "joint": {
+            n: [d["stiffness"], d["frictionloss"], d["damping"], d["armature"]] for n, d in dyn.joint_defaults.items()
+        },
     }
     dyn.randomize()
     compared = 0
@@ -274,7 +284,9 @@ def test_dynamics_modder_draws_robosuites_perturbations(lift: Any) -> None:
 
 
 def camera_env(**kwargs: Any) -> Any:
-    return make("Lift", use_camera_obs=True, camera_names="agentview", camera_heights=SIZE, camera_widths=SIZE, **kwargs)
+    return make(
+        "Lift", use_camera_obs=True, camera_names="agentview", camera_heights=SIZE, camera_widths=SIZE, **kwargs
+    )
 
 
 def model_params(env: Any) -> dict[str, np.ndarray]:
@@ -293,44 +305,22 @@ def textured(m: Any, name: Any) -> bool:
 
 
 def test_same_seed_same_domain_other_seed_other_domain() -> None:
-    envs = []
     base = [camera_env(), camera_env()]
+    first, obs, params = [], [], []
+    # Two envs with seed 5, then the first again with seed 6 (each reset restores the
+    # wrapper's defaults first).
     for env, seed in [(base[0], 5), (base[1], 5), (base[0], 6)]:
-        if envs and env is base[0]:
-            envs[0].restore_default_domain()  # the first wrapper's env, wrapped again
         m = env.sim.model
         # Every geom but the large textures (walls, table, cube: their draws take a while).
         small = [n for n in m.geom_names if n is not None and (n == "floor" or not textured(m, n))]
         color = dict(DEFAULT_COLOR_ARGS, geom_names=small)
-        envs.append(DomainRandomizationWrapper(env, seed=seed, randomize_every_n_steps=0, color_randomization_args=color))
-    first = []
-    obs = []
-    params = []
-    for e in envs:
+        e = DomainRandomizationWrapper(env, seed=seed, randomize_every_n_steps=0, color_randomization_args=color)
         first.append(e.reset()["agentview_image"])
         for _ in range(2):
             o, *_ = e.step(np.zeros(e.action_dim))
         obs.append(o)
         params.append(model_params(e))
-    envs = []
-    base = [camera_env(), camera_env()]
-    for env, seed in [(base[0], 5), (base[1], 5), (base[0], 6)]:
-        if envs and env is base[0]:
-            envs[0].restore_default_domain()  # the first wrapper's env, wrapped again
-        m = env.sim.model
-        # Every geom but the large textures (walls, table, cube: their draws take a while).
-        small = [n for n in m.geom_names if n is not None and (n == "floor" or not textured(m, n))]
-        color = dict(DEFAULT_COLOR_ARGS, geom_names=small)
-        envs.append(DomainRandomizationWrapper(env, seed=seed, randomize_every_n_steps=0, color_randomization_args=color))
-    first = []
-    obs = []
-    params = []
-    for e in envs:
-        first.append(e.reset()["agentview_image"])
-        for _ in range(2):
-            o, *_ = e.step(np.zeros(e.action_dim))
-        obs.append(o)
-        params.append(model_params(e))
+        e.restore_default_domain()
     np.testing.assert_array_equal(first[0], first[1])
     np.testing.assert_array_equal(obs[0]["agentview_image"], obs[1]["agentview_image"])
     np.testing.assert_array_equal(obs[0]["robot0_eef_pos"], obs[1]["robot0_eef_pos"])
