@@ -150,6 +150,7 @@ class RobosuiteEnv:
         self._obsv = EnvObservables(native)
         # Whether visualize() ever ran (only then does a reset hide the sites again).
         self._visualized = False
+        self._vis_cache: Any = None
 
     # --- robosuite's env object: env.sim, env.robots, the XML round trip ----------------
     @property
@@ -273,20 +274,37 @@ class RobosuiteEnv:
             raise _VisualizationError(f"vis_settings needs the keys {sorted(self._visualizations)}; missing {missing}")
         self._visualized = True
         model = self.sim.model
-        for obj in self.model.mujoco_objects:
-            _set_sites_visibility(model, obj.sites, bool(vis_settings["env"]))
-        for robot in self.robots:
-            _set_sites_visibility(model, robot.robot_model.sites, bool(vis_settings["robots"]))
-            for gripper in robot.gripper.values():
-                if gripper is not None:
-                    _set_sites_visibility(model, gripper.sites, bool(vis_settings["grippers"]))
+        sites, _ = self._visual_sites()
+        for setting, ids in sites.items():
+            _set_sites_visibility(model, ids, bool(vis_settings[setting]))
         if vis_settings["grippers"]:
             self._visualize_task_grippers()
+
+    def _visual_sites(self) -> tuple[dict[str, np.ndarray], dict[str, "MujocoObject"]]:
+        """Per setting, the ids of the sites it toggles, and the task's objects by name
+        (kept until the scene is replaced)."""
+        sim = self.sim
+        if self._vis_cache is None or self._vis_cache[0] is not sim:
+            m = sim.model
+            objects = self.model.mujoco_objects
+
+            def ids(names: list[str]) -> np.ndarray:
+                return np.array([m.site_name2id(n) for n in names], dtype=np.int64)
+
+            sites = {
+                "env": ids([s for o in objects for s in o.sites]),
+                "robots": ids([s for r in self.robots for s in r.robot_model.sites]),
+                "grippers": ids(
+                    [s for r in self.robots for g in r.gripper.values() if g is not None for s in g.sites]
+                ),
+            }
+            self._vis_cache = (sim, sites, {o.name: o for o in objects})
+        return self._vis_cache[1], self._vis_cache[2]
 
     def _visualize_task_grippers(self) -> None:
         """The task's grip-site colouring (each robosuite task's ``visualize``)."""
         name = self.name
-        objects = {o.name: o for o in self.model.mujoco_objects}
+        _, objects = self._visual_sites()
         robot0 = self.robots[0]
         if name == "Lift" and "cube" in objects:
             self._visualize_gripper_to_target(robot0.gripper, objects["cube"])
@@ -597,13 +615,14 @@ class _VisualizationError(ValueError, KeyError):
         return str(self.args[0]) if self.args else ""
 
 
-def _set_sites_visibility(model: Any, sites: list[str], visible: bool) -> None:
-    """robosuite's ``set_sites_visibility``: a site is shown by a positive alpha, hidden by
-    a negative one (sites of alpha 0 stay as they are)."""
-    for name in sites:
-        rgba = model.site_rgba[model.site_name2id(name)]
-        if (visible and rgba[3] < 0) or (not visible and rgba[3] > 0):
-            rgba[3] = -rgba[3]
+def _set_sites_visibility(model: Any, ids: np.ndarray, visible: bool) -> None:
+    """robosuite's ``set_sites_visibility`` for the sites ``ids``: a site is shown by a
+    positive alpha, hidden by a negative one (sites of alpha 0 stay as they are)."""
+    if ids.size == 0:
+        return
+    alpha = model.site_rgba[ids, 3]
+    flip = alpha < 0 if visible else alpha > 0
+    model.site_rgba[ids, 3] = np.where(flip, -alpha, alpha)
 
 
 class MujocoObject:

@@ -166,8 +166,18 @@ class VisualizationWrapper(Wrapper):
         self._vis_settings[setting] = bool(visible)
 
     def reset(self, **kwargs: Any) -> Any:
-        """Resets the env, then applies the visualization settings."""
+        """Resets the env, then applies the visualization settings. With the env's
+        ``hard_reset`` (the default), the indicators go back to their configured positions,
+        as robosuite's reload of the scene puts them."""
         ret = self.env.reset(**kwargs)
+        base = self.env.unwrapped if hasattr(self.env, "unwrapped") else self.env
+        if self.indicator_configs and getattr(getattr(base, "_obsv", None), "hard_reset", True):
+            m = self.env.sim.model
+            for config in self.indicator_configs:
+                m.body_pos[m.body_name2id(config["name"] + "_body")] = np.asarray(
+                    config.get("pos", (0, 0, 0)), dtype=np.float64
+                )
+            self.env.sim.forward()
         self.env.visualize(vis_settings=self._vis_settings)
         return ret
 

@@ -185,6 +185,12 @@ def test_bad_indicator_configs_leave_the_env_unchanged(configs: Any, match: str)
     assert env.sim.model.nsite == nsite and env.model.get_xml() == xml and env._xml_processors == processors
     env.step(np.zeros(env.action_dim))
     wrapped = VisualizationWrapper(env, indicator_configs="default")
+    m = env.sim.model
+    wrapped.set_indicator_pos("indicator0", [0.1, 0.2, 1.3])
+    wrapped.step(np.zeros(env.action_dim))
+    np.testing.assert_allclose(env.sim.data.get_site_xpos("indicator0"), [0.1, 0.2, 1.3])
+    wrapped.reset()  # a hard reset (the default) puts it back, as robosuite's reload does
+    np.testing.assert_array_equal(m.body_pos[m.body_name2id("indicator0_body")], [0, 0, 0])
     with pytest.raises(ValueError, match="Invalid indicator name"):
         wrapped.set_indicator_pos("nope", [0, 0, 1])
     with pytest.raises(ValueError, match="3 finite numbers"):
