@@ -477,3 +477,16 @@ def test_robosuite_import_paths() -> None:
     assert wrappers.DomainRandomizationWrapper is DomainRandomizationWrapper
     with pytest.raises(ModderError):
         CameraModder(object(), random_state=np.random.default_rng(0))
+
+
+def test_without_a_seed_the_envs_seed_decides() -> None:
+    params = []
+    for seed in (7, 7, 8):
+        env = make("Lift", has_offscreen_renderer=False, seed=seed)
+        dr = DomainRandomizationWrapper(env, randomize_color=False, randomize_every_n_steps=0)
+        dr.reset()
+        params.append(model_params(env))
+        env.close()
+    for k in ("cam_pos", "light_pos", "geom_friction"):
+        np.testing.assert_array_equal(params[0][k], params[1][k], err_msg=k)
+        assert not np.array_equal(params[0][k], params[2][k]), k
