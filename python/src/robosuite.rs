@@ -644,6 +644,13 @@ impl PyRobosuiteEnv {
             .map_err(to_pyerr)
     }
 
+    /// Uploads texture `texture` (its bitmap changed in `sim.model.tex_data`) to the env's
+    /// renderers again (MuJoCo's `mjr_uploadTexture`).
+    fn upload_texture(&self, py: Python<'_>, texture: usize) -> PyResult<()> {
+        py.detach(|| self.lock()?.upload_texture(texture))
+            .map_err(to_pyerr)
+    }
+
     /// robosuite's `sim.render(width, height, camera_name, depth, segmentation)` for fixed
     /// camera `camera`, or with `free=(lookat, distance, azimuth, elevation)` for MuJoCo's
     /// free camera: `rgb` (H×W×3 uint8, bottom row first), or `(rgb, depth)`; with

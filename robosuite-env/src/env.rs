@@ -1207,6 +1207,37 @@ impl RobosuiteEnv {
         Ok(())
     }
 
+    /// Uploads texture `texture` (its bitmap in the model's `tex_data`, changed since the
+    /// env's renderers were made, as robosuite's `TextureModder` does) to every renderer
+    /// of this env: the camera observations', the render mode's and `render_camera`'s.
+    /// Renderers made later read the model as it is then. Without a renderer it does
+    /// nothing.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a texture id out of range (nothing is uploaded);
+    /// [`Error::Render`] when a rendering context cannot be made current; [`Error::Closed`]
+    /// after `close`.
+    #[cfg(feature = "render")]
+    pub fn upload_texture(&mut self, texture: usize) -> Result<()> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        let ntex = self.sim.model().ffi().ntex.max(0) as usize;
+        if texture >= ntex {
+            return Err(Error::invalid_argument(
+                "texture",
+                format!("texture id {texture} out of range (the model has {ntex} textures)"),
+            ));
+        }
+        if let Some(rig) = &mut self.cameras {
+            rig.upload_texture(self.sim.model(), texture)?;
+        }
+        if let Some(renderer) = &mut self.viewer_renderer {
+            renderer.upload_texture(self.sim.model(), texture)?;
+        }
+        Ok(())
+    }
+
     /// robosuite's `sim.render(width, height, camera_name=..., depth=..., segmentation=...)`:
     /// a frame of `camera` (a fixed camera by id, or MuJoCo's free camera) at any size up to
     /// [`crate::cameras::MAX_CAMERA_SIZE`], drawn with the env's own offscreen renderer for free
