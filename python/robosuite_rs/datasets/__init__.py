@@ -784,6 +784,7 @@ def states_to_obs(
     num_workers: int | None = None,
     overwrite: bool = False,
     progress: bool = False,
+    ray_actors: int | None = None,
 ) -> StatesToObsResult:
     """robomimic's ``dataset_states_to_obs.py``: observations, rewards and dones computed from
     the stored states of ``dataset``, written in robomimic's layout.
@@ -809,6 +810,11 @@ def states_to_obs(
     order, so the output does not depend on ``num_workers``. A worker's error stops the run
     with that error (naming the demo). ``progress`` shows a bar on stderr (tqdm when
     installed, else a line of text).
+
+    ``ray_actors``: the demos are processed by that many Ray actors instead (for datasets
+    beyond one machine: each actor holds one env, on whichever node of the cluster Ray
+    places it; ``ray.init()`` first, else a local Ray is started); this process writes the
+    results in demo order as with threads, so the output is the same. Needs ``ray``.
 
     Returns:
         a :class:`StatesToObsResult`.
@@ -859,6 +865,10 @@ def states_to_obs(
         if workers < 1:
             raise ValueError(f"num_workers must be >= 1, got {num_workers}")
         workers = max(1, min(workers, len(items)))
+        if ray_actors is not None:
+            if int(ray_actors) < 1:
+                raise ValueError(f"ray_actors must be >= 1, got {ray_actors}")
+            ray_actors = workers = max(1, min(int(ray_actors), len(items)))
         # one env here: checks env_args and the cameras before any worker starts, gives
         # env_args for the output and serves as the only worker when there is one
         # built on the first demo's scene: it is loaded first anyway
@@ -873,7 +883,12 @@ def states_to_obs(
             total_states = 0
             with h5py.File(tmp, "w") as f_out:
                 data_grp = f_out.create_group("data")
-                for item, traj in _results(items, local, env_meta, opts, where, workers):
+                results = (
+                    _ray_results(items, env_meta, opts, where, ray_actors)
+                    if ray_actors is not None
+                    else _results(items, local, env_meta, opts, where, workers)
+                )
+                for item, traj in results:
                     ep = item["demo"]
                     g = f"data/{ep}"
                     if copy_rewards:
@@ -977,3 +992,49 @@ def _results(
                     fut.cancel()
             pool.shutdown(wait=True, cancel_futures=True)
             raise
+
+
+class _RayExtractor:
+    """One Ray actor's :class:`_Extractor` (made on the actor's node)."""
+
+    def __init__(self, env_meta: dict[str, Any], opts: _Options, where: str, scene_xml: str | None) -> None:
+        self.ex = _Extractor(env_meta, opts, where, scene_xml)
+
+    def run(self, item: dict[str, Any]) -> dict[str, Any]:
+        return self.ex.run(item)
+
+
+def _ray_results(
+    items: list[dict[str, Any]],
+    env_meta: dict[str, Any],
+    opts: _Options,
+    where: str,
+    actors: int,
+) -> Iterator[tuple[dict[str, Any], dict[str, Any]]]:
+    """``(item, trajectory)`` in the order of ``items``, from ``actors`` Ray actors taking
+    demos as they come (``ray.util.ActorPool``); an actor's error stops the run with it."""
+    try:
+        import ray
+        from ray.util import ActorPool
+    except ImportError:
+        raise ImportError("ray_actors needs ray: pip install 'ray>=2.40'") from None
+    if not ray.is_initialized():
+        ray.init()
+    remote = ray.remote(_RayExtractor)
+    scene = items[0]["model_file"] if items else None
+    handles = [remote.remote(env_meta, opts, where, scene) for _ in range(actors)]
+    try:
+        pool = ActorPool(handles)
+        results = pool.map(lambda actor, item: actor.run.remote(item), items)
+        for item in items:
+            try:
+                traj = next(results)
+            except ray.exceptions.RayTaskError as e:
+                cause = getattr(e, "cause", None)
+                if isinstance(cause, (DatasetError, ValueError, RuntimeError)):
+                    raise cause from None
+                raise
+            yield item, traj
+    finally:
+        for h in handles:
+            ray.kill(h)
