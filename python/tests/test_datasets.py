@@ -38,6 +38,7 @@ h5py = pytest.importorskip("h5py")
 
 import robosuite_rs as suite  # noqa: E402
 from robosuite_rs import datasets as D  # noqa: E402
+from robosuite_rs.utils import transform_utils as T  # noqa: E402
 from robosuite_rs.wrappers import DataCollectionWrapper, DemoSamplerWrapper  # noqa: E402
 
 FIXTURES = Path(__file__).resolve().parent / "fixtures" / "demonstrations"
@@ -472,8 +473,28 @@ def test_convert_to_robomimic(tmp_path):
         train = [k.decode() for k in f["mask/train"][()]]
         valid = [k.decode() for k in f["mask/valid"][()]]
         assert sorted(train + valid) == ["demo_1", "demo_2"] and len(valid) == 1
+        # robomimic's extract_action_dict: position, axis-angle, 6D rotation (the first two
+        # rows of the rotation matrix), gripper; float32
+        actions = f["data/demo_1/actions"][()]
+        ad = f["data/demo_1/action_dict"]
+        assert sorted(ad) == ["gripper", "rel_pos", "rel_rot_6d", "rel_rot_axis_angle"]
+        assert all(ad[k].dtype == np.float32 for k in ad)
+        np.testing.assert_array_equal(ad["rel_pos"][()], actions[:, :3].astype(np.float32))
+        np.testing.assert_array_equal(ad["gripper"][()], actions[:, 6:7].astype(np.float32))
+        np.testing.assert_array_equal(ad["rel_rot_6d"][()], D.action_dict_of(actions)["rel_rot_6d"])
+    rows = np.random.default_rng(0).uniform(-2, 2, (50, 7))
+    rows[0, 3:6] = 0.0  # the small-angle branch
+    for row, six in zip(rows, D.action_dict_of(rows)["rel_rot_6d"]):
+        rot = T.quat2mat(T.axisangle2quat(row[3:6])) if np.any(row[3:6]) else np.eye(3)
+        np.testing.assert_allclose(six, rot[:2, :].reshape(6), atol=2e-6)
     with pytest.raises(FileExistsError):
         D.convert_to_robomimic(tmp_path / "lift.hdf5")
+    # absolute actions get the abs_ keys; 8-value actions a base mode; bad shapes are refused
+    absolute = D.action_dict_of(np.array([[0.1, 0.2, 0.3, 0.0, 0.0, np.pi / 2, -1.0, 1.0]]), absolute=True)
+    assert sorted(absolute) == ["abs_pos", "abs_rot_6d", "abs_rot_axis_angle", "base_mode", "gripper"]
+    np.testing.assert_allclose(absolute["abs_rot_6d"][0], [0, -1, 0, 1, 0, 0], atol=1e-6)
+    with pytest.raises(D.DatasetError, match="7 values"):
+        D.action_dict_of(np.zeros((3, 4)))
 
 
 # ----------------------------------------------------------------------------- bad input

@@ -43,6 +43,7 @@ __all__ = [
     "playback",
     "PlaybackResult",
     "convert_to_robomimic",
+    "action_dict_of",
     "states_to_obs",
     "StatesToObsResult",
 ]
@@ -404,6 +405,7 @@ def convert_to_robomimic(
     *,
     val_ratio: float = 0.1,
     overwrite: bool = False,
+    action_dict: bool = True,
 ) -> str:
     """robomimic's ``convert_robosuite.py`` (and its ``split_train_val_from_hdf5``) into a
     new file (robomimic edits the dataset in place; here the input is left as it is):
@@ -412,8 +414,10 @@ def convert_to_robomimic(
     gains ``num_samples`` (its number of actions); ``mask/train`` and ``mask/valid`` list
     the demos (``int(val_ratio * n)`` validation demos chosen by ``np.random.shuffle``, as
     robomimic). ``output`` defaults to ``<dataset stem>_robomimic.hdf5`` next to it.
-    Returns the output path. (robomimic's ``extract_action_dict`` and absolute actions are
-    not added.)
+    With ``action_dict`` (robomimic's default) each demo also gets robomimic's
+    ``action_dict/`` (see :func:`action_dict_of`). Returns the output path. (robomimic's
+    ``--add_absolute_actions``, which replays each demo through the controller, is not
+    offered.)
 
     Raises:
         DatasetError, FileExistsError: as the module says.
@@ -454,6 +458,17 @@ def convert_to_robomimic(
                     data[ep].attrs["num_samples"] = n
                     total += n
                 data.attrs["total"] = total
+                if action_dict:
+                    for ep in data:
+                        group = data[ep].require_group("action_dict")
+                        for key in ("actions", "actions_abs"):
+                            if key not in data[ep]:
+                                continue
+                            absolute = key == "actions_abs"
+                            for k, v in action_dict_of(data[f"{ep}/{key}"][()], absolute).items():
+                                if k in group:
+                                    del group[k]
+                                group.create_dataset(k, data=v)
                 num_val = int(val_ratio * len(demos))
                 mask = np.zeros(len(demos))
                 mask[:num_val] = 1.0
@@ -469,6 +484,48 @@ def convert_to_robomimic(
     finally:
         src.close()
     return output
+
+
+def _axis_angle_to_rot_6d(aa: np.ndarray) -> np.ndarray:
+    """robomimic's ``TorchUtils.axis_angle_to_rot_6d`` (pytorch3d's conversions: axis-angle
+    to quaternion, to matrix, its first two rows) in float32, for rows of axis-angles."""
+    aa = aa.astype(np.float32)
+    angles = np.linalg.norm(aa, axis=-1, keepdims=True).astype(np.float32)
+    half = angles * np.float32(0.5)
+    small = np.abs(angles) < 1e-6
+    safe = np.where(small, np.float32(1.0), angles)
+    sin_half_over_angle = np.where(small, np.float32(0.5) - angles * angles / np.float32(48), np.sin(half) / safe)
+    q = np.concatenate([np.cos(half), aa * sin_half_over_angle], axis=-1).astype(np.float32)
+    r, i, j, k = (q[..., n] for n in range(4))
+    two_s = np.float32(2.0) / (q * q).sum(-1)
+    m = np.stack(
+        [
+            1 - two_s * (j * j + k * k), two_s * (i * j - k * r), two_s * (i * k + j * r),
+            two_s * (i * j + k * r), 1 - two_s * (i * i + k * k), two_s * (j * k - i * r),
+        ],
+        axis=-1,
+    )
+    return m.astype(np.float32)
+
+
+def action_dict_of(actions: np.ndarray, absolute: bool = False) -> dict[str, np.ndarray]:
+    """robomimic's ``extract_action_dict`` for one demo's actions (OSC pose + gripper rows):
+    ``{rel|abs}_pos``, ``{rel|abs}_rot_axis_angle``, ``{rel|abs}_rot_6d`` and ``gripper``
+    (float32), plus ``base_mode`` for 8-value actions (a mobile base's mode)."""
+    a = np.asarray(actions)
+    if a.ndim != 2 or a.shape[1] < 7:
+        raise DatasetError(f"actions of shape {a.shape}: robomimic's action_dict needs rows of at least 7 values")
+    prefix = "abs_" if absolute else "rel_"
+    rot = a[:, 3:6].astype(np.float32)
+    out = {
+        prefix + "pos": a[:, :3].astype(np.float32),
+        prefix + "rot_axis_angle": rot,
+        prefix + "rot_6d": _axis_angle_to_rot_6d(rot),
+        "gripper": a[:, 6:7].astype(np.float32),
+    }
+    if a.shape[1] == 8:
+        out["base_mode"] = a[:, 7:8].astype(np.float32)
+    return out
 
 
 class _RobomimicEnv:
