@@ -46,10 +46,16 @@ fn camera_id(model: &MjModel, key: &str, name: &str) -> Result<usize> {
 /// hidden (robosuite's reset calls `visualize` with every setting off, which negates the
 /// alpha of the robots', grippers' and objects' sites; the arenas' are transparent), and,
 /// when a camera observes a segmentation, every site shrunk to `1e-8` (as
-/// `RobotEnv._setup_observables` does). Only rendering values change, not the physics.
+/// `RobotEnv._setup_observables` does); with [`RenderQuality::Fast`](super::RenderQuality),
+/// no multisampling (`vis.quality.offsamples = 0`). Only rendering values change, not the
+/// physics.
 pub fn prepare_model(config: &CameraConfig, model: &mut MjModel) {
     if !config.needs_renderer() {
         return;
+    }
+    if config.render_quality == super::RenderQuality::Fast {
+        // SAFETY: one visual setting the render context reads when it is made changes.
+        unsafe { model.ffi_mut() }.vis.quality.offsamples = 0;
     }
     for rgba in model.site_rgba_mut() {
         rgba[3] = -rgba[3].abs();
@@ -110,7 +116,14 @@ impl CameraRig {
                 width = width.max(c.width);
                 height = height.max(c.height);
             }
-            let renderer = crate::render::OffscreenRenderer::new(model, width, height)?;
+            let fast = config.render_quality == super::RenderQuality::Fast;
+            let mut renderer = crate::render::OffscreenRenderer::with_supersampling(
+                model,
+                width,
+                height,
+                if fast { 2 } else { 1 },
+            )?;
+            renderer.set_reflection(config.render_quality == super::RenderQuality::Robosuite);
             Ok(Some(Self {
                 cameras,
                 specs,
