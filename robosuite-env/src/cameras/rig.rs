@@ -116,13 +116,17 @@ impl CameraRig {
                 width = width.max(c.width);
                 height = height.max(c.height);
             }
-            let fast = config.render_quality == super::RenderQuality::Fast;
-            let mut renderer = crate::render::OffscreenRenderer::with_supersampling(
-                model,
-                width,
-                height,
-                if fast { 2 } else { 1 },
-            )?;
+            // Fast: RGB drawn at twice the size; depth at four times, for the multisampling
+            // pattern's sample 0 (what robosuite's multisampled depth resolves to).
+            let depth = config.render_mode == Some(RenderMode::DepthArray)
+                || cameras.iter().any(|(c, _)| c.depth);
+            let factor = match config.render_quality {
+                super::RenderQuality::Fast if depth => 4,
+                super::RenderQuality::Fast => 2,
+                super::RenderQuality::Robosuite => 1,
+            };
+            let mut renderer =
+                crate::render::OffscreenRenderer::with_supersampling(model, width, height, factor)?;
             renderer.set_reflection(config.render_quality == super::RenderQuality::Robosuite);
             Ok(Some(Self {
                 cameras,

@@ -84,11 +84,16 @@ impl OffscreenRenderer {
         Self::with_supersampling(model, width, height, 1)
     }
 
-    /// [`OffscreenRenderer::new`] drawing every RGB frame at `factor` times its size and
-    /// averaging each `factor × factor` block into one pixel (supersampling: antialiasing
-    /// without multisampling, whose cost on a CPU renderer grows with the samples); depth
-    /// takes each block's bottom-left value, and segmentations are drawn at the frame's own
-    /// size. A factor that would make the buffer larger than [`MAX_SIZE`] is lowered to 1.
+    /// [`OffscreenRenderer::new`] drawing frames at up to `factor` times their size and
+    /// averaging each block of sub-pixels into one pixel (supersampling: antialiasing
+    /// without multisampling, whose cost on a CPU renderer grows with the samples). A frame
+    /// with depth is drawn at `factor`; with `factor` 4, only the four sub-pixels at the
+    /// positions of OpenGL's standard 4× multisampling pattern are averaged, and depth takes
+    /// the sub-pixel of sample 0, as a multisampled depth buffer resolves (other factors:
+    /// the bottom-left sub-pixel). An RGB frame without depth is drawn at `factor` or 2,
+    /// whichever is smaller, averaging every sub-pixel. Segmentations are drawn at the
+    /// frame's own size. A factor that would make the buffer larger than [`MAX_SIZE`] is
+    /// lowered to 1.
     ///
     /// # Errors
     /// As [`OffscreenRenderer::new`]; [`Error::InvalidArgument`] for a factor of 0 or above 4.
@@ -318,7 +323,13 @@ impl Pass<'_> {
             supersample,
         } = self;
         let context: &MjrContext = context;
-        let f = *supersample;
+        // Depth needs the multisampling pattern's sample 0 (factor 4); RGB alone is close
+        // enough to multisampled frames at factor 2, for a quarter of the pixels.
+        let f = if r.out.depth.is_some() {
+            *supersample
+        } else {
+            (*supersample).min(2)
+        };
         let mut camera = match r.camera {
             View::Fixed(id) => MjvCamera::new_fixed(id),
             View::Free(c) => MjvCamera {
@@ -373,15 +384,17 @@ impl Pass<'_> {
                     &fine,
                 )
                 .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
+            let samples = sample_pattern(f);
             if let Some(rgb) = r.out.rgb.as_deref_mut() {
-                downsample_rgb(seg_rgb, rgb, r.width, f);
+                downsample_rgb(seg_rgb, rgb, r.width, f, samples);
             }
             if let Some(depth) = r.out.depth.as_deref_mut() {
                 let row = f * r.width;
+                let (sx, sy) = samples[0];
                 for (y, out) in depth.chunks_exact_mut(r.width).enumerate() {
-                    let fine_row = &fine_depth[f * y * row..][..row];
-                    for (o, v) in out.iter_mut().zip(fine_row.iter().step_by(f)) {
-                        *o = *v;
+                    let fine_row = &fine_depth[(f * y + sy) * row..][..row];
+                    for (x, o) in out.iter_mut().enumerate() {
+                        *o = fine_row[f * x + sx];
                     }
                 }
             }
@@ -405,21 +418,42 @@ impl Pass<'_> {
     }
 }
 
-/// Averages each `f × f` block of the RGB frame `fine` (`f · width` pixels a row) into one
-/// pixel of `out` (`width` pixels a row), rounding to nearest.
-fn downsample_rgb(fine: &[u8], out: &mut [u8], width: usize, f: usize) {
+/// The sub-pixels `(x, y)` (from the bottom left) of an `f × f` block that make one pixel:
+/// for `f = 4`, the four positions of OpenGL's standard 4× multisampling pattern (`(0.375,
+/// 0.125)`, `(0.875, 0.375)`, `(0.125, 0.625)`, `(0.625, 0.875)` of the pixel, sample 0
+/// first: the one a multisampled depth buffer resolves to); otherwise every sub-pixel.
+fn sample_pattern(f: usize) -> &'static [(usize, usize)] {
+    match f {
+        4 => &[(1, 0), (3, 1), (0, 2), (2, 3)],
+        2 => &[(0, 0), (1, 0), (0, 1), (1, 1)],
+        3 => &[
+            (0, 0),
+            (1, 0),
+            (2, 0),
+            (0, 1),
+            (1, 1),
+            (2, 1),
+            (0, 2),
+            (1, 2),
+            (2, 2),
+        ],
+        _ => &[(0, 0)],
+    }
+}
+
+/// Averages the `samples` of each `f × f` block of the RGB frame `fine` (`f · width` pixels
+/// a row) into one pixel of `out` (`width` pixels a row), rounding to nearest.
+fn downsample_rgb(fine: &[u8], out: &mut [u8], width: usize, f: usize, samples: &[(usize, usize)]) {
     let fine_row = 3 * f * width;
-    let count = (f * f) as u32;
+    let count = samples.len().max(1) as u32;
     for (y, out_row) in out.chunks_exact_mut(3 * width).enumerate() {
         let block = &fine[f * y * fine_row..][..f * fine_row];
         for (x, px) in out_row.chunks_exact_mut(3).enumerate() {
             for (c, v) in px.iter_mut().enumerate() {
-                let mut sum = 0u32;
-                for dy in 0..f {
-                    for dx in 0..f {
-                        sum += u32::from(block[dy * fine_row + 3 * (f * x + dx) + c]);
-                    }
-                }
+                let sum: u32 = samples
+                    .iter()
+                    .map(|&(dx, dy)| u32::from(block[dy * fine_row + 3 * (f * x + dx) + c]))
+                    .sum();
                 *v = ((sum + count / 2) / count) as u8;
             }
         }
