@@ -140,13 +140,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|s| s.parse().ok())
         .unwrap_or(100);
     let (none, none_cpu) = steps_per_second(CameraConfig::default(), steps)?;
-    println!("Lift, zero actions, {steps} steps, one thread: env steps/s (wall) and process CPU ms per step");
+    println!(
+        "Lift, zero actions, {steps} steps, one thread: env steps/s (wall) and process CPU ms per step"
+    );
     println!("  no cameras: {none:8.0} steps/s {none_cpu:8.2} ms");
     let setups: [(&str, &[&str], usize); 4] = [
         ("agentview 84x84", &["agentview"], 84),
         ("agentview 256x256", &["agentview"], 256),
-        ("agentview + eye_in_hand 84x84", &["agentview", "robot0_eye_in_hand"], 84),
-        ("agentview + eye_in_hand 256x256", &["agentview", "robot0_eye_in_hand"], 256),
+        (
+            "agentview + eye_in_hand 84x84",
+            &["agentview", "robot0_eye_in_hand"],
+            84,
+        ),
+        (
+            "agentview + eye_in_hand 256x256",
+            &["agentview", "robot0_eye_in_hand"],
+            256,
+        ),
     ];
     for quality in [RenderQuality::Robosuite, RenderQuality::Fast] {
         let diff = difference_to_robosuite(quality)?;
