@@ -595,7 +595,11 @@ fn cull_outside_view(scene: &mut MjvScene, aspect: f32) {
     }
     // SAFETY: both cameras were set by `mjv_updateScene`; `mjr_render` draws their average.
     let cam = unsafe { mujoco_rs::mujoco_c::mjv_averageCamera(&ffi.camera[0], &ffi.camera[1]) };
-    if cam.orthographic != 0 || !(cam.frustum_near > 0.0) || !aspect.is_finite() {
+    if cam.orthographic != 0
+        || cam.frustum_near.is_nan()
+        || cam.frustum_near <= 0.0
+        || !aspect.is_finite()
+    {
         return;
     }
     let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
