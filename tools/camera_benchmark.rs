@@ -1,18 +1,32 @@
-//! Env steps per second of Lift with camera observations (one 84×84 camera; two 256×256
-//! cameras) and MuJoCo's bare renderer frames per second, on whatever EGL device opens
-//! (Mesa's software device on a CPU-only machine), and writes PNGs of every default camera.
+//! Env steps per second and process CPU time per step of Lift with camera observations
+//! (one and two cameras, 84×84 and 256×256) at each render quality, with each quality's mean
+//! absolute difference to robosuite's frames (the camera tests' fixture), on whatever EGL
+//! device opens (Mesa's software device on a CPU-only machine); writes PNGs of every
+//! default camera.
 //!
 //! ```text
-//! cargo run --release -p tools --features render --bin camera_benchmark -- [--png DIR]
+//! cargo run --release -p tools --features render --bin camera_benchmark -- [--steps N] [--png DIR]
 //! ```
 
 use gym_core::{Env, Frame, RenderMode};
 use ndarray::ArrayD;
-use robosuite_env::cameras::CameraConfig;
+use robosuite_env::cameras::{CameraConfig, RenderQuality, Segmentation};
 use robosuite_env::{EnvConfig, make_with};
 use std::time::Instant;
 
-fn steps_per_second(cameras: CameraConfig, steps: usize) -> gym_core::Result<f64> {
+/// CPU time of the whole process (Mesa's rasteriser threads included), seconds.
+fn process_cpu() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid timespec for the call to write.
+    unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t) };
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
+
+/// Env steps per second (wall clock) and process CPU milliseconds per step.
+fn steps_per_second(cameras: CameraConfig, steps: usize) -> gym_core::Result<(f64, f64)> {
     let mut env = make_with(
         "Lift",
         EnvConfig::default().with_seed(0).with_cameras(cameras),
@@ -21,13 +35,84 @@ fn steps_per_second(cameras: CameraConfig, steps: usize) -> gym_core::Result<f64
     let mut obs = env.observation();
     let mut info = gym_core::Info::new();
     let action = ArrayD::zeros(ndarray::IxDyn(&[env.action_dim()]));
+    // Two uncounted steps (shader compilation).
+    for _ in 0..2 {
+        let _ = env.step_into(&action, &mut obs, &mut info)?;
+    }
     let start = Instant::now();
+    let cpu = process_cpu();
     for _ in 0..steps {
         if env.step_into(&action, &mut obs, &mut info)?.truncated {
             env.reset(None, None)?;
         }
     }
-    Ok(steps as f64 / start.elapsed().as_secs_f64())
+    let cpu_ms = (process_cpu() - cpu) * 1e3 / steps as f64;
+    Ok((steps as f64 / start.elapsed().as_secs_f64(), cpu_ms))
+}
+
+fn hex(s: &str) -> Vec<u8> {
+    (0..s.len())
+        .step_by(2)
+        .filter_map(|i| u8::from_str_radix(s.get(i..i + 2)?, 16).ok())
+        .collect()
+}
+
+/// Mean absolute difference (of 255) of agentview's and robot0_eye_in_hand's 64×64 frames
+/// to robosuite's from the same state (the fixture of the camera tests).
+fn difference_to_robosuite(quality: RenderQuality) -> Result<Vec<f64>, Box<dyn std::error::Error>> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../robosuite-env/tests/fixtures/robosuite/lift_cameras.json"
+    );
+    let fx: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path)?)?;
+    let floats = |key: &str| -> Vec<f64> {
+        fx[key]
+            .as_array()
+            .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
+            .unwrap_or_default()
+    };
+    let cameras = CameraConfig {
+        camera_depths: vec![true],
+        camera_segmentations: vec![vec![Segmentation::Element]],
+        render_quality: quality,
+        ..CameraConfig::observe(["agentview", "robot0_eye_in_hand"], 64, 64)
+    };
+    let mut env = make_with(
+        "Lift",
+        EnvConfig::default().with_seed(0).with_cameras(cameras),
+    )?;
+    let (obs, _) = env.reset_to_state(&floats("cube_size"), &floats("state"))?;
+    let mut out = Vec::new();
+    for cam in ["agentview", "robot0_eye_in_hand"] {
+        let theirs = hex(fx["frames"][cam]["image"].as_str().unwrap_or(""));
+        let Some(gym_core::Value::Array(gym_core::ArrayValue::U8(ours))) =
+            obs.get(&format!("{cam}_image"))
+        else {
+            return Err(format!("no {cam}_image").into());
+        };
+        let sum: f64 = ours
+            .iter()
+            .zip(&theirs)
+            .map(|(a, b)| (f64::from(*a) - f64::from(*b)).abs())
+            .sum();
+        out.push(sum / theirs.len().max(1) as f64);
+        let theirs: Vec<f32> = hex(fx["frames"][cam]["depth"].as_str().unwrap_or(""))
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        let Some(gym_core::Value::Array(gym_core::ArrayValue::F32(ours))) =
+            obs.get(&format!("{cam}_depth"))
+        else {
+            return Err(format!("no {cam}_depth").into());
+        };
+        let sum: f64 = ours
+            .iter()
+            .zip(&theirs)
+            .map(|(a, b)| f64::from((a - b).abs()))
+            .sum();
+        out.push(sum / theirs.len().max(1) as f64);
+    }
+    Ok(out)
 }
 
 fn write_png(path: &std::path::Path, frame: &ndarray::Array3<u8>) -> std::io::Result<()> {
@@ -48,17 +133,50 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .position(|a| a == "--png")
         .and_then(|i| args.get(i + 1));
-    let steps = 300;
-    let none = steps_per_second(CameraConfig::default(), steps)?;
-    let one = steps_per_second(CameraConfig::observe(["agentview"], 84, 84), steps)?;
-    let two = steps_per_second(
-        CameraConfig::observe(["agentview", "robot0_eye_in_hand"], 256, 256),
-        steps,
-    )?;
-    println!("Lift env steps/s (zero actions, {steps} steps, one thread):");
-    println!("  no cameras:                      {none:8.0}");
-    println!("  agentview 84x84:                 {one:8.0}");
-    println!("  agentview + eye_in_hand 256x256: {two:8.0}");
+    let steps = args
+        .iter()
+        .position(|a| a == "--steps")
+        .and_then(|i| args.get(i + 1))
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(100);
+    let (none, none_cpu) = steps_per_second(CameraConfig::default(), steps)?;
+    println!(
+        "Lift, zero actions, {steps} steps, one thread: env steps/s (wall) and process CPU ms per step"
+    );
+    println!("  no cameras: {none:8.0} steps/s {none_cpu:8.2} ms");
+    let setups: [(&str, &[&str], usize); 4] = [
+        ("agentview 84x84", &["agentview"], 84),
+        ("agentview 256x256", &["agentview"], 256),
+        (
+            "agentview + eye_in_hand 84x84",
+            &["agentview", "robot0_eye_in_hand"],
+            84,
+        ),
+        (
+            "agentview + eye_in_hand 256x256",
+            &["agentview", "robot0_eye_in_hand"],
+            256,
+        ),
+    ];
+    for quality in [RenderQuality::Robosuite, RenderQuality::Fast] {
+        let diff = difference_to_robosuite(quality)?;
+        println!(
+            "render_quality={}: mean |diff| to robosuite's frames: agentview {:.2}, robot0_eye_in_hand {:.2} (of 255); depth {:.1e}, {:.1e}",
+            quality.as_str(),
+            diff[0],
+            diff[2],
+            diff[1],
+            diff[3]
+        );
+        for (name, cams, size) in setups {
+            let cameras = CameraConfig {
+                render_quality: quality,
+                ..CameraConfig::observe(cams.iter().copied(), size, size)
+            };
+            let (rate, cpu) = steps_per_second(cameras, steps)?;
+            println!("  {name:32} {rate:8.1} steps/s {cpu:8.2} ms");
+        }
+    }
     if let Some(dir) = png_dir {
         std::fs::create_dir_all(dir)?;
         for cam in [
@@ -75,6 +193,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .with_seed(0)
                     .with_cameras(CameraConfig {
                         render_mode: Some(RenderMode::RgbArray),
+                        render_quality: RenderQuality::Robosuite,
                         render_camera: cam.into(),
                         ..CameraConfig::default()
                     }),

@@ -46,10 +46,16 @@ fn camera_id(model: &MjModel, key: &str, name: &str) -> Result<usize> {
 /// hidden (robosuite's reset calls `visualize` with every setting off, which negates the
 /// alpha of the robots', grippers' and objects' sites; the arenas' are transparent), and,
 /// when a camera observes a segmentation, every site shrunk to `1e-8` (as
-/// `RobotEnv._setup_observables` does). Only rendering values change, not the physics.
+/// `RobotEnv._setup_observables` does); with [`RenderQuality::Fast`](super::RenderQuality),
+/// no multisampling (`vis.quality.offsamples = 0`). Only rendering values change, not the
+/// physics.
 pub fn prepare_model(config: &CameraConfig, model: &mut MjModel) {
     if !config.needs_renderer() {
         return;
+    }
+    if config.render_quality == super::RenderQuality::Fast {
+        // SAFETY: one visual setting the render context reads when it is made changes.
+        unsafe { model.ffi_mut() }.vis.quality.offsamples = 0;
     }
     for rgba in model.site_rgba_mut() {
         rgba[3] = -rgba[3].abs();
@@ -110,7 +116,18 @@ impl CameraRig {
                 width = width.max(c.width);
                 height = height.max(c.height);
             }
-            let renderer = crate::render::OffscreenRenderer::new(model, width, height)?;
+            // Fast: RGB drawn at twice the size; depth at four times, for the multisampling
+            // pattern's sample 0 (what robosuite's multisampled depth resolves to).
+            let depth = config.render_mode == Some(RenderMode::DepthArray)
+                || cameras.iter().any(|(c, _)| c.depth);
+            let factor = match config.render_quality {
+                super::RenderQuality::Fast if depth => 4,
+                super::RenderQuality::Fast => 2,
+                super::RenderQuality::Robosuite => 1,
+            };
+            let mut renderer =
+                crate::render::OffscreenRenderer::with_supersampling(model, width, height, factor)?;
+            renderer.set_reflection(config.render_quality == super::RenderQuality::Robosuite);
             Ok(Some(Self {
                 cameras,
                 specs,

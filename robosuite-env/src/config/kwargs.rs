@@ -10,7 +10,7 @@
 //! ([`TaskSpec::options`](crate::tasks::TaskSpec::options)).
 
 use super::{EnvConfig, EnvConfiguration};
-use crate::cameras::{ImageConvention, Segmentation};
+use crate::cameras::{ImageConvention, RenderQuality, Segmentation};
 use crate::controllers::ControllerConfig;
 use crate::controllers::config::load_part_controller_config;
 use crate::models::robots::GripperChoice;
@@ -95,6 +95,8 @@ struct Kwargs {
     /// The GPU robosuite renders offscreen on (`-1`: any); frames here are drawn on the
     /// first EGL device that opens.
     render_gpu_device_id: Option<i64>,
+    /// How frames are drawn: `"fast"` (default) or `"robosuite"` ([`RenderQuality`]).
+    render_quality: Option<String>,
     /// robosuite's model reloading on reset: no effect (resets here never recompile).
     #[allow(dead_code)] // taken for robosuite's signature; nothing reads it
     hard_reset: Option<bool>,
@@ -274,6 +276,9 @@ impl Kwargs {
         }
         cams.render_height = self.render_height.unwrap_or(cams.render_height);
         cams.render_width = self.render_width.unwrap_or(cams.render_width);
+        if let Some(quality) = self.render_quality.as_deref() {
+            cams.render_quality = RenderQuality::parse(quality)?;
+        }
         if let Some(convention) = self.image_convention.as_deref() {
             cams.image_convention = match convention {
                 "opengl" => ImageConvention::OpenGl,
@@ -598,6 +603,7 @@ mod tests {
             (json!({"renderer_config": {"cam_id": 0}}), "renderer_config"),
             (json!({"mount_types": ["RethinkMount"]}), "mount_types"),
             (json!({"render_gpu_device_id": -2}), "render_gpu_device_id"),
+            (json!({"render_quality": "ultra"}), "render_quality"),
         ] {
             assert_eq!(invalid("Lift", bad).0, key);
         }
@@ -623,6 +629,7 @@ mod tests {
                 "controller" => json!("OSC_POSITION"),
                 "render_camera" => json!("frontview"),
                 "image_convention" => json!("opengl"),
+                "render_quality" => json!("robosuite"),
                 "renderer" => json!("mujoco"),
                 "horizon" | "seed" | "render_height" | "render_width" | "camera_heights"
                 | "camera_widths" => json!(64),

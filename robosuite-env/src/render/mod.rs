@@ -53,7 +53,9 @@ pub struct OffscreenRenderer {
     perturb: MjvPerturb,
     seg_rgb: Vec<u8>,
     seg_ids: Vec<i32>,
+    fine_depth: Vec<f32>,
     size: (usize, usize),
+    supersample: usize,
     gl: GlContext,
 }
 
@@ -79,8 +81,41 @@ impl OffscreenRenderer {
     /// [`Error::Render`] when no EGL context can be opened (the message names the missing
     /// library); [`Error::InvalidArgument`] for a zero size or one above [`MAX_SIZE`].
     pub fn new(model: &MjModel, width: usize, height: usize) -> Result<Self> {
+        Self::with_supersampling(model, width, height, 1)
+    }
+
+    /// [`OffscreenRenderer::new`] drawing frames at up to `factor` times their size and
+    /// averaging each block of sub-pixels into one pixel (supersampling: antialiasing
+    /// without multisampling, whose cost on a CPU renderer grows with the samples). A frame
+    /// with depth is drawn at `factor`; with `factor` 4, only the four sub-pixels at the
+    /// positions of OpenGL's standard 4× multisampling pattern are averaged, and depth takes
+    /// the sub-pixel of sample 0, as a multisampled depth buffer resolves (other factors:
+    /// the bottom-left sub-pixel). An RGB frame without depth is drawn at `factor` or 2,
+    /// whichever is smaller, averaging every sub-pixel. Segmentations are drawn at the
+    /// frame's own size. A factor that would make the buffer larger than [`MAX_SIZE`] is
+    /// lowered to 1.
+    ///
+    /// # Errors
+    /// As [`OffscreenRenderer::new`]; [`Error::InvalidArgument`] for a factor of 0 or above 4.
+    pub fn with_supersampling(
+        model: &MjModel,
+        width: usize,
+        height: usize,
+        factor: usize,
+    ) -> Result<Self> {
         check_size("width", width)?;
         check_size("height", height)?;
+        if !(1..=4).contains(&factor) {
+            return Err(Error::invalid_argument(
+                "supersample",
+                format!("must be in 1..=4, got {factor}"),
+            ));
+        }
+        let factor = if width * factor <= MAX_SIZE && height * factor <= MAX_SIZE {
+            factor
+        } else {
+            1
+        };
         let mut gl = GlContext::new()?;
         let context = {
             let _current = gl.make_current()?;
@@ -88,7 +123,7 @@ impl OffscreenRenderer {
             // (and dropped) while it is current again (see `Send` above).
             let mut context = unsafe { MjrContext::new(model) };
             context.change_font(MjtFontScale::mjFONTSCALE_150);
-            context.resize_offscreen(width as u32, height as u32);
+            context.resize_offscreen((width * factor) as u32, (height * factor) as u32);
             context.offscreen();
             context
         };
@@ -104,7 +139,9 @@ impl OffscreenRenderer {
             perturb: MjvPerturb::default(),
             seg_rgb: Vec::new(),
             seg_ids: Vec::new(),
+            fine_depth: Vec::new(),
             size: (width, height),
+            supersample: factor,
             gl,
         })
     }
@@ -145,6 +182,14 @@ impl OffscreenRenderer {
         context
             .upload_texture(model, texture)
             .map_err(|e| Error::Render(format!("mjr_uploadTexture: {e}")))
+    }
+
+    /// Draws (`true`, MuJoCo's default) or skips the mirrored scene of reflective planes and
+    /// boxes (`mjRND_REFLECTION`).
+    pub fn set_reflection(&mut self, on: bool) {
+        // SAFETY: one render flag changes; no invariant of the wrapper depends on it.
+        let ffi = unsafe { self.scene.ffi_mut() };
+        ffi.flags[mjtRndFlag::mjRND_REFLECTION as usize] = u8::from(on);
     }
 
     /// The largest frame (width, height) the offscreen buffer holds.
@@ -200,7 +245,9 @@ impl OffscreenRenderer {
             perturb,
             seg_rgb,
             seg_ids,
+            fine_depth,
             size,
+            supersample,
             gl,
         } = self;
         let context = context
@@ -214,6 +261,8 @@ impl OffscreenRenderer {
             perturb,
             seg_rgb,
             seg_ids,
+            fine_depth,
+            supersample: *supersample,
         };
         for mut r in requests {
             check(*size, data, &r)?;
@@ -231,6 +280,8 @@ struct Pass<'p> {
     perturb: &'p MjvPerturb,
     seg_rgb: &'p mut Vec<u8>,
     seg_ids: &'p mut Vec<i32>,
+    fine_depth: &'p mut Vec<f32>,
+    supersample: usize,
 }
 
 /// Checks one request against the model and the offscreen buffer of `size`.
@@ -293,8 +344,17 @@ impl Pass<'_> {
             perturb,
             seg_rgb,
             seg_ids,
+            fine_depth,
+            supersample,
         } = self;
         let context: &MjrContext = context;
+        // Depth needs the multisampling pattern's sample 0 (factor 4); RGB alone is close
+        // enough to multisampled frames at factor 2, for a quarter of the pixels.
+        let f = if r.out.depth.is_some() {
+            *supersample
+        } else {
+            (*supersample).min(2)
+        };
         let mut camera = match r.camera {
             View::Fixed(id) => MjvCamera::new_fixed(id),
             View::Free(c) => MjvCamera {
@@ -323,7 +383,11 @@ impl Pass<'_> {
             );
         }
         let viewport = MjrRectangle::new(0, 0, r.width as i32, r.height as i32);
-        if r.out.rgb.is_some() || r.out.depth.is_some() {
+        // Geoms the camera cannot see are dropped before drawing (identical frames, less
+        // geometry); their segment ids stay as `mjv_updateScene` gave them.
+        let segments = scene.ffi().ngeom.max(0) as usize;
+        cull_outside_view(scene, r.width as f32 / r.height as f32);
+        if f == 1 && (r.out.rgb.is_some() || r.out.depth.is_some()) {
             scene.render(&viewport, context);
             context
                 .read_pixels(
@@ -332,6 +396,33 @@ impl Pass<'_> {
                     &viewport,
                 )
                 .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
+        } else if r.out.rgb.is_some() || r.out.depth.is_some() {
+            let fine = MjrRectangle::new(0, 0, (f * r.width) as i32, (f * r.height) as i32);
+            let n = f * f * r.width * r.height;
+            scene.render(&fine, context);
+            seg_rgb.resize(3 * n, 0);
+            fine_depth.resize(if r.out.depth.is_some() { n } else { 0 }, 0.0);
+            context
+                .read_pixels(
+                    r.out.rgb.as_ref().map(|_| seg_rgb.as_mut_slice()),
+                    r.out.depth.as_ref().map(|_| fine_depth.as_mut_slice()),
+                    &fine,
+                )
+                .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
+            let samples = sample_pattern(f);
+            if let Some(rgb) = r.out.rgb.as_deref_mut() {
+                downsample_rgb(seg_rgb, rgb, r.width, f, samples);
+            }
+            if let Some(depth) = r.out.depth.as_deref_mut() {
+                let row = f * r.width;
+                let (sx, sy) = samples[0];
+                for (y, out) in depth.chunks_exact_mut(r.width).enumerate() {
+                    let fine_row = &fine_depth[(f * y + sy) * row..][..row];
+                    for (x, o) in out.iter_mut().enumerate() {
+                        *o = fine_row[f * x + sx];
+                    }
+                }
+            }
         }
         if r.out.segmentation.is_some() || r.out.segmentation_type.is_some() {
             set_segmentation_flags(scene, true);
@@ -342,13 +433,55 @@ impl Pass<'_> {
                 .read_pixels(Some(seg_rgb), None, &viewport)
                 .map_err(|e| Error::Render(format!("mjr_readPixels: {e}")))?;
             if let Some(seg) = r.out.segmentation.as_deref_mut() {
-                decode_segmentation(scene, seg_rgb, seg_ids, seg, |g| g.objid);
+                decode_segmentation(scene, segments, seg_rgb, seg_ids, seg, |g| g.objid);
             }
             if let Some(seg) = r.out.segmentation_type.as_deref_mut() {
-                decode_segmentation(scene, seg_rgb, seg_ids, seg, |g| g.objtype);
+                decode_segmentation(scene, segments, seg_rgb, seg_ids, seg, |g| g.objtype);
             }
         }
         Ok(())
+    }
+}
+
+/// The sub-pixels `(x, y)` (from the bottom left) of an `f × f` block that make one pixel:
+/// for `f = 4`, the four positions of OpenGL's standard 4× multisampling pattern (`(0.375,
+/// 0.125)`, `(0.875, 0.375)`, `(0.125, 0.625)`, `(0.625, 0.875)` of the pixel, sample 0
+/// first: the one a multisampled depth buffer resolves to); otherwise every sub-pixel.
+fn sample_pattern(f: usize) -> &'static [(usize, usize)] {
+    match f {
+        4 => &[(1, 0), (3, 1), (0, 2), (2, 3)],
+        2 => &[(0, 0), (1, 0), (0, 1), (1, 1)],
+        3 => &[
+            (0, 0),
+            (1, 0),
+            (2, 0),
+            (0, 1),
+            (1, 1),
+            (2, 1),
+            (0, 2),
+            (1, 2),
+            (2, 2),
+        ],
+        _ => &[(0, 0)],
+    }
+}
+
+/// Averages the `samples` of each `f × f` block of the RGB frame `fine` (`f · width` pixels
+/// a row) into one pixel of `out` (`width` pixels a row), rounding to nearest.
+fn downsample_rgb(fine: &[u8], out: &mut [u8], width: usize, f: usize, samples: &[(usize, usize)]) {
+    let fine_row = 3 * f * width;
+    let count = samples.len().max(1) as u32;
+    for (y, out_row) in out.chunks_exact_mut(3 * width).enumerate() {
+        let block = &fine[f * y * fine_row..][..f * fine_row];
+        for (x, px) in out_row.chunks_exact_mut(3).enumerate() {
+            for (c, v) in px.iter_mut().enumerate() {
+                let sum: u32 = samples
+                    .iter()
+                    .map(|&(dx, dy)| u32::from(block[dy * fine_row + 3 * (f * x + dx) + c]))
+                    .sum();
+                *v = ((sum + count / 2) / count) as u8;
+            }
+        }
     }
 }
 
@@ -427,9 +560,11 @@ fn set_segmentation_flags(scene: &mut MjvScene, on: bool) {
 
 /// robosuite's `read_pixels(segmentation=True)[..., 1]` (or `[..., 0]`, by `field`): the segment colour `r + 256 g +
 /// 65536 b` is `segid + 1` of a scene geom (0: background), mapped to that geom's `objid`
-/// (`-1` where no geom was drawn).
+/// (`-1` where no geom was drawn). `segments` is the number of segment ids
+/// `mjv_updateScene` gave (the scene's geom count before culling).
 fn decode_segmentation(
     scene: &MjvScene,
+    segments: usize,
     rgb: &[u8],
     ids: &mut Vec<i32>,
     out: &mut [i32],
@@ -438,18 +573,120 @@ fn decode_segmentation(
     let ffi = scene.ffi();
     let ngeom = ffi.ngeom.max(0) as usize;
     ids.clear();
-    ids.resize(ngeom + 1, -1);
+    ids.resize(segments + 1, -1);
     // SAFETY: `geoms` holds `ngeom` initialised entries after `mjv_updateScene`.
     let geoms = unsafe { std::slice::from_raw_parts(ffi.geoms, ngeom) };
     for g in geoms {
-        if g.segid >= 0 && (g.segid as usize) < ngeom {
+        if g.segid >= 0 && (g.segid as usize) < segments {
             ids[g.segid as usize + 1] = field(g);
         }
     }
     for (px, o) in rgb.chunks_exact(3).zip(out.iter_mut()) {
         let c = px[0] as usize | (px[1] as usize) << 8 | (px[2] as usize) << 16;
-        *o = if c <= ngeom { ids[c] } else { ids[0] };
+        *o = if c <= segments { ids[c] } else { ids[0] };
     }
+}
+
+/// Whether MuJoCo draws anything of the scene outside the camera's view volume: a floor or
+/// box reflection (the mirrored scene) or a shadow (geoms out of view cast shadows in view).
+fn draws_outside_view(ffi: &mujoco_rs::mujoco_c::mjvScene) -> bool {
+    use mujoco_rs::mujoco_c::mjtGeom;
+    let ngeom = ffi.ngeom.max(0) as usize;
+    let nlight = ffi.nlight.clamp(0, ffi.lights.len() as i32) as usize;
+    // SAFETY: `geoms` holds `ngeom` initialised entries after `mjv_updateScene`.
+    let geoms = unsafe { std::slice::from_raw_parts(ffi.geoms, ngeom) };
+    let reflection = ffi.flags[mjtRndFlag::mjRND_REFLECTION as usize] != 0
+        && geoms.iter().any(|g| {
+            (g.type_ == mjtGeom::mjGEOM_PLANE as i32 || g.type_ == mjtGeom::mjGEOM_BOX as i32)
+                && g.reflectance > 0.0
+        });
+    let shadow = ffi.flags[mjtRndFlag::mjRND_SHADOW as usize] != 0
+        && ffi.lights[..nlight].iter().any(|l| l.castshadow != 0);
+    reflection || shadow
+}
+
+/// Drops from the scene the model geoms whose bounding sphere (`modelrbound` around the
+/// geom's position) lies wholly outside the view volume of the scene's camera, for a
+/// viewport of `aspect` (width / height), as `mjr_render` sets it up. Nothing it drops
+/// could reach a pixel: it does nothing when the scene draws reflections or shadows, or for
+/// an orthographic camera; geoms without a model bound (decor, planes) are kept, and the
+/// order of the kept ones is unchanged.
+fn cull_outside_view(scene: &mut MjvScene, aspect: f32) {
+    // SAFETY: geoms are only reordered and `ngeom` lowered; MuJoCo reads nothing else from
+    // the culled entries.
+    let ffi = unsafe { scene.ffi_mut() };
+    if draws_outside_view(ffi) {
+        return;
+    }
+    // SAFETY: both cameras were set by `mjv_updateScene`; `mjr_render` draws their average.
+    let cam = unsafe { mujoco_rs::mujoco_c::mjv_averageCamera(&ffi.camera[0], &ffi.camera[1]) };
+    if cam.orthographic != 0
+        || cam.frustum_near.is_nan()
+        || cam.frustum_near <= 0.0
+        || !aspect.is_finite()
+    {
+        return;
+    }
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let norm = |a: [f32; 3]| {
+        let n = dot(a, a).sqrt();
+        [a[0] / n, a[1] / n, a[2] / n]
+    };
+    let fwd = norm(cam.forward);
+    let up = norm(cam.up);
+    // gluLookAt's x axis: forward × up.
+    let right = norm([
+        fwd[1] * up[2] - fwd[2] * up[1],
+        fwd[2] * up[0] - fwd[0] * up[2],
+        fwd[0] * up[1] - fwd[1] * up[0],
+    ]);
+    let near = cam.frustum_near;
+    let half = if cam.frustum_width != 0.0 {
+        cam.frustum_width
+    } else {
+        0.5 * aspect * (cam.frustum_top - cam.frustum_bottom)
+    };
+    let (left, rightx) = (cam.frustum_center - half, cam.frustum_center + half);
+    let (bottom, top) = (cam.frustum_bottom, cam.frustum_top);
+    // Inward unit normals (in the (x, z) or (y, z) plane) of the four side planes.
+    let side = |a: f32, sign: f32| {
+        let l = (near * near + a * a).sqrt();
+        (sign * near / l, -sign * a / l)
+    };
+    let planes = [
+        (0, side(left, 1.0)),
+        (0, side(rightx, -1.0)),
+        (1, side(bottom, 1.0)),
+        (1, side(top, -1.0)),
+    ];
+    let ngeom = ffi.ngeom.max(0) as usize;
+    // SAFETY: `geoms` holds `ngeom` initialised entries after `mjv_updateScene`.
+    let geoms = unsafe { std::slice::from_raw_parts_mut(ffi.geoms, ngeom) };
+    let mut kept = 0;
+    for i in 0..ngeom {
+        let g = &geoms[i];
+        // A margin of 1 % and 1 mm against rounding: culling less is always safe.
+        let r = g.modelrbound * 1.01 + 1e-3;
+        let outside = g.modelrbound > 0.0 && {
+            let v = [
+                g.pos[0] - cam.pos[0],
+                g.pos[1] - cam.pos[1],
+                g.pos[2] - cam.pos[2],
+            ];
+            let xy = [dot(v, right), dot(v, up)];
+            let z = dot(v, fwd);
+            z < near - r
+                || z > cam.frustum_far + r
+                || planes
+                    .iter()
+                    .any(|&(axis, (nx, nz))| nx * xy[axis] + nz * z < -r)
+        };
+        if !outside {
+            geoms.swap(kept, i);
+            kept += 1;
+        }
+    }
+    ffi.ngeom = kept as i32;
 }
 
 /// robosuite's `get_real_depth_map`: a raw depth value in `[0, 1]` as a distance in metres,
