@@ -302,3 +302,65 @@ fn step_into_with_cameras_does_not_allocate() {
         assert_eq!(n, 0, "step_into {i} with cameras allocated {n} times");
     }
 }
+
+/// `OSC_POSE` and `OSC_POSITION`, coupled and not, on the fixed-size matrices of a 7-joint
+/// and a 6-joint arm and on heap-sized ones: no allocation in `set_goal` and `compute`.
+#[test]
+fn osc_on_fixed_and_heap_sized_matrices_does_not_allocate() {
+    use robosuite_env::controllers::config::OscConfig;
+    use robosuite_env::controllers::{ArmBinding, ArmController, Osc, Timing};
+    let timing = Timing {
+        timestep: 0.002,
+        control_freq: 20.0,
+    };
+    for robot in ["Panda", "UR5e"] {
+        let mut env = make_with("Lift", EnvConfig::default().with_robots([robot])).unwrap();
+        env.reset(Some(3), None).unwrap();
+        let r = &env.robots()[0];
+        let arm = r.arm();
+        let model = env.sim().model();
+        let bind = ArmBinding {
+            site: arm.eef_site(),
+            base_site: robosuite_env::sim::site_id(model, "robot0_right_center").unwrap(),
+            qpos: r.joint_qpos()[arm.joints()].to_vec(),
+            dofs: r.joint_dofs()[arm.joints()].to_vec(),
+            nv: model.ffi().nv as usize,
+            ctrlrange: arm.ctrlrange().to_vec(),
+        };
+        let actuators = arm.actuators().to_vec();
+        for (use_ori, uncouple, dynamic) in (0..8).map(|i| (i & 1 == 0, i & 2 == 0, i & 4 == 0)) {
+            let config = OscConfig {
+                uncouple_pos_ori: uncouple,
+                ..OscConfig::default()
+            };
+            let mut osc = Osc::new(&config, use_ori, bind.clone(), timing, "c").unwrap();
+            if dynamic {
+                osc = osc.with_dynamic_matrices();
+            }
+            assert_eq!(osc.uses_fixed_size(), !dynamic);
+            let mut sim = Sim::new(model.clone()).unwrap();
+            sim.set_state(&env.get_state()).unwrap();
+            osc.reset(&sim);
+            let mut tau = vec![0.0; bind.dofs.len()];
+            let action = [0.4, -0.2, 0.3, 0.1, -0.1, 0.2];
+            let action = &action[..osc.action_dim()];
+            let mut n = 0;
+            for sub in 0..50 {
+                sim.step1().unwrap();
+                n += allocations(|| {
+                    if sub % 25 == 0 {
+                        osc.set_goal(&sim, action);
+                    }
+                    osc.compute(&sim, &mut tau);
+                });
+                for (&a, &t) in actuators.iter().zip(&tau) {
+                    sim.data_mut().ctrl_mut()[a] = t;
+                }
+                sim.step2().unwrap();
+            }
+            let what = format!("{robot} use_ori {use_ori} uncouple {uncouple} dynamic {dynamic}");
+            assert_eq!(n, 0, "{what}: allocated {n} times");
+            assert!(tau.iter().any(|t| t.abs() > 1e-3), "{what}: no torque");
+        }
+    }
+}

@@ -19,6 +19,7 @@ mod interpolator;
 mod joint_position;
 mod joint_torque;
 mod joint_velocity;
+mod opspace;
 mod osc;
 mod state;
 pub mod table;

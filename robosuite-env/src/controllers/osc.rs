@@ -3,18 +3,19 @@
 
 use super::config::{ImpedanceMode, InputRefFrame, InputType, Interpolation, OscConfig, join};
 use super::interpolator::{InterpolationKind, LinearInterpolator};
+use super::opspace::Algebra;
 use super::state::{ArmState, Needs};
 use super::{
     ActionScale, ArmBinding, ArmController, Timing, check_gains, check_ramp_ratio, check_state,
 };
 use crate::controllers::interpolator::mat2euler_f32;
 use crate::math::{
-    PsdPinv, axisangle2quat, euler2mat, mat_from_row_major, orientation_error, quat2mat_f32,
+    axisangle2quat, euler2mat, mat_from_row_major, orientation_error, quat2mat_f32,
     rotvec_to_matrix,
 };
 use crate::sim::Sim;
 use gym_core::{Error, Result};
-use nalgebra::{Cholesky, DMatrix, DVector, Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{DVector, Matrix3, Vector3};
 use std::f64::consts::PI;
 
 /// The operational-space controller of one arm (`OSC_POSE`, or `OSC_POSITION` which holds
@@ -38,6 +39,9 @@ use std::f64::consts::PI;
 ///   interpolator and uses its output as a world position (with the default base frame a
 ///   zero action then moves the hand about 40 cm); here the interpolated goal is mapped
 ///   from the input frame to the world, so both frames behave as robosuite's world frame.
+///
+/// The matrices of an arm of up to 7 joints are fixed-size (on the stack, loops of known
+/// length); a larger arm's are heap-sized, allocated once. Both give the same bits.
 #[derive(Debug, Clone)]
 pub struct Osc {
     use_ori: bool,
@@ -63,39 +67,8 @@ pub struct Osc {
     goal_pos: Vector3<f64>,
     goal_ori: Matrix3<f64>,
     initial_joint: DVector<f64>,
-    work: Work,
+    algebra: Algebra,
 }
-
-/// The controller's n-sized buffers.
-#[derive(Debug, Clone)]
-struct Work {
-    m_inv: DMatrix<f64>,
-    chol: Option<DMatrix<f64>>,
-    j_minv: DMatrix<f64>,
-    jbar: DMatrix<f64>,
-    null: DMatrix<f64>,
-    posture: DVector<f64>,
-    posture_m: DVector<f64>,
-    tau: DVector<f64>,
-}
-
-impl Work {
-    fn new(n: usize) -> Self {
-        Self {
-            m_inv: DMatrix::zeros(n, n),
-            chol: Some(DMatrix::zeros(n, n)),
-            j_minv: DMatrix::zeros(6, n),
-            jbar: DMatrix::zeros(n, 6),
-            null: DMatrix::zeros(n, n),
-            posture: DVector::zeros(n),
-            posture_m: DVector::zeros(n),
-            tau: DVector::zeros(n),
-        }
-    }
-}
-
-/// robosuite's nullspace stiffness (`nullspace_torques`' `joint_kp`).
-const NULLSPACE_KP: f64 = 10.0;
 
 fn six(v: Vec<f64>) -> [f64; 6] {
     std::array::from_fn(|i| v[i])
@@ -217,8 +190,23 @@ impl Osc {
             goal_pos: Vector3::zeros(),
             goal_ori: Matrix3::identity(),
             initial_joint: DVector::zeros(n),
-            work: Work::new(n),
+            algebra: Algebra::new(n, true),
         })
+    }
+
+    /// The same controller computing on heap-sized matrices, the algebra of arms of more
+    /// than 7 joints, whatever the arm's size. Arms of up to 7 joints compute on fixed-size
+    /// matrices, bit for bit the same torques at less cost; this is for comparing the two.
+    #[must_use]
+    pub fn with_dynamic_matrices(mut self) -> Self {
+        self.algebra = Algebra::new(self.arm.joints(), false);
+        self
+    }
+
+    /// Whether the controller computes on fixed-size matrices (an arm of up to 7 joints,
+    /// unless [`Osc::with_dynamic_matrices`]).
+    pub fn uses_fixed_size(&self) -> bool {
+        self.algebra.is_fixed()
     }
 
     /// The model binding.
@@ -299,36 +287,6 @@ impl Osc {
             }
             if limited {
                 self.goal_ori = euler2mat(euler);
-            }
-        }
-    }
-
-    /// `M⁻¹` of the arm's mass matrix into `work.m_inv` (robosuite: `np.linalg.inv`):
-    /// Cholesky in place when positive definite, LU otherwise.
-    fn invert_mass(mass: &DMatrix<f64>, work: &mut Work) {
-        let n = mass.nrows();
-        let mut buf = work.chol.take().unwrap_or_else(|| DMatrix::zeros(n, n));
-        buf.copy_from(mass);
-        let chol = Cholesky::new_unchecked(buf);
-        let l = chol.l_dirty();
-        let definite = (0..n).all(|i| l[(i, i)].is_finite() && l[(i, i)] > 0.0);
-        work.m_inv.fill_with_identity();
-        if definite {
-            chol.solve_mut(&mut work.m_inv);
-            work.chol = Some(chol.unpack_dirty());
-        } else {
-            // Not positive definite (a degenerate model): the general inverse, or the
-            // pseudo-inverse when singular. Rare, so it may allocate.
-            work.chol = Some(chol.unpack_dirty());
-            match mass.clone().try_inverse() {
-                Some(inv) => work.m_inv.copy_from(&inv),
-                None => {
-                    let pinv = mass
-                        .clone()
-                        .pseudo_inverse(1e-15)
-                        .unwrap_or_else(|_| DMatrix::zeros(n, n));
-                    work.m_inv.copy_from(&pinv);
-                }
             }
         }
     }
@@ -519,79 +477,17 @@ impl ArmController for Osc {
         let force = Vector3::from_fn(|i, _| e_p[i] * kp[i] + (-v[i]) * kd[i]);
         let torque = Vector3::from_fn(|i, _| e_o[i] * kp[3 + i] + (-om[i]) * kd[3 + i]);
 
-        // Operational-space matrices (control_utils.opspace_matrices).
-        let n = self.arm.joints();
-        let (jac, mass) = (&self.arm.jac, &self.arm.mass);
-        let w = &mut self.work;
-        Self::invert_mass(mass, w);
-        // Small products by hand: nalgebra's dynamic matrix products allocate packing
-        // buffers.
-        for r in 0..6 {
-            for c in 0..n {
-                let mut s = 0.0;
-                for k in 0..n {
-                    s += jac[(r, k)] * w.m_inv[(k, c)];
-                }
-                w.j_minv[(r, c)] = s;
-            }
-        }
-        let lambda_inv = Matrix6::from_fn(|r, c| {
-            let mut s = 0.0;
-            for k in 0..n {
-                s += w.j_minv[(r, k)] * jac[(c, k)];
-            }
-            s
-        });
-        let lambda = lambda_inv.pinv_psd();
-        let wrench: Vector6<f64> = if self.uncouple {
-            let lambda_p = lambda_inv.fixed_view::<3, 3>(0, 0).into_owned().pinv_psd();
-            let lambda_o = lambda_inv.fixed_view::<3, 3>(3, 3).into_owned().pinv_psd();
-            let fp = lambda_p * force;
-            let fo = lambda_o * torque;
-            Vector6::new(fp[0], fp[1], fp[2], fo[0], fo[1], fo[2])
-        } else {
-            lambda
-                * Vector6::new(
-                    force[0], force[1], force[2], torque[0], torque[1], torque[2],
-                )
-        };
-        // τ = Jᵀ wrench + h
-        let bias = sim.data().qfrc_bias();
-        let dofs = &self.arm.binding().dofs;
-        for c in 0..n {
-            let mut s = 0.0;
-            for r in 0..6 {
-                s += jac[(r, c)] * wrench[r];
-            }
-            w.tau[c] = s + bias[dofs[c]];
-        }
-        // Nullspace posture term (control_utils.nullspace_torques): N = I − M⁻¹Jᵀ Λ J.
-        for rr in 0..n {
-            for c in 0..6 {
-                let mut s = 0.0;
-                for k in 0..6 {
-                    s += w.j_minv[(k, rr)] * lambda[(k, c)];
-                }
-                w.jbar[(rr, c)] = s;
-            }
-        }
-        for i in 0..n {
-            for j in 0..n {
-                let mut s = 0.0;
-                for k in 0..6 {
-                    s += w.jbar[(i, k)] * jac[(k, j)];
-                }
-                w.null[(i, j)] = f64::from(u8::from(i == j)) - s;
-            }
-        }
-        let kvn = NULLSPACE_KP.sqrt() * 2.0;
-        for i in 0..n {
-            w.posture[i] =
-                (self.initial_joint[i] - self.arm.q[i]) * NULLSPACE_KP - self.arm.qd[i] * kvn;
-        }
-        mass.mul_to(&w.posture, &mut w.posture_m);
-        w.tau.gemv_tr(1.0, &w.null, &w.posture_m, 1.0);
-        torques.copy_from_slice(w.tau.as_slice());
+        // Operational-space matrices (control_utils.opspace_matrices) and the nullspace
+        // posture term (control_utils.nullspace_torques).
+        self.algebra.torques(
+            &self.arm,
+            &self.initial_joint,
+            sim.data().qfrc_bias(),
+            &force,
+            &torque,
+            self.uncouple,
+            torques,
+        );
         self.arm.finish();
     }
 

@@ -16,6 +16,7 @@ mod door_env;
 mod lift_env;
 mod nut_assembly_env;
 mod observation_layouts;
+mod osc_fixed_size;
 mod pick_place_env;
 mod reliability;
 mod render;
