@@ -164,6 +164,7 @@ impl Drop for SharedModel {
 /// itself included): the words that differ between two copies of one model by exactly the
 /// distance between their buffers (MuJoCo assigns every array pointer, empty ones included,
 /// inside the buffer). Computed once from a tiny model.
+#[cfg(target_os = "linux")]
 fn pointer_offsets() -> &'static [usize] {
     static OFFSETS: OnceLock<Vec<usize>> = OnceLock::new();
     OFFSETS.get_or_init(|| {
@@ -187,6 +188,7 @@ fn pointer_offsets() -> &'static [usize] {
 
 /// A tiny compiled model whose copies provide `mjModel` headers (MuJoCo allocates and frees
 /// them, as `MjModel` requires).
+#[cfg(target_os = "linux")]
 fn template() -> &'static MjModel {
     static TEMPLATE: OnceLock<MjModel> = OnceLock::new();
     TEMPLATE.get_or_init(|| {
@@ -204,6 +206,7 @@ fn template() -> &'static MjModel {
 /// # Safety
 /// `buffer` must hold a copy of `src`'s buffer and live as long as the header; the header
 /// must be freed with [`View::free_header`].
+#[cfg(target_os = "linux")]
 unsafe fn header_over(src: &mjModel, buffer: *mut u8) -> Result<MjModel, String> {
     let offsets = pointer_offsets();
     let mut header = MjModel::clone(template());

@@ -130,3 +130,33 @@ fn flat(obs: &DictValue) -> Vec<f64> {
         .flat_map(|k| get(obs, k))
         .collect()
 }
+
+/// The 8-byte words of a model header.
+fn header_words(model: &mujoco_rs::wrappers::mj_model::MjModel) -> Vec<u64> {
+    let n = std::mem::size_of::<mujoco_rs::mujoco_c::mjModel>() / 8;
+    let p = std::ptr::from_ref(model.ffi()).cast::<u64>();
+    // SAFETY: whole words of the struct, read unaligned.
+    (0..n).map(|k| unsafe { p.add(k).read_unaligned() }).collect()
+}
+
+#[test]
+fn a_view_header_is_the_shared_header_with_its_pointers_moved_to_its_own_memory() {
+    let env = make("Lift").unwrap();
+    let (view, base) = (env.sim().model(), shared(&env).model());
+    let (vb, bb) = (view.ffi().buffer as u64, base.ffi().buffer as u64);
+    let mut moved = 0;
+    for (v, b) in header_words(view).into_iter().zip(header_words(base)) {
+        if v != b {
+            assert_eq!(v.wrapping_sub(vb), b.wrapping_sub(bb), "a word that is no buffer pointer");
+            moved += 1;
+        }
+    }
+    assert!(moved > 100, "every array pointer moves ({moved})");
+    // MuJoCo keeps nothing of a model outside its buffer: two copies differ only in
+    // pointers into their own buffers.
+    let (c1, c2) = (base.clone(), base.clone());
+    let (b1, b2) = (c1.ffi().buffer as u64, c2.ffi().buffer as u64);
+    for (x, y) in header_words(&c1).into_iter().zip(header_words(&c2)) {
+        assert!(x == y || x.wrapping_sub(b1) == y.wrapping_sub(b2));
+    }
+}
