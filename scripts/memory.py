@@ -37,7 +37,8 @@ def main() -> None:
     p.add_argument("--envs", type=int, default=128)
     p.add_argument("--one-by-one", action="store_true")
     args = p.parse_args()
-    kwargs = dict(robots="Panda", has_renderer=False, has_offscreen_renderer=False,
+    robots = ["Panda", "Panda"] if args.task.startswith("TwoArm") else "Panda"
+    kwargs = dict(robots=robots, has_renderer=False, has_offscreen_renderer=False,
                   use_camera_obs=False)
     start = memory()
     first = suite.make(args.task, **kwargs)

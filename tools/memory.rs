@@ -65,7 +65,8 @@ fn main() -> Result<()> {
                 env.sim_mut().data_mut().make_model_private();
             }
             env.reset(Some(i as u64), None)?;
-            let zero: ArrayD<f64> = ArrayD::zeros(env.action_space().shape().unwrap_or(&[]).to_vec());
+            let zero: ArrayD<f64> =
+                ArrayD::zeros(env.action_space().shape().unwrap_or(&[]).to_vec());
             let _ = env.step(&zero)?;
             envs.push(env);
             if i == 0 {

@@ -9,12 +9,12 @@
 //! under it; when it is dropped it releases the handle instead of freeing the memory, and the
 //! memory lives on for as long as the other owner keeps it (a NumPy view included).
 
+use super::shared::{Mapping, SharedModel, View};
 use mujoco_rs::mujoco_c::{
     mj_copyData, mj_deleteData, mj_fullM, mj_getState, mj_makeData, mj_resetData, mj_setState,
     mj_stateSize, mjContact, mjData, mjModel,
 };
 use mujoco_rs::wrappers::mj_model::MjModel;
-use super::shared::{Mapping, SharedModel, View};
 use std::any::Any;
 use std::mem::ManuallyDrop;
 use std::ptr::NonNull;

@@ -15,10 +15,10 @@ mod xml;
 pub use contacts::{GeomSet, any_contact_between, any_contact_with};
 pub use data::{Data, KeepAlive};
 pub use names::{actuator_for_joint, actuator_id, body_id, geom_id, joint_id, sensor_adr, site_id};
-pub use shared::SharedModel;
 pub use resize::{
     BoxGeomUpdate, reshape_body_from, resize_box_body, resize_cylinder_body, resized_box_bodies,
 };
+pub use shared::SharedModel;
 pub use version::{MUJOCO_VERSION, check_mujoco_version};
 pub use xml::scene_xml;
 

@@ -226,7 +226,9 @@ unsafe fn header_over(src: &mjModel, buffer: *mut u8) -> Result<MjModel, String>
             let v = w.read_unaligned();
             if !(from..=end).contains(&v) {
                 View::free_header(header);
-                return Err(format!("a model pointer (offset {off}) lies outside its buffer"));
+                return Err(format!(
+                    "a model pointer (offset {off}) lies outside its buffer"
+                ));
             }
             w.write_unaligned(v - from + to);
         }

@@ -16,7 +16,9 @@ fn model_bytes(model: &mujoco_rs::wrappers::mj_model::MjModel) -> Vec<u8> {
 }
 
 fn shared(env: &RobosuiteEnv) -> &Arc<robosuite_env::sim::SharedModel> {
-    env.sim().shared_model().expect("a made env views the cached model")
+    env.sim()
+        .shared_model()
+        .expect("a made env views the cached model")
 }
 
 #[test]
@@ -24,11 +26,17 @@ fn envs_of_one_configuration_share_one_model() {
     let a = make("Lift").unwrap();
     let b = make("Lift").unwrap();
     assert!(Arc::ptr_eq(shared(&a), shared(&b)));
-    assert!(Arc::strong_count(shared(&a)) >= 3, "the cache and both envs");
+    assert!(
+        Arc::strong_count(shared(&a)) >= 3,
+        "the cache and both envs"
+    );
     #[cfg(target_os = "linux")]
     assert!(shared(&a).is_mapped());
     // Each env's model equals the shared one, through memory of its own address.
-    assert_eq!(model_bytes(a.sim().model()), model_bytes(shared(&a).model()));
+    assert_eq!(
+        model_bytes(a.sim().model()),
+        model_bytes(shared(&a).model())
+    );
     assert_ne!(a.sim().model().ffi().buffer, b.sim().model().ffi().buffer);
     // Another configuration, another model.
     let c = make("Stack").unwrap();
@@ -56,7 +64,11 @@ fn what_one_env_writes_no_other_env_sees() {
     }
     assert!(a.sim().model().geom_rgba().iter().all(|c| *c == [0.25; 4]));
     assert_eq!(model_bytes(b.sim().model()), b_before);
-    assert_eq!(model_bytes(shared(&a).model()), base, "the shared model never changes");
+    assert_eq!(
+        model_bytes(shared(&a).model()),
+        base,
+        "the shared model never changes"
+    );
     // A new env starts from the compiled model, not from anything written since.
     let c = make("Lift").unwrap();
     assert_eq!(model_bytes(c.sim().model()), base);
@@ -125,10 +137,15 @@ fn run(env: &mut RobosuiteEnv, i: usize, diverge: bool) -> Vec<Vec<f64>> {
 }
 
 fn flat(obs: &DictValue) -> Vec<f64> {
-    ["robot0_joint_pos", "robot0_eef_pos", "cube_pos", "cube_quat"]
-        .iter()
-        .flat_map(|k| get(obs, k))
-        .collect()
+    [
+        "robot0_joint_pos",
+        "robot0_eef_pos",
+        "cube_pos",
+        "cube_quat",
+    ]
+    .iter()
+    .flat_map(|k| get(obs, k))
+    .collect()
 }
 
 /// The 8-byte words of a model header.
@@ -136,7 +153,9 @@ fn header_words(model: &mujoco_rs::wrappers::mj_model::MjModel) -> Vec<u64> {
     let n = std::mem::size_of::<mujoco_rs::mujoco_c::mjModel>() / 8;
     let p = std::ptr::from_ref(model.ffi()).cast::<u64>();
     // SAFETY: whole words of the struct, read unaligned.
-    (0..n).map(|k| unsafe { p.add(k).read_unaligned() }).collect()
+    (0..n)
+        .map(|k| unsafe { p.add(k).read_unaligned() })
+        .collect()
 }
 
 #[test]
@@ -147,7 +166,11 @@ fn a_view_header_is_the_shared_header_with_its_pointers_moved_to_its_own_memory(
     let mut moved = 0;
     for (v, b) in header_words(view).into_iter().zip(header_words(base)) {
         if v != b {
-            assert_eq!(v.wrapping_sub(vb), b.wrapping_sub(bb), "a word that is no buffer pointer");
+            assert_eq!(
+                v.wrapping_sub(vb),
+                b.wrapping_sub(bb),
+                "a word that is no buffer pointer"
+            );
             moved += 1;
         }
     }
