@@ -165,16 +165,16 @@ impl Drop for SharedModel {
 /// distance between their buffers (MuJoCo assigns every array pointer, empty ones included,
 /// inside the buffer). Computed once from a tiny model.
 #[cfg(target_os = "linux")]
-fn pointer_offsets() -> &'static [usize] {
-    static OFFSETS: OnceLock<Vec<usize>> = OnceLock::new();
-    OFFSETS.get_or_init(|| {
-        let t = template();
+fn pointer_offsets() -> Option<&'static [usize]> {
+    static OFFSETS: OnceLock<Option<Vec<usize>>> = OnceLock::new();
+    let offsets = OFFSETS.get_or_init(|| {
+        let t = template()?;
         let (a, b) = (MjModel::clone(t), MjModel::clone(t));
         let words = std::mem::size_of::<mjModel>() / 8;
         let wa = std::ptr::from_ref(a.ffi()).cast::<u64>();
         let wb = std::ptr::from_ref(b.ffi()).cast::<u64>();
         let (ba, bb) = (a.ffi().buffer as u64, b.ffi().buffer as u64);
-        (0..words)
+        let found = (0..words)
             .filter(|&k| {
                 // SAFETY: `k` < the number of whole 8-byte words of the struct; unaligned
                 // reads, as padding may be anywhere.
@@ -182,19 +182,20 @@ fn pointer_offsets() -> &'static [usize] {
                 x != y && x.wrapping_sub(ba) == y.wrapping_sub(bb)
             })
             .map(|k| k * 8)
-            .collect()
-    })
+            .collect();
+        Some(found)
+    });
+    offsets.as_deref()
 }
 
 /// A tiny compiled model whose copies provide `mjModel` headers (MuJoCo allocates and frees
 /// them, as `MjModel` requires).
 #[cfg(target_os = "linux")]
-fn template() -> &'static MjModel {
-    static TEMPLATE: OnceLock<MjModel> = OnceLock::new();
-    TEMPLATE.get_or_init(|| {
-        MjModel::from_xml_string("<mujoco><worldbody/></mujoco>")
-            .expect("MuJoCo compiles an empty model")
-    })
+fn template() -> Option<&'static MjModel> {
+    static TEMPLATE: OnceLock<Option<MjModel>> = OnceLock::new();
+    TEMPLATE
+        .get_or_init(|| MjModel::from_xml_string("<mujoco><worldbody/></mujoco>").ok())
+        .as_ref()
 }
 
 /// A model header equal to `src` whose pointers point at the same offsets in `buffer`
@@ -208,8 +209,10 @@ fn template() -> &'static MjModel {
 /// must be freed with [`View::free_header`].
 #[cfg(target_os = "linux")]
 unsafe fn header_over(src: &mjModel, buffer: *mut u8) -> Result<MjModel, String> {
-    let offsets = pointer_offsets();
-    let mut header = MjModel::clone(template());
+    let (Some(offsets), Some(template)) = (pointer_offsets(), template()) else {
+        return Err("MuJoCo did not compile the template model".into());
+    };
+    let mut header = MjModel::clone(template);
     let from = src.buffer as u64;
     let end = from + src.nbuffer as u64;
     let to = buffer as u64;
