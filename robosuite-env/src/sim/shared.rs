@@ -19,8 +19,15 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use std::mem::ManuallyDrop;
 use std::sync::{Arc, OnceLock};
 
-/// A compiled model shared, read-only, by the environments built from it (see the module
-/// documentation). Freed when the last [`SharedModel`] handle and the last view are dropped.
+/// A compiled model shared, read-only, by the environments built from it, each through its
+/// own copy-on-write view ([`Sim::new_shared`](super::Sim::new_shared)).
+///
+/// On Linux the model's buffer (every array of `mjModel`) lives in an in-memory file; each
+/// view is a private mapping of it (`mmap(MAP_PRIVATE)`) with its own `mjModel` header.
+/// Reads share the file's pages; the first write to a page copies that page for the view
+/// alone, so every view behaves as a private model while costing only the pages it wrote.
+/// Elsewhere (or when the kernel refuses the file) each view is a full copy. Freed when the
+/// last handle and the last view are dropped.
 pub struct SharedModel {
     inner: Inner,
 }
