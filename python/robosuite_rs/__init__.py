@@ -148,6 +148,9 @@ class RobosuiteEnv:
         self._xml_processors: list[Any] = []
         self._controller_configs: list[dict[str, Any] | None] = []
         self._obsv = EnvObservables(native)
+        # Whether visualize() ever ran (only then does a reset hide the sites again).
+        self._visualized = False
+        self._vis_cache: Any = None
 
     # --- robosuite's env object: env.sim, env.robots, the XML round trip ----------------
     @property
@@ -155,7 +158,7 @@ class RobosuiteEnv:
         """robosuite's ``MjSim`` over this env's own memory: ``sim.model._model`` and
         ``sim.data._data`` are a ``mujoco.MjModel`` and ``mujoco.MjData`` shared with the
         Rust env (see :mod:`robosuite_rs.binding_utils`)."""
-        if self._sim is None:  # made on first use; reset_from_xml_string makes a new one
+        if self._sim is None:  # made on first use; made anew when a scene gets a new model
             from .binding_utils import MjSim
 
             self._sim = MjSim(self._native)
@@ -210,7 +213,10 @@ class RobosuiteEnv:
         """robosuite's ``reset_from_xml_string``: reloads the env from a scene's MJCF (such
         as ``env.sim.model.get_xml()`` saved by robosuite or by this package, on any
         machine), then resets deterministically (robots at ``init_qpos``, objects as the
-        scene places them).
+        scene places them). A scene that differs from the current one only in the sizes of
+        generated boxes (the demonstrations of one task) is loaded into the current model
+        in place: ``env.sim`` and views of its arrays stay valid and show the new scene;
+        any other scene gets a new model and data (``env.sim`` is then a new object).
 
         Raises:
             ValueError / RuntimeError: for text that is not a scene of this task (the
@@ -218,15 +224,18 @@ class RobosuiteEnv:
         """
         if not isinstance(xml_string, str):
             raise TypeError(f"xml_string must be a str, got {type(xml_string).__name__}")
-        xml = self.edit_model_xml(xml_string)
+        # the native load points asset paths through a `robosuite/` folder at the local
+        # model files (what edit_model_xml does), so the text goes as given
+        xml = xml_string
         for processor in self._xml_processors:
             xml = processor(xml)
             if not isinstance(xml, str):
                 raise TypeError(f"an xml processor returned {type(xml).__name__}, not str")
-        self._native.reset_from_xml_string(xml)
+        _, in_place = self._native.reset_from_xml_string(xml)
         self._obsv.native_replaced()
-        self._sim = None
-        self._robots = None
+        if not in_place:  # a new model and data: env.sim and env.robots are made anew
+            self._sim = None
+            self._robots = None
 
     def get_ep_meta(self) -> dict[str, Any]:
         """Episode metadata (a copy), ``{}`` unless set."""
@@ -244,6 +253,126 @@ class RobosuiteEnv:
 
     def update_state(self) -> None:
         """robosuite's hook after setting a state: nothing to update here."""
+
+    # --- robosuite's visualization: env.visualize and the sites it toggles ---------------
+    @property
+    def _visualizations(self) -> set[str]:
+        """robosuite's visualization keywords: ``{"env", "robots", "grippers"}``."""
+        return {"env", "robots", "grippers"}
+
+    def visualize(self, vis_settings: dict[str, Any]) -> None:
+        """robosuite's ``visualize``: shows (``True``) or hides each setting's sites (the
+        task objects' for ``"env"``, the robots' for ``"robots"``, the grippers' for
+        ``"grippers"``) by the sign of their alpha, and with ``"grippers"`` on colours the
+        grip site red to green by its distance to the task's target (Lift's cube, Stack's
+        cube A, the closest nut handle or object, the door handle, the tool, the pot
+        handles), as robosuite's tasks do. A reset hides them all again (robosuite's reset
+        calls ``visualize`` with every setting off).
+
+        Raises:
+            ValueError: (also robosuite's ``KeyError``) for settings without one of
+                ``"env"``, ``"robots"``, ``"grippers"``; nothing is changed.
+        """
+        if not isinstance(vis_settings, dict):
+            raise TypeError(f"vis_settings must be a dict, got {type(vis_settings).__name__}")
+        missing = sorted(self._visualizations - set(vis_settings))
+        if missing:
+            raise _VisualizationError(f"vis_settings needs the keys {sorted(self._visualizations)}; missing {missing}")
+        self._visualized = True
+        model = self.sim.model
+        sites, _ = self._visual_sites()
+        for setting, ids in sites.items():
+            _set_sites_visibility(model, ids, bool(vis_settings[setting]))
+        if vis_settings["grippers"]:
+            self._visualize_task_grippers()
+
+    def _visual_sites(self) -> tuple[dict[str, np.ndarray], dict[str, "MujocoObject"]]:
+        """Per setting, the ids of the sites it toggles, and the task's objects by name
+        (kept until the scene is replaced)."""
+        sim = self.sim
+        if self._vis_cache is None or self._vis_cache[0] is not sim:
+            m = sim.model
+            objects = self.model.mujoco_objects
+
+            def ids(names: list[str]) -> np.ndarray:
+                return np.array([m.site_name2id(n) for n in names], dtype=np.int64)
+
+            sites = {
+                "env": ids([s for o in objects for s in o.sites]),
+                "robots": ids([s for r in self.robots for s in r.robot_model.sites]),
+                "grippers": ids(
+                    [s for r in self.robots for g in r.gripper.values() if g is not None for s in g.sites]
+                ),
+            }
+            self._vis_cache = (sim, sites, {o.name: o for o in objects})
+        return self._vis_cache[1], self._vis_cache[2]
+
+    def _visualize_task_grippers(self) -> None:
+        """The task's grip-site colouring (each robosuite task's ``visualize``)."""
+        name = self.name
+        _, objects = self._visual_sites()
+        robot0 = self.robots[0]
+        if name == "Lift" and "cube" in objects:
+            self._visualize_gripper_to_target(robot0.gripper, objects["cube"])
+        elif name == "Stack" and "cubeA" in objects:
+            self._visualize_gripper_to_target(robot0.gripper, objects["cubeA"])
+        elif name == "ToolHang" and "tool" in objects:
+            self._visualize_gripper_to_target(robot0.gripper, objects["tool"])
+        elif name == "Door" and "Door" in objects:
+            self._visualize_gripper_to_target(robot0.gripper, "Door_handle", target_type="site")
+        elif name.startswith("NutAssembly") or name.startswith("PickPlace"):
+            if name.startswith("NutAssembly"):
+                targets = [(f"{o.name}_handle_site", "site") for o in objects.values() if o.name.endswith("Nut")]
+            else:
+                targets = [(o.root_body, "body") for o in objects.values() if not o.name.startswith("Visual")]
+            for gripper in robot0.gripper.values():
+                if gripper is None or not targets:
+                    continue
+                dists = [self._gripper_to_target(gripper, t, kind, return_distance=True) for t, kind in targets]
+                target, kind = targets[int(np.argmin(dists))]
+                self._visualize_gripper_to_target(gripper, target, target_type=kind)
+        elif name == "TwoArmLift" and "pot" in objects:
+            handles = ["pot_handle0", "pot_handle1"]
+            if len(self.robots) == 1:
+                grippers = [robot0.gripper[arm] for arm in robot0.arms]
+            else:
+                grippers = [r.gripper[r.arms[0]] for r in self.robots]
+            for gripper, handle in zip(grippers, handles):
+                self._visualize_gripper_to_target(gripper, handle, target_type="site")
+
+    def _gripper_to_target(
+        self, gripper: Any, target: Any, target_type: str = "body", return_distance: bool = False
+    ) -> Any:
+        """robosuite's ``_gripper_to_target``: the vector (or with ``return_distance`` the
+        distance) from the gripper's grip site to ``target`` (a body, geom or site name, or
+        a task object, whose root body is used)."""
+        data = self.sim.data
+        gripper_pos = data.get_site_xpos(gripper.important_sites["grip_site"])
+        if isinstance(target, MujocoObject):
+            target_pos = data.get_body_xpos(target.root_body)
+        elif target_type == "body":
+            target_pos = data.get_body_xpos(target)
+        elif target_type == "site":
+            target_pos = data.get_site_xpos(target)
+        else:
+            target_pos = data.get_geom_xpos(target)
+        diff = target_pos - gripper_pos
+        return np.linalg.norm(diff) if return_distance else diff
+
+    def _visualize_gripper_to_target(self, gripper: Any, target: Any, target_type: str = "body") -> None:
+        """robosuite's ``_visualize_gripper_to_target``: colours the grip site of ``gripper``
+        (or of each gripper of a dict) from red (far) to green (at ``target``)."""
+        if isinstance(gripper, dict):
+            for g in gripper.values():
+                if g is not None:
+                    self._visualize_gripper_to_target(g, target, target_type)
+            return
+        dist = float(np.sum(np.square(self._gripper_to_target(gripper, target, target_type))))
+        max_dist = 0.1
+        scaled = (1.0 - min(dist / max_dist, 1.0)) ** 15
+        model = self.sim.model
+        rgba = model.site_rgba[model.site_name2id(gripper.important_sites["grip_site"])]
+        rgba[:3] = (1 - scaled, scaled, 0.0)
 
     # --- observables --------------------------------------------------------------------
     # robosuite's observables API (see robosuite_rs.observables and _env_observables): while
@@ -340,8 +469,12 @@ class RobosuiteEnv:
 
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
-        """Starts an episode; ``seed`` (an extension of robosuite's API) re-seeds the env."""
-        return self._obsv.after_reset(self._native.reset(seed))
+        """Starts an episode; ``seed`` (an extension of robosuite's API) re-seeds the env.
+        Sites shown by :meth:`visualize` are hidden again, as robosuite's reset does."""
+        obs = self._obsv.after_reset(self._native.reset(seed))
+        if self._visualized:
+            self.visualize({vis: False for vis in self._visualizations})
+        return obs
 
     def step(self, action: Any) -> tuple[OrderedDict[str, np.ndarray], float, bool, dict[str, Any]]:
         """Applies ``action``; returns ``(obs, reward, done, info)``.
@@ -478,6 +611,24 @@ class RobosuiteEnv:
 
     def __repr__(self) -> str:
         return f"<robosuite_rs.RobosuiteEnv {self.name} horizon={self.horizon}>"
+
+
+class _VisualizationError(ValueError, KeyError):
+    """Settings ``visualize`` cannot apply: a ``ValueError`` that is also the ``KeyError``
+    robosuite raises."""
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
+
+
+def _set_sites_visibility(model: Any, ids: np.ndarray, visible: bool) -> None:
+    """robosuite's ``set_sites_visibility`` for the sites ``ids``: a site is shown by a
+    positive alpha, hidden by a negative one (sites of alpha 0 stay as they are)."""
+    if ids.size == 0:
+        return
+    alpha = model.site_rgba[ids, 3]
+    flip = alpha < 0 if visible else alpha > 0
+    model.site_rgba[ids, 3] = np.where(flip, -alpha, alpha)
 
 
 class MujocoObject:

@@ -455,6 +455,36 @@ class EnvObservables:
         self.cache.clear()
         self.cache.update(cache)
 
+    def as_made(self) -> bool:
+        """Whether every observable is as the env made it (settings only: flags may
+        differ) and the clocks are aligned with the steps, so that a forced update's values
+        are the native observation's."""
+        return self.aligned and self._as_made()
+
+    def skip_forced_updates(self, k: int) -> None:
+        """The observables' clocks as ``k`` forced updates (``get_observations(True)``)
+        leave them, without reading anything: for a caller that read those updates' values
+        natively (``observe_states``) and makes a real forced update next, which samples
+        every enabled observable (value and cache) anew. Only for observables
+        :meth:`as_made` (no delay is drawn)."""
+        if k <= 0:
+            return
+        self.materialize()
+        self.fast = False
+        for o in self.map.values():
+            if not o._enabled:
+                continue
+            t, period = o._time_since_last_sample, o._sampling_timestep
+            sampled = o._sampled
+            for _ in range(k):
+                t += self.dt
+                sampled = True
+                if t >= period:
+                    t %= period
+                    sampled = False
+            o._time_since_last_sample, o._sampled = t, sampled
+            o._current_delay = 0.0
+
     def _as_made(self) -> bool:
         """Every observable as the env made it (settings only)."""
         if self.added:

@@ -5,8 +5,9 @@
 ``mujoco.MjData`` that share their memory with the Rust environment: what ``mujoco.mj_*``,
 ``mujoco.Renderer`` or ``mujoco.viewer`` read and write is what the environment steps. The
 memory belongs to those Python objects, so a NumPy view of ``data.qpos`` stays valid after
-``env.close()`` or after ``env.reset_from_xml_string`` replaced the model (it then shows the
-old simulation, no longer stepped).
+``env.close()`` or after ``env.reset_from_xml_string`` gave the env a new model (it then
+shows the old simulation, no longer stepped; a scene differing only in box sizes is loaded
+into the same memory instead).
 
 ``MjSim.forward`` / ``step`` / ``reset`` run through the environment (MuJoCo errors become
 ``RuntimeError``, the environment then needs a reset); writes through ``set_state`` /

@@ -54,8 +54,9 @@ def _module(name: str, doc: str, attrs: dict[str, Any], package: bool = False) -
 def install_as_robosuite() -> types.ModuleType:
     """Registers this package as ``robosuite`` in ``sys.modules``: ``import robosuite``,
     ``robosuite.make``, ``robosuite.utils.transform_utils``, ``robosuite.utils.camera_utils``,
-    ``robosuite.utils.binding_utils``, ``robosuite.wrappers`` (``GymWrapper``,
-    ``DataCollectionWrapper``, ``DemoSamplerWrapper``),
+    ``robosuite.utils.binding_utils``, ``robosuite.utils.mjmod``, ``robosuite.wrappers``
+    (``GymWrapper``, ``DataCollectionWrapper``, ``DemoSamplerWrapper``,
+    ``VisualizationWrapper``, ``DomainRandomizationWrapper``),
     ``robosuite.controllers``, ``robosuite.robots``, ``robosuite.models.robots``,
     ``robosuite.macros`` then give ours.
     Returns the ``robosuite`` module. Calling it again changes nothing.
@@ -126,6 +127,8 @@ def install_as_robosuite() -> types.ModuleType:
             "Wrapper": wrappers.Wrapper,
             "DataCollectionWrapper": wrappers.DataCollectionWrapper,
             "DemoSamplerWrapper": wrappers.DemoSamplerWrapper,
+            "VisualizationWrapper": wrappers.VisualizationWrapper,
+            "DomainRandomizationWrapper": wrappers.DomainRandomizationWrapper,
         },
         package=True,
     )
@@ -172,6 +175,10 @@ def install_as_robosuite() -> types.ModuleType:
     sys.modules["robosuite.utils.placement_samplers"] = placement_samplers
     sys.modules["robosuite.utils.camera_utils"] = camera_utils
     sys.modules["robosuite.utils.binding_utils"] = binding_utils
+    from .utils import mjmod
+
+    utils.mjmod = mjmod  # type: ignore[attr-defined]
+    sys.modules["robosuite.utils.mjmod"] = mjmod
     from . import observables  # robosuite.utils.observables: Observable, sensor, corrupters, delayers
 
     utils.observables = observables  # type: ignore[attr-defined]

@@ -35,14 +35,38 @@ def _names(model: Any, kind: str, ids: list[int]) -> list[str]:
 
 
 class GripperModel:
-    """robosuite's ``robot.gripper[arm]``: a gripper's names in the compiled scene."""
+    """robosuite's ``robot.gripper[arm]``: a gripper's names in the compiled scene, with
+    ``sites`` (its sites, which ``env.visualize``'s ``"grippers"`` setting shows) and
+    ``important_sites`` (``grip_site``, ``grip_cylinder``, ``ee``, ``ee_x``, ``ee_y``,
+    ``ee_z``)."""
 
-    def __init__(self, name: str, prefix: str, joints: list[str], actuators: list[str], dof: int) -> None:
+    def __init__(
+        self,
+        name: str,
+        prefix: str,
+        joints: list[str],
+        actuators: list[str],
+        dof: int,
+        sites: list[str] | None = None,
+        site_prefix: str = "",
+    ) -> None:
         self.name = name
         self.naming_prefix = prefix
         self.joints = joints
         self.actuators = actuators
         self.dof = dof
+        self.sites: list[str] = list(sites or [])
+        self.important_sites: dict[str, str] = {
+            key: site_prefix + suffix
+            for key, suffix in [
+                ("grip_site", "grip_site"),
+                ("grip_cylinder", "grip_site_cylinder"),
+                ("ee", "ee"),
+                ("ee_x", "ee_x"),
+                ("ee_y", "ee_y"),
+                ("ee_z", "ee_z"),
+            ]
+        }
 
     def __repr__(self) -> str:
         return f"<GripperModel {self.name} prefix={self.naming_prefix!r}>"
@@ -147,7 +171,12 @@ class Robot:
             g_joints = [model.joint_id2name(jnt_qposadr.index(q)) for q in a["gripper_qpos"]]
             g_acts = _names(model, "actuator", a["gripper_actuators"])
             prefix = g_acts[0].rsplit("_", 1)[0] + "_" if g_acts else f"gripper{index}_{side}_"
-            self.gripper[side] = GripperModel(a["gripper"], prefix, g_joints, g_acts, a["gripper_dim"])
+            # robosuite names a gripper's elements `gripper{robot}_{arm}_...`.
+            site_prefix = f"gripper{index}_{side}_"
+            sites = [n for n in model.site_names if isinstance(n, str) and n.startswith(site_prefix)]
+            self.gripper[side] = GripperModel(
+                a["gripper"], prefix, g_joints, g_acts, a["gripper_dim"], sites, site_prefix
+            )
             part_controllers[f"{side}_gripper"] = PartController("GRIP", f"{side}_gripper", ref, a["gripper_dim"], {})
             split[f"{side}_gripper"] = (at, at + a["gripper_dim"])
             at += a["gripper_dim"]

@@ -6,7 +6,8 @@ Import swap for robosuite users::
     from robosuite_rs.wrappers import GymWrapper   # was: from robosuite.wrappers import GymWrapper
 
 robosuite's demonstration wrappers are here too: :class:`DataCollectionWrapper` and
-:class:`DemoSamplerWrapper` (see :mod:`robosuite_rs.datasets`).
+:class:`DemoSamplerWrapper` (see :mod:`robosuite_rs.datasets`), and its visual ones:
+:class:`VisualizationWrapper` and :class:`DomainRandomizationWrapper`.
 """
 
 from __future__ import annotations
@@ -17,12 +18,21 @@ import gymnasium as gym
 import numpy as np
 
 from ._demo_wrappers import DataCollectionWrapper, DemoSamplerWrapper, Wrapper
+from ._visual_wrappers import DomainRandomizationWrapper, VisualizationWrapper
 from .spaces import from_spec
 
 if TYPE_CHECKING:
     from . import RobosuiteEnv
 
-__all__ = ["RustEnv", "GymWrapper", "Wrapper", "DataCollectionWrapper", "DemoSamplerWrapper"]
+__all__ = [
+    "RustEnv",
+    "GymWrapper",
+    "Wrapper",
+    "DataCollectionWrapper",
+    "DemoSamplerWrapper",
+    "VisualizationWrapper",
+    "DomainRandomizationWrapper",
+]
 
 
 class RustEnv(gym.Env):  # type: ignore[type-arg]

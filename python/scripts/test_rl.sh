@@ -18,7 +18,7 @@ ROBOSUITE_RS_BUILD_ONLY=1 bash "$ROOT/python/scripts/test.sh"
 
 [ -x "$VENV/bin/python" ] || "$PYTHON" -m venv "$VENV"
 PY="$VENV/bin/python"
-"$PY" -m pip install --quiet --disable-pip-version-check "stable-baselines3>=2.4" "ray[rllib]>=2.40" matplotlib \
+"$PY" -m pip install --quiet --disable-pip-version-check "stable-baselines3>=2.4" "ray[rllib]>=2.40" matplotlib h5py \
     pytest hypothesis "gymnasium>=1.1" numpy "mujoco==3.17.0"
 site="$("$PY" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
 echo "$ROOT/python" > "$site/robosuite_rs_source.pth"

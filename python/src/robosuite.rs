@@ -501,6 +501,71 @@ impl PyRobosuiteEnv {
         Ok(flat)
     }
 
+    /// robomimic's inner loop of `dataset_states_to_obs.py` for the rows of `states` (flat
+    /// `[time, qpos, qvel]`), natively: per row the state set and `mj_forward` (robosuite's
+    /// `sim.set_state_from_flattened` + `sim.forward()`), every enabled and active observable
+    /// read (the values `_get_observations(force_update=True)` gives), `reward()` and
+    /// `_check_success()`. Returns `(observations stacked per key, rewards, successes)`.
+    /// Every row is checked before any is set; the GIL is released meanwhile.
+    fn observe_states<'py>(
+        &self,
+        py: Python<'py>,
+        states: numpy::PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<(
+        Bound<'py, PyDict>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<bool>>,
+    )> {
+        let states = states.as_array().as_standard_layout().into_owned();
+        let (keys, stacked, rewards, successes) = py
+            .detach(|| -> gym_core::Result<_> {
+                let mut env = self.lock()?;
+                for row in states.rows() {
+                    env.sim().check_state(row.as_slice().unwrap_or(&[]))?;
+                }
+                let mut keys: Vec<String> = Vec::new();
+                let mut values: Vec<Vec<gym_core::ArrayValue>> = Vec::new();
+                let mut rewards = Vec::with_capacity(states.nrows());
+                let mut successes = Vec::with_capacity(states.nrows());
+                for row in states.rows() {
+                    env.sim_mut().set_state(row.as_slice().unwrap_or(&[]))?;
+                    let obs = env.update_observations()?;
+                    rewards.push(env.reward());
+                    successes.push(env.check_success());
+                    if keys.is_empty() {
+                        keys = obs.keys().cloned().collect();
+                        values = vec![Vec::with_capacity(states.nrows()); keys.len()];
+                    }
+                    for (i, (_, v)) in obs.into_iter().enumerate() {
+                        match (v, values.get_mut(i)) {
+                            (Value::Array(a), Some(column)) => column.push(a),
+                            _ => {
+                                return Err(gym_core::Error::invalid_argument(
+                                    "states",
+                                    "an observation that is not an array cannot be stacked",
+                                ));
+                            }
+                        }
+                    }
+                }
+                let stacked = values
+                    .iter()
+                    .map(|column| stack_arrays(column))
+                    .collect::<gym_core::Result<Vec<_>>>()?;
+                Ok((keys, stacked, rewards, successes))
+            })
+            .map_err(to_pyerr)?;
+        let dict = PyDict::new(py);
+        for (k, a) in keys.into_iter().zip(stacked) {
+            dict.set_item(k, crate::convert::array_into_py(py, a))?;
+        }
+        Ok((
+            dict,
+            PyArray1::from_vec(py, rewards),
+            PyArray1::from_vec(py, successes),
+        ))
+    }
+
     /// robosuite's `_get_observations(force_update=True)`: every observable read from the
     /// simulator as it is now (no forward pass).
     fn update_observations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -520,32 +585,22 @@ impl PyRobosuiteEnv {
         Ok(self.env()?.source_xml().to_owned())
     }
 
-    /// robosuite's `reset_from_xml_string(xml)`: a new model from `xml` (a scene of this
-    /// task, such as one saved by robosuite; asset paths through a `robosuite/` folder are
-    /// redirected to the local model files), then a deterministic reset. Keeps the
-    /// configuration and the RNG stream; returns the first observation. On an error the
-    /// env is unchanged.
+    /// robosuite's `reset_from_xml_string(xml)`: the scene `xml` (of this task, such as one
+    /// saved by robosuite; asset paths through a `robosuite/` folder are redirected to the
+    /// local model files), then a deterministic reset. Keeps the configuration, the RNG
+    /// stream and the observables' flags; returns `(first observation, in_place)`, where
+    /// `in_place` says the env's model and data were kept (a scene differing only in box
+    /// sizes). On an error the env is unchanged.
     fn reset_from_xml_string<'py>(
         &self,
         py: Python<'py>,
         xml: &str,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        let name = self.name.clone();
-        let obs = py
-            .detach(|| -> gym_core::Result<gym_core::DictValue> {
-                let (config, (rng, seeded)) = {
-                    let env = self.lock()?;
-                    (env.config().clone(), env.rng_state())
-                };
-                let spec = robosuite_env::make_task(&name)?;
-                let mut fresh = RobosuiteEnv::from_scene_xml(spec.as_ref(), xml, config)?;
-                fresh.set_rng(rng, seeded);
-                let (obs, _) = fresh.reset_deterministic()?;
-                *self.lock()? = fresh;
-                Ok(obs)
-            })
+    ) -> PyResult<(Bound<'py, PyAny>, bool)> {
+        let (obs, _, load) = py
+            .detach(|| self.lock()?.reset_from_xml_string(xml))
             .map_err(to_pyerr)?;
-        value_into_py(py, Value::Dict(obs), true)
+        let in_place = load == robosuite_env::SceneLoad::InPlace;
+        Ok((value_into_py(py, Value::Dict(obs), true)?, in_place))
     }
 
     /// robosuite's deterministic reset: the robots at `init_qpos` without noise, objects as
@@ -591,6 +646,13 @@ impl PyRobosuiteEnv {
         };
         self.env()?
             .modify_observable(name, flag, value)
+            .map_err(to_pyerr)
+    }
+
+    /// Uploads texture `texture` (its bitmap changed in `sim.model.tex_data`) to the env's
+    /// renderers again (MuJoCo's `mjr_uploadTexture`).
+    fn upload_texture(&self, py: Python<'_>, texture: usize) -> PyResult<()> {
+        py.detach(|| self.lock()?.upload_texture(texture))
             .map_err(to_pyerr)
     }
 
@@ -690,4 +752,39 @@ impl PyRobosuiteEnv {
             self.lock().map_or(0, |env| env.observation_keys().len())
         )
     }
+}
+
+/// The arrays of one observation key over several states, stacked on a new first axis.
+fn stack_arrays(column: &[gym_core::ArrayValue]) -> gym_core::Result<gym_core::ArrayValue> {
+    use gym_core::ArrayValue as A;
+    let mismatch = || {
+        gym_core::Error::invalid_argument(
+            "states",
+            "an observation changed its dtype or shape between states",
+        )
+    };
+    macro_rules! stack_as {
+        ($variant:ident) => {{
+            let views = column
+                .iter()
+                .map(|v| match v {
+                    A::$variant(a) => Some(a.view()),
+                    _ => None,
+                })
+                .collect::<Option<Vec<_>>>()
+                .ok_or_else(mismatch)?;
+            A::$variant(ndarray::stack(ndarray::Axis(0), &views).map_err(|_| mismatch())?)
+        }};
+    }
+    Ok(match column.first() {
+        None => A::F64(ndarray::ArrayD::zeros(ndarray::IxDyn(&[0]))),
+        Some(A::I8(_)) => stack_as!(I8),
+        Some(A::I16(_)) => stack_as!(I16),
+        Some(A::I32(_)) => stack_as!(I32),
+        Some(A::I64(_)) => stack_as!(I64),
+        Some(A::U8(_)) => stack_as!(U8),
+        Some(A::F32(_)) => stack_as!(F32),
+        Some(A::F64(_)) => stack_as!(F64),
+        Some(A::Bool(_)) => stack_as!(Bool),
+    })
 }

@@ -378,6 +378,8 @@ ROBOMIMIC_STYLE = textwrap.dedent(
     import robosuite.utils.transform_utils as T
     from robosuite.wrappers import GymWrapper
     from robosuite.controllers import load_composite_controller_config
+    from robosuite.wrappers import DomainRandomizationWrapper, VisualizationWrapper
+    from robosuite.utils.mjmod import CameraModder, DynamicsModder, LightingModder, TextureModder
     assert robosuite.__version__ == "1.5.2" and robosuite_rs.__version__ != "1.5.2"
     assert robosuite.__version__.split(".")[0] == "1" and int(robosuite.__version__.split(".")[1]) >= 5
     # the calls robomimic's EnvRobosuite makes, in its order

@@ -119,6 +119,28 @@ pub struct RobosuiteEnv {
     obs_flags: Vec<(bool, bool)>,
     #[cfg(feature = "render")]
     viewer_renderer: Option<crate::render::OffscreenRenderer>,
+    /// The configured task and its part of the scene, to bind the task again when the
+    /// model is replaced in place ([`RobosuiteEnv::reset_from_xml_string`]).
+    rebind: Arc<Rebind>,
+}
+
+/// A configured task with the scene part it was built with.
+#[derive(Debug)]
+struct Rebind {
+    spec: Box<dyn TaskSpec>,
+    scene: TaskScene,
+}
+
+/// How [`RobosuiteEnv::reset_from_xml_string`] loaded a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SceneLoad {
+    /// Into the env's own model, in place: the new scene differs from the current one at
+    /// most in the sizes of generated boxes (robosuite's per-episode cube sizes), so the
+    /// cached compile of that scene was copied into the model and the boxes resized. The
+    /// model and data stay where they were (views of them stay valid).
+    InPlace,
+    /// Compiled (or copied from a cached compile) into a new model and data.
+    Compiled,
 }
 
 /// One observable as robosuite's observables API describes it.
@@ -480,6 +502,10 @@ impl RobosuiteEnv {
             obs_flags,
             #[cfg(feature = "render")]
             viewer_renderer: None,
+            rebind: Arc::new(Rebind {
+                spec: spec.clone_box(),
+                scene: composed.task_scene,
+            }),
         })
     }
 }
@@ -496,9 +522,13 @@ fn redirect_asset_paths(xml: &str, assets: &Assets) -> String {
         let end = tail.find('"').unwrap_or(tail.len());
         let path = &tail[..end];
         match path.rfind("/robosuite/") {
-            Some(i) if path.starts_with('/') => {
+            Some(i) => {
                 out.push_str(&local);
                 out.push_str(&path[i + "/robosuite".len()..]);
+            }
+            None if path.starts_with("robosuite/") => {
+                out.push_str(&local);
+                out.push_str(&path["robosuite".len()..]);
             }
             _ => out.push_str(path),
         }
@@ -984,6 +1014,111 @@ impl RobosuiteEnv {
         self.begin_episode()
     }
 
+    /// robosuite's `reset_from_xml_string(xml)`: the env reloaded from a scene MJCF of this
+    /// task (for instance one saved by robosuite, see [`RobosuiteEnv::from_scene_xml`]),
+    /// then [`RobosuiteEnv::reset_deterministic`]. The configuration, the RNG stream and
+    /// the observables' flags are kept.
+    ///
+    /// When the new scene differs from the current one at most in the sizes of generated
+    /// boxes (the demonstrations of one task: robosuite saves each episode's cube size),
+    /// the env's own model is overwritten in place with the cached compile of that scene
+    /// and the boxes resized, which equals loading it anew (see [`SceneLoad::InPlace`]);
+    /// otherwise the scene is compiled and the env rebuilt on it.
+    ///
+    /// # Errors
+    /// As [`RobosuiteEnv::from_scene_xml`] (the env is then unchanged); [`Error::Closed`]
+    /// after `close`.
+    pub fn reset_from_xml_string(&mut self, xml: &str) -> Result<(DictValue, Info, SceneLoad)> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        if xml.contains('\0') {
+            return Err(Error::model("the scene XML contains a NUL byte"));
+        }
+        let assets = Assets::locate()?;
+        let xml = redirect_asset_paths(xml, &assets);
+        if let Some(plan) = crate::models::scene::in_place(&self.source_xml, &xml) {
+            let previous = Arc::clone(&self.source_xml);
+            match self.load_in_place(&xml, &plan) {
+                Ok(true) => {
+                    let (obs, info) = self.reset_deterministic()?;
+                    return Ok((obs, info, SceneLoad::InPlace));
+                }
+                Ok(false) => {}
+                Err(e) => {
+                    // The model was overwritten: rebuild on the new scene, or else on the
+                    // previous one, and report the error.
+                    return self.rebuild(&xml).or_else(|_| {
+                        self.rebuild(&previous)?;
+                        Err(e)
+                    });
+                }
+            }
+        }
+        self.rebuild(&xml)
+    }
+
+    /// The env rebuilt on the scene `xml` (see [`RobosuiteEnv::reset_from_xml_string`]),
+    /// replacing `self` only on success.
+    fn rebuild(&mut self, xml: &str) -> Result<(DictValue, Info, SceneLoad)> {
+        let spec = crate::registry::make_task(self.rebind.spec.name())?;
+        let mut fresh = Self::from_scene_xml(spec.as_ref(), xml, self.config.clone())?;
+        fresh.set_rng(self.rng.clone(), self.rng_seeded);
+        for (spec, &(enabled, active)) in self.obs_specs.iter().zip(&self.obs_flags) {
+            if !self.observable_exists(spec) {
+                continue;
+            }
+            fresh.modify_observable(&spec.key, ObservableFlag::Enabled, enabled)?;
+            fresh.modify_observable(&spec.key, ObservableFlag::Active, active)?;
+        }
+        let (obs, info) = fresh.reset_deterministic()?;
+        *self = fresh;
+        Ok((obs, info, SceneLoad::Compiled))
+    }
+
+    /// Overwrites the model with `plan` (see [`SceneLoad::InPlace`]) and binds the task
+    /// again; `Ok(false)`, with nothing changed, when the model's sizes differ from the
+    /// plan's.
+    fn load_in_place(&mut self, xml: &str, plan: &crate::models::scene::InPlace) -> Result<bool> {
+        let (cur, base) = (self.sim.model().ffi(), plan.base.ffi());
+        let same = cur.nbuffer == base.nbuffer
+            && (
+                cur.nq, cur.nv, cur.nu, cur.na, cur.nbody, cur.ngeom, cur.nsite, cur.ncam,
+            ) == (
+                base.nq, base.nv, base.nu, base.na, base.nbody, base.ngeom, base.nsite, base.ncam,
+            )
+            && cur.opt.timestep == base.opt.timestep;
+        if !same {
+            return Ok(false);
+        }
+        let model = self.sim.model_mut();
+        // SAFETY: both are compiled models of one skeleton with equal buffer sizes (checked:
+        // MuJoCo requires it), so every count, address and array length of the env's model
+        // stays as the robots, task and cameras were bound to; the buffer is overwritten
+        // in place.
+        unsafe { mujoco_rs::mujoco_c::mj_copyModel(model.ffi_mut(), plan.base.ffi()) };
+        for r in &plan.resizes {
+            // half-extents are positive and finite (checked by the plan)
+            crate::sim::resize_box_body(&mut self.sim, r.update(), r.half)?;
+        }
+        crate::cameras::rig::prepare_model(&self.config.cameras, self.sim.model_mut());
+        let rebind = Arc::clone(&self.rebind);
+        self.task = rebind
+            .spec
+            .bind(&rebind.scene, self.sim.model(), &self.robots)?;
+        let model = self.sim.model();
+        self.objects = rebind
+            .scene
+            .objects
+            .iter()
+            .map(|o| MujocoObjectInfo::of(o, model))
+            .collect();
+        self.sim.clear_divergence();
+        self.source = ModelSource::Supplied;
+        self.source_xml = Arc::from(xml);
+        Ok(true)
+    }
+
     /// The task's objects in robosuite's order (its `env.model.mujoco_objects`: the
     /// visual objects, then the physical ones, for the tasks that have both).
     /// Generated boxes and cylinders have the size the last reset drew.
@@ -1075,6 +1210,37 @@ impl RobosuiteEnv {
         self.layout = layout;
         self.obs_space = space;
         self.obs_flags = flags;
+        Ok(())
+    }
+
+    /// Uploads texture `texture` (its bitmap in the model's `tex_data`, changed since the
+    /// env's renderers were made, as robosuite's `TextureModder` does) to every renderer
+    /// of this env: the camera observations', the render mode's and `render_camera`'s.
+    /// Renderers made later read the model as it is then. Without a renderer it does
+    /// nothing.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a texture id out of range (nothing is uploaded);
+    /// [`Error::Render`] when a rendering context cannot be made current; [`Error::Closed`]
+    /// after `close`.
+    #[cfg(feature = "render")]
+    pub fn upload_texture(&mut self, texture: usize) -> Result<()> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        let ntex = self.sim.model().ffi().ntex.max(0) as usize;
+        if texture >= ntex {
+            return Err(Error::invalid_argument(
+                "texture",
+                format!("texture id {texture} out of range (the model has {ntex} textures)"),
+            ));
+        }
+        if let Some(rig) = &mut self.cameras {
+            rig.upload_texture(self.sim.model(), texture)?;
+        }
+        if let Some(renderer) = &mut self.viewer_renderer {
+            renderer.upload_texture(self.sim.model(), texture)?;
+        }
         Ok(())
     }
 

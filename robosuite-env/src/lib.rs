@@ -62,6 +62,7 @@ pub use config::{EnvConfig, EnvConfiguration};
 pub use env::CameraFrame;
 pub use env::{
     EnvSnapshot, ModelSource, MujocoObjectInfo, ObservableFlag, ObservableInfo, RobosuiteEnv,
+    SceneLoad,
 };
 pub use registry::{
     ENV_NAMES, TASKS, TaskEntry, make, make_from_scene_xml, make_task, make_with, register_envs,

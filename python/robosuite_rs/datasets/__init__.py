@@ -48,6 +48,11 @@ __all__ = [
 ]
 
 
+#: Whether :func:`states_to_obs` observes each trajectory's states in one native call
+#: (the result is the same either way; the per-state Python loop is robomimic's own).
+NATIVE_LOOP = True
+
+
 class DatasetError(ValueError):
     """A dataset that does not fit: the message names the file, the demo and the key."""
 
@@ -252,11 +257,25 @@ def _env_meta(f: Any) -> dict[str, Any]:
     return meta
 
 
-def _make(env_name: str, kwargs: dict[str, Any], where: str) -> Any:
+def _make(env_name: str, kwargs: dict[str, Any], where: str, scene_xml: str | None = None) -> Any:
+    """``robosuite_rs.make(env_name, **kwargs)``; with ``scene_xml`` (a demo's scene, loaded
+    next anyway) the env is built on that scene instead of composing and compiling its own,
+    falling back to composing when the scene does not load."""
+    import tempfile
+
     import robosuite_rs as suite
 
     if env_name not in suite.ALL_ENVIRONMENTS:
         raise DatasetError(f"{where}: unknown env {env_name!r} (robosuite_rs.ALL_ENVIRONMENTS lists the envs)")
+    if scene_xml is not None:
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "scene.xml")
+            with open(path, "w", encoding="utf8") as f:
+                f.write(scene_xml)
+            try:
+                return suite.make(env_name, **kwargs, model_xml=path)
+            except (TypeError, ValueError, KeyError, RuntimeError):
+                pass  # composed below: its error names the argument, the demo's names the scene
     try:
         return suite.make(env_name, **kwargs)
     except (TypeError, ValueError, KeyError, RuntimeError) as e:
@@ -466,6 +485,7 @@ class _RobomimicEnv:
         reward_shaping: bool,
         use_depth_obs: bool,
         where: str,
+        scene_xml: str | None = None,
     ) -> None:
         from ..compat import ROBOSUITE_API_VERSION
 
@@ -492,7 +512,7 @@ class _RobomimicEnv:
         self._init_kwargs = deepcopy(kwargs)
         self.image_keys = {f"{c}_image" for c in camera_names}
         self.depth_keys = {f"{c}_depth" for c in camera_names} if use_depth_obs else set()
-        self.env = _make(self.name, kwargs, where)
+        self.env = _make(self.name, kwargs, where, scene_xml)
         for ob_name in self.env.observation_names:
             if ("joint_pos" in ob_name) or ("eef_vel" in ob_name):
                 self.env.modify_observable(observable_name=ob_name, attribute="active", modifier=True)
@@ -500,16 +520,19 @@ class _RobomimicEnv:
     def serialize(self) -> dict[str, Any]:
         return dict(env_name=self.name, env_version=self.version, type=1, env_kwargs=deepcopy(self._init_kwargs))
 
-    def get_observation(self, di: Any = None) -> dict[str, np.ndarray]:
+    def get_observation(self, di: Any = None, stacked: bool = False) -> dict[str, np.ndarray]:
+        """robomimic's ``get_observation``; ``stacked``: ``di`` holds several states'
+        values stacked on a first axis (``observe_states``)."""
         if di is None:
             di = self.env._get_observations(force_update=True)
         ret: dict[str, np.ndarray] = {}
+        flip = (slice(None), slice(None, None, -1)) if stacked else (slice(None, None, -1),)
         for k in di:
             if k in self.image_keys:
-                ret[k] = di[k][::-1].copy()
+                ret[k] = di[k][flip].copy()
             elif k in self.depth_keys:
-                d = di[k][::-1].copy()
-                if len(d.shape) == 2:
+                d = di[k][flip].copy()
+                if len(d.shape) == 2 + stacked:
                     d = d[..., None]
                 ret[k] = self._real_depth(d)
         if "object-state" in di:
@@ -571,10 +594,12 @@ class _Options:
 class _Extractor:
     """One env extracting trajectories (robomimic's ``extract_trajectory``)."""
 
-    def __init__(self, env_meta: dict[str, Any], opts: _Options, where: str) -> None:
+    def __init__(self, env_meta: dict[str, Any], opts: _Options, where: str, scene_xml: str | None = None) -> None:
         self.opts = opts
         self.env = _RobomimicEnv(env_meta, opts.camera_names, opts.camera_height, opts.camera_width,
-                                 opts.shaped, opts.depth, where)
+                                 opts.shaped, opts.depth, where, scene_xml)
+        # whole trajectories through one native call (robosuite_rs.datasets.NATIVE_LOOP)
+        self.native_loop = NATIVE_LOOP
 
     def reset_to(self, states: np.ndarray) -> dict[str, np.ndarray]:
         self.env.env.sim.set_state_from_flattened(states)
@@ -608,10 +633,12 @@ class _Extractor:
             raise DatasetError(f"{where} attribute model_file: the scene does not load ({e})") from None
         env.sim.reset()
         _check_states(env, states, where)
+        n = states.shape[0]
+        if n > 1 and self.native_loop and env._obsv.as_made():
+            return self._run_native(states, actions, where)
         obs = self.reset_to(states[0])
         camera_info = self.env.camera_info(self.opts.camera_names, self.opts.camera_height, self.opts.camera_width)
         obs_list, next_list, rewards, dones = [], [], [], []
-        n = states.shape[0]
         done_mode = self.opts.done_mode
         for t in range(1, n + 1):
             if t == n:
@@ -635,6 +662,50 @@ class _Extractor:
             "next_obs": {k: np.array([o[k] for o in next_list]) for k in next_list[0]},
             "rewards": np.array(rewards),
             "dones": np.array(dones),
+            "camera_info": camera_info,
+            "num_states": n,
+        }
+
+    def _run_native(self, states: np.ndarray, actions: np.ndarray, where: str) -> dict[str, Any]:
+        """:meth:`_run`'s result with the states before the last observed natively in one
+        call (``observe_states``: the same native calls, without the per-state Python); the
+        observables' clocks are then moved as those forced updates move them, and the last
+        state and the final step go through the env as robomimic's loop does."""
+        env = self.env.env
+        n = states.shape[0]
+        camera_info = None
+        if self.opts.camera_names:
+            # robomimic reads the cameras' poses at states[0]
+            env.sim.set_state_from_flattened(states[0])
+            env.sim.forward()
+            camera_info = self.env.camera_info(self.opts.camera_names, self.opts.camera_height, self.opts.camera_width)
+        head, rewards_head, success_head = env._native.observe_states(np.ascontiguousarray(states[: n - 1]))
+        env._obsv.skip_forced_updates(n - 1)
+        first = self.env.get_observation(head, stacked=True)
+        last = self.reset_to(states[n - 1])
+        r_last = env.reward()
+        success_last = bool(env._check_success())
+        di, _, _, _ = env.step(actions[n - 1])
+        final = self.env.get_observation(di)
+        r_final = env.reward()
+        success_final = bool(env._check_success())
+        done_mode = self.opts.done_mode
+        # transition t (1..n): obs = state t-1, next_obs = state t (the step after the last)
+        # reward and success read at next_obs's state
+        rewards = np.concatenate([rewards_head[1:], [r_last, r_final]])
+        successes = np.concatenate([success_head[1:], [success_last, success_final]])
+        dones = np.zeros(n, dtype=bool)
+        if done_mode in (1, 2):
+            dones[n - 1] = True
+        if done_mode in (0, 2):
+            dones |= successes
+        obs = {k: np.concatenate([first[k], last[k][None]]) for k in first}
+        next_obs = {k: np.concatenate([first[k][1:], last[k][None], final[k][None]]) for k in first}
+        return {
+            "obs": obs,
+            "next_obs": next_obs,
+            "rewards": rewards.astype(float),
+            "dones": dones.astype(int),
             "camera_info": camera_info,
             "num_states": n,
         }
@@ -713,6 +784,7 @@ def states_to_obs(
     num_workers: int | None = None,
     overwrite: bool = False,
     progress: bool = False,
+    ray_actors: int | None = None,
 ) -> StatesToObsResult:
     """robomimic's ``dataset_states_to_obs.py``: observations, rewards and dones computed from
     the stored states of ``dataset``, written in robomimic's layout.
@@ -738,6 +810,11 @@ def states_to_obs(
     order, so the output does not depend on ``num_workers``. A worker's error stops the run
     with that error (naming the demo). ``progress`` shows a bar on stderr (tqdm when
     installed, else a line of text).
+
+    ``ray_actors``: the demos are processed by that many Ray actors instead (for datasets
+    beyond one machine: each actor holds one env, on whichever node of the cluster Ray
+    places it; ``ray.init()`` first, else a local Ray is started); this process writes the
+    results in demo order as with threads, so the output is the same. Needs ``ray``.
 
     Returns:
         a :class:`StatesToObsResult`.
@@ -788,9 +865,15 @@ def states_to_obs(
         if workers < 1:
             raise ValueError(f"num_workers must be >= 1, got {num_workers}")
         workers = max(1, min(workers, len(items)))
+        if ray_actors is not None:
+            if int(ray_actors) < 1:
+                raise ValueError(f"ray_actors must be >= 1, got {ray_actors}")
+            ray_actors = workers = max(1, min(int(ray_actors), len(items)))
         # one env here: checks env_args and the cameras before any worker starts, gives
         # env_args for the output and serves as the only worker when there is one
-        local = _Extractor(env_meta, opts, where)
+        # built on the first demo's scene: it is loaded first anyway
+        scene = items[0]["model_file"] if items else None
+        local = _Extractor(env_meta, opts, where, scene)
         env_args = json.dumps(local.env.serialize(), indent=4)
         setup = time.perf_counter() - t_start
 
@@ -800,7 +883,12 @@ def states_to_obs(
             total_states = 0
             with h5py.File(tmp, "w") as f_out:
                 data_grp = f_out.create_group("data")
-                for item, traj in _results(items, local, env_meta, opts, where, workers):
+                results = (
+                    _ray_results(items, env_meta, opts, where, ray_actors)
+                    if ray_actors is not None
+                    else _results(items, local, env_meta, opts, where, workers)
+                )
+                for item, traj in results:
                     ep = item["demo"]
                     g = f"data/{ep}"
                     if copy_rewards:
@@ -882,7 +970,7 @@ def _results(
             with lock:
                 make = made[0] < workers
                 made[0] += make
-            ex = _Extractor(env_meta, opts, where) if make else spare.get()
+            ex = _Extractor(env_meta, opts, where, item["model_file"]) if make else spare.get()
         try:
             return ex.run(item)
         finally:
@@ -904,3 +992,49 @@ def _results(
                     fut.cancel()
             pool.shutdown(wait=True, cancel_futures=True)
             raise
+
+
+class _RayExtractor:
+    """One Ray actor's :class:`_Extractor` (made on the actor's node)."""
+
+    def __init__(self, env_meta: dict[str, Any], opts: _Options, where: str, scene_xml: str | None) -> None:
+        self.ex = _Extractor(env_meta, opts, where, scene_xml)
+
+    def run(self, item: dict[str, Any]) -> dict[str, Any]:
+        return self.ex.run(item)
+
+
+def _ray_results(
+    items: list[dict[str, Any]],
+    env_meta: dict[str, Any],
+    opts: _Options,
+    where: str,
+    actors: int,
+) -> Iterator[tuple[dict[str, Any], dict[str, Any]]]:
+    """``(item, trajectory)`` in the order of ``items``, from ``actors`` Ray actors taking
+    demos as they come (``ray.util.ActorPool``); an actor's error stops the run with it."""
+    try:
+        import ray
+        from ray.util import ActorPool
+    except ImportError:
+        raise ImportError("ray_actors needs ray: pip install 'ray>=2.40'") from None
+    if not ray.is_initialized():
+        ray.init()
+    remote = ray.remote(_RayExtractor)
+    scene = items[0]["model_file"] if items else None
+    handles = [remote.remote(env_meta, opts, where, scene) for _ in range(actors)]
+    try:
+        pool = ActorPool(handles)
+        results = pool.map(lambda actor, item: actor.run.remote(item), items)
+        for item in items:
+            try:
+                traj = next(results)
+            except ray.exceptions.RayTaskError as e:
+                cause = getattr(e, "cause", None)
+                if isinstance(cause, (DatasetError, ValueError, RuntimeError)):
+                    raise cause from None
+                raise
+            yield item, traj
+    finally:
+        for h in handles:
+            ray.kill(h)

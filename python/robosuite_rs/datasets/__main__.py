@@ -36,6 +36,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--exclude-next-obs", action="store_true", help="(optional) exclude next obs in dataset")
     p.add_argument("--compress", action="store_true", help="(optional) compress observations with gzip")
     p.add_argument("--num_workers", type=int, default=None, help="worker threads (default: every core)")
+    p.add_argument("--ray_actors", type=int, default=None,
+                   help="process the demos on this many Ray actors (a Ray cluster, or a local Ray) instead of threads")
     p.add_argument("--overwrite", action="store_true", help="replace an existing output file")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
@@ -67,6 +69,7 @@ def main(argv: list[str] | None = None) -> int:
                 exclude_next_obs=args.exclude_next_obs,
                 compress=args.compress,
                 num_workers=args.num_workers,
+                ray_actors=args.ray_actors,
                 overwrite=args.overwrite,
                 progress=not args.no_progress,
             )

@@ -150,6 +150,16 @@ impl CameraRig {
         &self.frames
     }
 
+    /// Uploads texture `texture` of `model` to the rig's renderer again (see
+    /// [`crate::render::OffscreenRenderer::upload_texture`]).
+    ///
+    /// # Errors
+    /// As [`crate::render::OffscreenRenderer::upload_texture`].
+    #[cfg(feature = "render")]
+    pub fn upload_texture(&mut self, model: &MjModel, texture: usize) -> Result<()> {
+        self.renderer.upload_texture(model, texture)
+    }
+
     /// The render mode chosen at construction.
     pub fn render_mode(&self) -> Option<RenderMode> {
         self.render_mode

@@ -240,6 +240,49 @@ fn cache() -> &'static Mutex<Cache> {
     CACHE.get_or_init(Default::default)
 }
 
+/// How a live env whose model was compiled from one text becomes the model of another
+/// text of the same skeleton without a compile or a new model: copy `base` into its model
+/// (`mj_copyModel` into the existing buffer), then apply `resizes` (see
+/// [`in_place`]).
+#[derive(Debug)]
+pub(crate) struct InPlace {
+    /// A model compiled from a text of the same skeleton (the cached full compile).
+    pub(crate) base: Arc<MjModel>,
+    /// The box resizes that turn `base` into the new text's model (empty for the text
+    /// `base` was compiled from).
+    pub(crate) resizes: Vec<patch::BoxResize>,
+}
+
+/// How a model compiled from `current` becomes the model of `xml` in place (see
+/// [`InPlace`]): `Some` when scene patching is on (see [`set_scene_patching`]), the two
+/// texts differ at most in geom sizes, a model of that skeleton is cached and the
+/// difference to it is one the patching handles; `None` otherwise (compile `xml` instead).
+pub(crate) fn in_place(current: &str, xml: &str) -> Option<InPlace> {
+    if !PATCHING.load(Ordering::SeqCst) {
+        return None;
+    }
+    let sk = patch::skeleton(xml)?;
+    if patch::skeleton(current)?.key != sk.key {
+        return None;
+    }
+    let near = {
+        let cache = cache().lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(model) = cache.exact.get(xml) {
+            return Some(InPlace {
+                base: Arc::clone(model),
+                resizes: Vec::new(),
+            });
+        }
+        cache.near.get(&sk.key).cloned()
+    };
+    let (base_xml, base_sk, base) = near?;
+    let resizes = patch::plan(&base, &base_xml, &base_sk, xml, &sk)?;
+    if !resizes.is_empty() {
+        PATCHED.fetch_add(1, Ordering::SeqCst);
+    }
+    Some(InPlace { base, resizes })
+}
+
 /// Compiles MJCF text, or copies the model compiled from the same text before.
 ///
 /// # Errors

@@ -122,6 +122,31 @@ impl OffscreenRenderer {
         }
     }
 
+    /// Uploads texture `texture` of `model` to this renderer's OpenGL context again (MuJoCo's
+    /// `mjr_uploadTexture`), so frames show a texture whose bitmap (`tex_data`) was changed
+    /// after the renderer was made.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] for a texture id out of range (nothing is uploaded);
+    /// [`Error::Render`] when the context cannot be made current.
+    pub fn upload_texture(&mut self, model: &MjModel, texture: usize) -> Result<()> {
+        let ntex = model.ffi().ntex.max(0) as usize;
+        if texture >= ntex {
+            return Err(Error::invalid_argument(
+                "texture",
+                format!("texture id {texture} out of range (the model has {ntex} textures)"),
+            ));
+        }
+        let _current = self.gl.make_current()?;
+        let context = self
+            .context
+            .as_ref()
+            .ok_or_else(|| Error::Render("no rendering context".into()))?;
+        context
+            .upload_texture(model, texture)
+            .map_err(|e| Error::Render(format!("mjr_uploadTexture: {e}")))
+    }
+
     /// The largest frame (width, height) the offscreen buffer holds.
     pub fn max_size(&self) -> (usize, usize) {
         self.size

@@ -538,3 +538,15 @@ fn render_camera_draws_fixed_cameras_and_the_free_camera() {
         Err(Error::InvalidArgument { .. })
     ));
 }
+
+#[test]
+fn upload_texture_checks_the_id_and_the_env() {
+    let mut env = lift(CameraConfig::observe(["agentview"], 16, 16)).unwrap();
+    env.reset(Some(0), None).unwrap();
+    let ntex = env.sim().model().ffi().ntex as usize;
+    env.upload_texture(ntex - 1).unwrap();
+    let err = env.upload_texture(ntex).unwrap_err();
+    assert!(matches!(err, Error::InvalidArgument { .. }), "{err}");
+    env.close();
+    assert!(matches!(env.upload_texture(0), Err(Error::Closed)));
+}

@@ -656,3 +656,121 @@ fn an_inactive_observable_leaves_the_observation_but_keeps_its_value() {
         Err(Error::UnknownKey { .. })
     ));
 }
+
+/// The model fields a box resize changes (sizes, masses, inertias and what MuJoCo derives
+/// from them).
+fn resize_fields(env: &RobosuiteEnv) -> Vec<f64> {
+    let m = env.sim().model();
+    let mut out: Vec<f64> = Vec::new();
+    out.extend(m.geom_size().iter().flatten());
+    out.extend(m.geom_rbound());
+    out.extend(m.body_mass());
+    out.extend(m.body_inertia().iter().flatten());
+    out.extend(m.body_subtreemass());
+    out.extend(m.dof_invweight0());
+    out.extend(m.body_invweight0().iter().flatten());
+    let stat = &m.ffi().stat;
+    out.extend([stat.meanmass, stat.meaninertia, stat.meansize]);
+    out
+}
+
+fn assert_close(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: lengths");
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert!(
+            (x - y).abs() <= tol * x.abs().max(y.abs()).max(1.0),
+            "{what}[{i}]: {x} vs {y}"
+        );
+    }
+}
+
+/// The Lift scene robosuite 1.5.2 saved (its `env.sim.model.get_xml()`, as in every
+/// demonstration it records) with the cube's half-extents scaled by `scale`.
+fn saved_lift_scene(scale: f64) -> String {
+    use std::io::Read;
+    let path = crate::common::fixtures::fixture_dir()
+        .parent()
+        .unwrap()
+        .join("scenes/Lift-Panda.xml.gz");
+    let mut xml = String::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(&path).unwrap())
+        .read_to_string(&mut xml)
+        .unwrap();
+    let mut out = String::new();
+    let mut rest = xml.as_str();
+    for name in ["name=\"cube_g0\" size=\"", "name=\"cube_g0_vis\" size=\""] {
+        let at = rest.find(name).expect("the cube geom") + name.len();
+        let end = at + rest[at..].find('"').unwrap();
+        let sizes: Vec<String> = rest[at..end]
+            .split_whitespace()
+            .map(|v| format!("{}", v.parse::<f64>().unwrap() * scale))
+            .collect();
+        out.push_str(&rest[..at]);
+        out.push_str(&sizes.join(" "));
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+#[test]
+fn reset_from_xml_string_loads_a_resized_scene_in_place() {
+    // Two scenes as robosuite saves them per episode: equal but for the cube's size.
+    let (xml_a, xml_b) = (saved_lift_scene(0.99), saved_lift_scene(1.0317));
+    let mut env = make("Lift").unwrap();
+    let (_, _, load) = env.reset_from_xml_string(&xml_a).unwrap();
+    assert_eq!(load, robosuite_env::SceneLoad::Compiled);
+    let model_ptr = env.sim().model().ffi() as *const _;
+    env.reset(Some(3), None).unwrap(); // a reset draws another cube size: overwritten below
+    let (obs, _, load) = env.reset_from_xml_string(&xml_b).unwrap();
+    assert_eq!(load, robosuite_env::SceneLoad::InPlace);
+    assert_eq!(
+        env.sim().model().ffi() as *const _,
+        model_ptr,
+        "the same model, overwritten"
+    );
+
+    // The same env as one built on scene B: model, objects, observations and a trajectory.
+    let mut fresh = make_from_scene_xml("Lift", &xml_b, EnvConfig::default()).unwrap();
+    let (fresh_obs, _) = fresh.reset_deterministic().unwrap();
+    assert_close(&resize_fields(&env), &resize_fields(&fresh), 1e-12, "model");
+    assert_eq!(env.mujoco_objects(), fresh.mujoco_objects());
+    let cube = robosuite_env::sim::geom_id(env.sim().model(), "cube_g0").unwrap();
+    let half = env.sim().model().geom_size()[cube];
+    let a_env = make_from_scene_xml("Lift", &xml_a, EnvConfig::default()).unwrap();
+    assert!((half[0] / a_env.sim().model().geom_size()[cube][0] - 1.0317 / 0.99).abs() < 1e-6);
+    for key in ["cube_pos", "robot0_eef_pos", "robot0_joint_pos_cos"] {
+        assert_close(&get(&obs, key), &get(&fresh_obs, key), 1e-12, key);
+    }
+    for t in 0..20 {
+        let a = action([
+            0.3,
+            -0.2,
+            -0.4,
+            0.0,
+            0.0,
+            0.1,
+            if t < 10 { -1.0 } else { 1.0 },
+        ]);
+        let (x, y) = (env.step(&a).unwrap(), fresh.step(&a).unwrap());
+        let key = "cube_pos";
+        assert_close(
+            &get(&x.observation, key),
+            &get(&y.observation, key),
+            1e-9,
+            key,
+        );
+        assert_close(&env.get_state(), &fresh.get_state(), 1e-9, "state");
+    }
+
+    // Bad scenes are refused and change nothing.
+    let before = env.get_state();
+    for bad in ["<mujoco><worldbody>", "no xml \0 here"] {
+        assert!(matches!(
+            env.reset_from_xml_string(bad),
+            Err(Error::Model(_))
+        ));
+        assert_eq!(env.get_state(), before);
+    }
+    let _ = env.step(&zero()).unwrap();
+}

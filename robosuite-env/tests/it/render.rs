@@ -135,3 +135,36 @@ fn refuses_bad_requests_without_drawing() {
     assert!(OffscreenRenderer::new(sim.model(), 0, 10).is_err());
     assert!(OffscreenRenderer::new(sim.model(), 10, 100_000).is_err());
 }
+
+#[test]
+fn a_changed_texture_is_drawn_once_uploaded() {
+    let mut sim = lift_sim();
+    let mut renderer = OffscreenRenderer::new(sim.model(), 64, 64).unwrap();
+    let before = draw(&mut renderer, &mut sim, "agentview", 64, 64).rgb;
+    // The same scene with every texture black, drawn by the renderer made for the first.
+    let xml = scene_xml("Lift", &EnvConfig::default()).unwrap();
+    let mut model = compile_cached(&xml).unwrap();
+    model.tex_data_mut().fill(0);
+    let ntex = model.ffi().ntex as usize;
+    assert!(ntex > 0);
+    let mut dark = Sim::new(model).unwrap();
+    dark.forward().unwrap();
+    let stale = draw(&mut renderer, &mut dark, "agentview", 64, 64).rgb;
+    assert_eq!(stale, before, "the renderer keeps the textures it uploaded");
+    for t in 0..ntex {
+        renderer.upload_texture(dark.model(), t).unwrap();
+    }
+    let after = draw(&mut renderer, &mut dark, "agentview", 64, 64).rgb;
+    let mean = |v: &[u8]| v.iter().map(|&x| f64::from(x)).sum::<f64>() / v.len() as f64;
+    assert!(
+        mean(&after) < mean(&before) - 10.0,
+        "black textures darken the frame: {} -> {}",
+        mean(&before),
+        mean(&after)
+    );
+    let err = renderer.upload_texture(dark.model(), ntex).unwrap_err();
+    assert!(
+        matches!(err, gym_core::Error::InvalidArgument { .. }),
+        "{err}"
+    );
+}

@@ -158,6 +158,29 @@ fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300)
 }
 
+/// One body of boxes to resize: the body, its box geoms (the first carries the mass) and
+/// their new half-extents (positive and finite).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct BoxResize {
+    /// The body.
+    pub(crate) body: usize,
+    /// Its box geoms, in id order.
+    pub(crate) geoms: Vec<usize>,
+    /// The new half-extents.
+    pub(crate) half: [f64; 3],
+}
+
+impl BoxResize {
+    /// The update [`crate::sim::resize_box_body`] applies.
+    pub(crate) fn update(&self) -> BoxGeomUpdate<'_> {
+        BoxGeomUpdate {
+            body: self.body,
+            geoms: &self.geoms,
+            density: DEFAULT_DENSITY,
+        }
+    }
+}
+
 /// `base` (compiled from `base_xml`, whose skeleton is `base_sk`) turned into the model of
 /// `xml` (skeleton `sk`, the same key), or `None` when the difference is not one this module
 /// patches (the caller then compiles `xml` in full).
@@ -171,8 +194,28 @@ pub(super) fn patched(
     xml: &str,
     sk: &Skeleton,
 ) -> Result<Option<MjModel>> {
-    if base_sk.key != sk.key || base_sk.sizes.len() != sk.sizes.len() {
+    let Some(plan) = plan(base, base_xml, base_sk, xml, sk) else {
         return Ok(None);
+    };
+    if plan.is_empty() {
+        return Ok(None);
+    }
+    let targets: Vec<_> = plan.iter().map(|r| (r.update(), r.half)).collect();
+    resized_box_bodies(base, &targets).map(Some)
+}
+
+/// The box resizes that turn `base` (compiled from `base_xml`, skeleton `base_sk`) into the
+/// model of `xml` (skeleton `sk`), in body order: empty when the texts' sizes are equal,
+/// `None` when the difference is not one this module patches.
+pub(crate) fn plan(
+    base: &MjModel,
+    base_xml: &str,
+    base_sk: &Skeleton,
+    xml: &str,
+    sk: &Skeleton,
+) -> Option<Vec<BoxResize>> {
+    if base_sk.key != sk.key || base_sk.sizes.len() != sk.sizes.len() {
+        return None;
     }
     let mut bodies: HashMap<usize, BodyBoxes> = HashMap::new();
     for (old, new) in base_sk.sizes.iter().zip(&sk.sizes) {
@@ -186,39 +229,37 @@ pub(super) fn patched(
             .any(|(n, _)| !ALLOWED.contains(&n.as_str()))
             || attr(new, "type") != Some("box")
         {
-            return Ok(None);
+            return None;
         }
         let massless = match attr(new, "mass") {
             None => false,
             Some(m) if m.trim().parse::<f64>() == Ok(0.0) => true,
-            Some(_) => return Ok(None),
+            Some(_) => return None,
         };
         let (Some(name), Some(half), Some(_)) = (
             attr(new, "name"),
             half_extents(new_text),
             half_extents(old_text),
         ) else {
-            return Ok(None);
+            return None;
         };
         let Ok(geom) = crate::sim::geom_id(base, name) else {
-            return Ok(None);
+            return None;
         };
         let body = base.geom_bodyid()[geom] as usize;
         let entry = bodies.entry(body).or_insert((Vec::new(), half, None));
         if entry.1 != half {
-            return Ok(None);
+            return None;
         }
         entry.0.push(geom);
         if !massless {
             if entry.2.is_some() {
-                return Ok(None);
+                return None;
             }
             entry.2 = Some(geom);
         }
     }
-    if bodies.is_empty() {
-        return Ok(None);
-    }
+
     let identity = [1.0, 0.0, 0.0, 0.0];
     for (&body, (geoms, _, main)) in bodies.iter_mut() {
         geoms.sort_unstable();
@@ -226,7 +267,7 @@ pub(super) fn patched(
         let num = base.body_geomnum()[body] as usize;
         let expected: Vec<usize> = (0..num).map(|k| adr as usize + k).collect();
         if adr < 0 || *geoms != expected || *main != Some(geoms[0]) {
-            return Ok(None);
+            return None;
         }
         // The body's mass and inertia must be the box's at density 1000, at the origin.
         let [x, y, z] = base.geom_size()[geoms[0]];
@@ -246,21 +287,13 @@ pub(super) fn patched(
                     && base.geom_quat()[g] == identity
             });
         if !ok {
-            return Ok(None);
+            return None;
         }
     }
-    let mut order: Vec<_> = bodies.into_iter().collect();
-    order.sort_unstable_by_key(|(b, _)| *b);
-    let targets: Vec<_> = order
-        .iter()
-        .map(|(body, (geoms, half, _))| {
-            let update = BoxGeomUpdate {
-                body: *body,
-                geoms,
-                density: DEFAULT_DENSITY,
-            };
-            (update, *half)
-        })
+    let mut order: Vec<BoxResize> = bodies
+        .into_iter()
+        .map(|(body, (geoms, half, _))| BoxResize { body, geoms, half })
         .collect();
-    resized_box_bodies(base, &targets).map(Some)
+    order.sort_unstable_by_key(|r| r.body);
+    Some(order)
 }
