@@ -1080,7 +1080,7 @@ impl RobosuiteEnv {
     /// again; `Ok(false)`, with nothing changed, when the model's sizes differ from the
     /// plan's.
     fn load_in_place(&mut self, xml: &str, plan: &crate::models::scene::InPlace) -> Result<bool> {
-        let (cur, base) = (self.sim.model().ffi(), plan.base.ffi());
+        let (cur, base) = (self.sim.model().ffi(), plan.base.model().ffi());
         let same = cur.nbuffer == base.nbuffer
             && (
                 cur.nq, cur.nv, cur.nu, cur.na, cur.nbody, cur.ngeom, cur.nsite, cur.ncam,
@@ -1096,7 +1096,7 @@ impl RobosuiteEnv {
         // MuJoCo requires it), so every count, address and array length of the env's model
         // stays as the robots, task and cameras were bound to; the buffer is overwritten
         // in place.
-        unsafe { mujoco_rs::mujoco_c::mj_copyModel(model.ffi_mut(), plan.base.ffi()) };
+        unsafe { mujoco_rs::mujoco_c::mj_copyModel(model.ffi_mut(), plan.base.model().ffi()) };
         for r in &plan.resizes {
             // half-extents are positive and finite (checked by the plan)
             crate::sim::resize_box_body(&mut self.sim, r.update(), r.half)?;

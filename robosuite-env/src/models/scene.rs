@@ -247,7 +247,7 @@ fn cache() -> &'static Mutex<Cache> {
 #[derive(Debug)]
 pub(crate) struct InPlace {
     /// A model compiled from a text of the same skeleton (the cached full compile).
-    pub(crate) base: Arc<MjModel>,
+    pub(crate) base: Arc<SharedModel>,
     /// The box resizes that turn `base` into the new text's model (empty for the text
     /// `base` was compiled from).
     pub(crate) resizes: Vec<patch::BoxResize>,
@@ -276,7 +276,7 @@ pub(crate) fn in_place(current: &str, xml: &str) -> Option<InPlace> {
         cache.near.get(&sk.key).cloned()
     };
     let (base_xml, base_sk, base) = near?;
-    let resizes = patch::plan(&base, &base_xml, &base_sk, xml, &sk)?;
+    let resizes = patch::plan(base.model(), &base_xml, &base_sk, xml, &sk)?;
     if !resizes.is_empty() {
         PATCHED.fetch_add(1, Ordering::SeqCst);
     }
