@@ -383,7 +383,9 @@ impl PyRobosuiteEnv {
     }
 
     /// `(mujoco.MjModel, mujoco.MjData)` sharing this env's model and data (no copy): on
-    /// first use the model's memory is handed to a `mujoco.MjModel` and the data moved into
+    /// first use the model's memory is handed to a `mujoco.MjModel` (a model shared with
+    /// other envs of the same scene is first copied, so the Python object is this env's
+    /// alone) and the data moved into
     /// a `mujoco.MjData` made for it (state copied whole, so stepping continues
     /// bit-identically); both then belong to Python, so a view kept after `close()` or a
     /// model replacement stays valid. The same objects are returned until the model is
@@ -444,6 +446,9 @@ impl PyRobosuiteEnv {
                 .map_err(|e| e.0)?;
         }
         let data = made.ok_or_else(|| PyRuntimeError::new_err("no mjData was made"))?;
+        // Handing the model over made it the env's own (a view of the shared compiled model
+        // is copied first), so its address may have changed.
+        let m = std::ptr::from_ref(env.sim().model().ffi()) as usize;
         let d = std::ptr::from_ref(env.sim().data().ffi()) as usize;
         *shared = Some(SharedSim {
             model_addr: m,

@@ -38,6 +38,26 @@ def test_sim_model_and_data_are_mujocos_own_objects():
     mujoco.mj_forward(env.sim.model._model, env.sim.data._data)
 
 
+def test_a_sim_model_write_is_seen_by_no_other_env():
+    # Envs of one configuration share one compiled model copy-on-write; env.sim.model is
+    # always the env's own.
+    a, b = lift(), lift()
+    a.reset(seed=1)
+    b.reset(seed=1)
+    before = b.sim.model.geom_rgba.copy()
+    a.sim.model.geom_rgba[:] = 0.25
+    a.sim.model.opt.timestep = 0.001
+    assert (a.sim.model.geom_rgba == 0.25).all()
+    np.testing.assert_array_equal(b.sim.model.geom_rgba, before)
+    assert b.sim.model.opt.timestep == 0.002
+    c = lift()  # a new env starts from the compiled model
+    np.testing.assert_array_equal(c.sim.model.geom_rgba, before)
+    # Both step on, each with its own model.
+    for env in (a, b, c):
+        env.reset(seed=2)
+        env.step(actions(1)[0])
+
+
 def test_data_arrays_are_what_the_env_steps():
     env = lift()
     env.reset()

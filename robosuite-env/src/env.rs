@@ -7,7 +7,7 @@ use crate::config::EnvConfig;
 use crate::controllers::config::robot_default;
 use crate::controllers::{CompositeControllerConfig, Timing};
 use crate::models::robots::{RobotModel, robot_info};
-use crate::models::scene::{Scene, compile_cached_with_source};
+use crate::models::scene::{Compiled, Scene, compile_shared_with_source};
 use crate::observables::{ObsLayout, ObsSpec, total_len};
 use crate::robots::{Robot, RobotState};
 use crate::sim::Sim;
@@ -305,7 +305,7 @@ impl RobosuiteEnv {
         let spec = configured(spec, &config)?;
         let assets = Assets::locate()?;
         let composed = compose(spec.as_ref(), &config, &assets)?;
-        let (model, source) = composed.scene.compile_with_source(spec.memory())?;
+        let (model, source) = composed.scene.compile_shared(spec.memory())?;
         Self::from_model(
             spec.as_ref(),
             composed,
@@ -335,7 +335,7 @@ impl RobosuiteEnv {
             return Err(Error::model("the scene XML contains a NUL byte"));
         }
         let xml = redirect_asset_paths(xml, &assets);
-        let (model, source) = compile_cached_with_source(&xml)?;
+        let (model, source) = compile_shared_with_source(&xml)?;
         Self::from_model(spec, composed, model, source, config, ModelSource::Supplied)
     }
 
@@ -361,7 +361,7 @@ impl RobosuiteEnv {
     fn from_model(
         spec: &dyn TaskSpec,
         composed: Composed,
-        model: MjModel,
+        model: Compiled,
         source_xml: Arc<str>,
         config: EnvConfig,
         source: ModelSource,
@@ -374,12 +374,18 @@ impl RobosuiteEnv {
                 .reward_shaping
                 .unwrap_or_else(|| spec.default_reward_shaping()),
         );
-        let timestep = model.opt().timestep;
+        let timestep = model.model().opt().timestep;
         if !(timestep.is_finite() && timestep > 0.0) {
             return Err(Error::model(format!(
                 "the model's timestep must be positive, got {timestep}"
             )));
         }
+        // A cached scene is shared copy-on-write with every env built from it.
+        let mut sim = match model {
+            Compiled::Shared(shared) => Sim::new_shared(&shared)?,
+            Compiled::Own(model) => Sim::new(model)?,
+        };
+        let model = sim.model();
         crate::config::check_substeps(config.control_freq, timestep)?;
         let substeps = config.substeps(timestep);
         let timing = Timing {
@@ -391,15 +397,15 @@ impl RobosuiteEnv {
             .iter()
             .zip(&composed.controllers)
             .map(|(r, (c, path))| {
-                Robot::bind(&model, r, c, timing, config.initialization_noise, path)
+                Robot::bind(model, r, c, timing, config.initialization_noise, path)
             })
             .collect::<Result<Vec<_>>>()?;
-        let task = spec.bind(&composed.task_scene, &model, &robots)?;
+        let task = spec.bind(&composed.task_scene, model, &robots)?;
         let objects = composed
             .task_scene
             .objects
             .iter()
-            .map(|o| MujocoObjectInfo::of(o, &model))
+            .map(|o| MujocoObjectInfo::of(o, model))
             .collect();
 
         // robosuite's order: every robot's observables, then the task's; `use_object_obs =
@@ -416,11 +422,11 @@ impl RobosuiteEnv {
         let task_start = total_len(&obs_specs);
         // robosuite's `RobotEnv` adds the camera observables after the robots' and before
         // the task's; frames live outside the buffer.
-        let mut model = model;
-        crate::cameras::rig::prepare_model(&config.cameras, &mut model);
+        crate::cameras::rig::prepare_model(&config.cameras, sim.model_mut());
+        let model = sim.model();
         let cameras = CameraRig::new(
             &config.cameras,
-            &model,
+            model,
             &crate::cameras::segmentation::groups(&composed.task_scene, &composed.robots),
         )?;
         if let Some(rig) = &cameras {
@@ -468,7 +474,7 @@ impl RobosuiteEnv {
         let buf = vec![0.0; task_range.end];
         let task_options = spec.options();
         Ok(Self {
-            sim: Sim::new(model)?,
+            sim,
             robots,
             task,
             config,
@@ -1074,7 +1080,7 @@ impl RobosuiteEnv {
     /// again; `Ok(false)`, with nothing changed, when the model's sizes differ from the
     /// plan's.
     fn load_in_place(&mut self, xml: &str, plan: &crate::models::scene::InPlace) -> Result<bool> {
-        let (cur, base) = (self.sim.model().ffi(), plan.base.ffi());
+        let (cur, base) = (self.sim.model().ffi(), plan.base.model().ffi());
         let same = cur.nbuffer == base.nbuffer
             && (
                 cur.nq, cur.nv, cur.nu, cur.na, cur.nbody, cur.ngeom, cur.nsite, cur.ncam,
@@ -1090,7 +1096,7 @@ impl RobosuiteEnv {
         // MuJoCo requires it), so every count, address and array length of the env's model
         // stays as the robots, task and cameras were bound to; the buffer is overwritten
         // in place.
-        unsafe { mujoco_rs::mujoco_c::mj_copyModel(model.ffi_mut(), plan.base.ffi()) };
+        unsafe { mujoco_rs::mujoco_c::mj_copyModel(model.ffi_mut(), plan.base.model().ffi()) };
         for r in &plan.resizes {
             // half-extents are positive and finite (checked by the plan)
             crate::sim::resize_box_body(&mut self.sim, r.update(), r.half)?;

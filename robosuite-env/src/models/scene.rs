@@ -2,8 +2,9 @@
 //! then the arena, the robots and the objects merged in that order — and its compilation.
 //!
 //! Compiling robosuite's meshes takes a tenth of a second or more, so compiled models are
-//! kept in a process-wide cache keyed by the scene's MJCF and copied (`mj_copyModel`) for
-//! each environment.
+//! kept in a process-wide cache keyed by the scene's MJCF, as [`SharedModel`]s: every
+//! environment built from the same text gets a copy-on-write view of the one compiled model
+//! ([`Scene::compile_shared`]).
 
 use super::arenas::Arena;
 use super::objects::ObjectModel;
@@ -11,7 +12,7 @@ use super::robots::RobotModel;
 use crate::assets::Assets;
 use crate::mjcf::tree::{self, append, set_attr};
 use crate::mjcf::{MergeBody, MjcfDoc};
-use crate::sim::check_mujoco_version;
+use crate::sim::{SharedModel, check_mujoco_version};
 use gym_core::{Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
 use std::collections::HashMap;
@@ -149,6 +150,43 @@ impl Scene {
     pub fn compile_with_source(&self, memory: usize) -> Result<(MjModel, Arc<str>)> {
         compile_cached_with_source(&self.to_mujoco_xml(memory))
     }
+
+    /// As [`Scene::compile_with_source`], sharing the cached model instead of copying it
+    /// (see [`compile_shared_with_source`]).
+    ///
+    /// # Errors
+    /// As [`Scene::compile`].
+    pub fn compile_shared(&self, memory: usize) -> Result<(Compiled, Arc<str>)> {
+        compile_shared_with_source(&self.to_mujoco_xml(memory))
+    }
+}
+
+/// A compiled scene: the cache's shared model, or a model of its own (a scene made by
+/// patching a cached one, which is not cached).
+#[derive(Debug)]
+pub enum Compiled {
+    /// The cached model, shared copy-on-write by every simulator made from it.
+    Shared(Arc<SharedModel>),
+    /// A model of its own.
+    Own(MjModel),
+}
+
+impl Compiled {
+    /// The compiled model (read only).
+    pub fn model(&self) -> &MjModel {
+        match self {
+            Self::Shared(shared) => shared.model(),
+            Self::Own(model) => model,
+        }
+    }
+
+    /// A model of the caller's own (a copy of a shared one).
+    pub fn into_model(self) -> MjModel {
+        match self {
+            Self::Shared(shared) => MjModel::clone(shared.model()),
+            Self::Own(model) => model,
+        }
+    }
 }
 
 /// Turns off what MuJoCo enabled by default after robosuite 1.5.2's MuJoCo 3.3.7:
@@ -188,12 +226,12 @@ pub fn scenes_patched() -> usize {
 }
 
 /// A scene compiled in full: its text, its skeleton and its model.
-type NearEntry = (Arc<str>, Arc<patch::Skeleton>, Arc<MjModel>);
+type NearEntry = (Arc<str>, Arc<patch::Skeleton>, Arc<SharedModel>);
 
 /// The compiled scenes: by full text, and by skeleton (the text without its geom sizes).
 #[derive(Default)]
 struct Cache {
-    exact: HashMap<Arc<str>, Arc<MjModel>>,
+    exact: HashMap<Arc<str>, Arc<SharedModel>>,
     near: HashMap<String, NearEntry>,
 }
 
@@ -209,7 +247,7 @@ fn cache() -> &'static Mutex<Cache> {
 #[derive(Debug)]
 pub(crate) struct InPlace {
     /// A model compiled from a text of the same skeleton (the cached full compile).
-    pub(crate) base: Arc<MjModel>,
+    pub(crate) base: Arc<SharedModel>,
     /// The box resizes that turn `base` into the new text's model (empty for the text
     /// `base` was compiled from).
     pub(crate) resizes: Vec<patch::BoxResize>,
@@ -238,7 +276,7 @@ pub(crate) fn in_place(current: &str, xml: &str) -> Option<InPlace> {
         cache.near.get(&sk.key).cloned()
     };
     let (base_xml, base_sk, base) = near?;
-    let resizes = patch::plan(&base, &base_xml, &base_sk, xml, &sk)?;
+    let resizes = patch::plan(base.model(), &base_xml, &base_sk, xml, &sk)?;
     if !resizes.is_empty() {
         PATCHED.fetch_add(1, Ordering::SeqCst);
     }
@@ -262,38 +300,47 @@ pub fn compile_cached(xml: &str) -> Result<MjModel> {
 /// # Errors
 /// As [`compile_cached`].
 pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
+    compile_shared_with_source(xml).map(|(compiled, key)| (compiled.into_model(), key))
+}
+
+/// As [`compile_cached_with_source`], giving the cached model itself
+/// ([`Compiled::Shared`]) rather than a copy: [`crate::sim::Sim::new_shared`] makes a
+/// copy-on-write view of it, so every environment of one scene shares its memory. A scene
+/// made by patching (see [`set_scene_patching`]) is a model of its own ([`Compiled::Own`]).
+///
+/// # Errors
+/// As [`compile_cached`].
+pub fn compile_shared_with_source(xml: &str) -> Result<(Compiled, Arc<str>)> {
     check_mujoco_version()?;
     let skeleton = if PATCHING.load(Ordering::SeqCst) {
         patch::skeleton(xml)
     } else {
         None
     };
-    // Copies and patches run outside the lock (several threads load scenes at once); only
-    // full compilations hold it.
+    // Patches run outside the lock (several threads load scenes at once); only full
+    // compilations hold it.
     let lock = || cache().lock().unwrap_or_else(PoisonError::into_inner);
     let base = {
         let cache = lock();
         if let Some((key, model)) = cache.exact.get_key_value(xml) {
-            let (key, model) = (Arc::clone(key), Arc::clone(model));
-            drop(cache);
-            return Ok((MjModel::clone(&model), key));
+            return Ok((Compiled::Shared(Arc::clone(model)), Arc::clone(key)));
         }
         skeleton
             .as_ref()
             .and_then(|sk| cache.near.get(&sk.key).cloned())
     };
     if let (Some(sk), Some((base_xml, base_sk, base))) = (&skeleton, base)
-        && let Ok(Some(model)) = patch::patched(&base, &base_xml, &base_sk, xml, sk)
+        && let Ok(Some(model)) = patch::patched(base.model(), &base_xml, &base_sk, xml, sk)
     {
         // Not cached: patching again costs no more than copying a cached model.
         PATCHED.fetch_add(1, Ordering::SeqCst);
-        return Ok((model, Arc::from(xml)));
+        return Ok((Compiled::Own(model), Arc::from(xml)));
     }
     // One compilation at a time: MuJoCo's XML loader keeps global state.
     let mut cache = lock();
     if let Some((key, model)) = cache.exact.get_key_value(xml) {
         // compiled by another thread meanwhile
-        return Ok((MjModel::clone(model), Arc::clone(key)));
+        return Ok((Compiled::Shared(Arc::clone(model)), Arc::clone(key)));
     }
     let mut model = MjModel::from_xml_string(xml)
         .map_err(|e| Error::model(format!("MuJoCo cannot compile the scene: {e}")))?;
@@ -304,7 +351,8 @@ pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
     if cache.near.len() >= CACHE_CAPACITY {
         cache.near.clear();
     }
-    let model = Arc::new(model);
+    // Under the lock: the first call compiles a tiny template model.
+    let model = SharedModel::new(model);
     let key: Arc<str> = Arc::from(xml);
     cache.exact.insert(Arc::clone(&key), Arc::clone(&model));
     if let Some(sk) = skeleton {
@@ -317,5 +365,5 @@ pub fn compile_cached_with_source(xml: &str) -> Result<(MjModel, Arc<str>)> {
         }
     }
     drop(cache);
-    Ok((MjModel::clone(&model), key))
+    Ok((Compiled::Shared(model), key))
 }

@@ -9,6 +9,7 @@
 //! under it; when it is dropped it releases the handle instead of freeing the memory, and the
 //! memory lives on for as long as the other owner keeps it (a NumPy view included).
 
+use super::shared::{Mapping, SharedModel, View};
 use mujoco_rs::mujoco_c::{
     mj_copyData, mj_deleteData, mj_fullM, mj_getState, mj_makeData, mj_resetData, mj_setState,
     mj_stateSize, mjContact, mjData, mjModel,
@@ -17,6 +18,7 @@ use mujoco_rs::wrappers::mj_model::MjModel;
 use std::any::Any;
 use std::mem::ManuallyDrop;
 use std::ptr::NonNull;
+use std::sync::Arc;
 
 /// A handle that keeps memory owned elsewhere alive until it is dropped (for instance a
 /// reference to a Python object).
@@ -30,6 +32,9 @@ pub struct Data {
     model_owner: Option<KeepAlive>,
     /// `Some`: the data's memory belongs to this owner (never freed here).
     data_owner: Option<KeepAlive>,
+    /// `Some`: the model is a view of a shared model, its arrays in this mapping (see
+    /// [`SharedModel`]); only the header is MuJoCo's.
+    view: Option<(Mapping, Arc<SharedModel>)>,
 }
 
 // SAFETY: `Data` is the only handle through which this crate touches the mjData and mjModel
@@ -47,6 +52,7 @@ impl std::fmt::Debug for Data {
             .field("time", &self.time())
             .field("model_shared", &self.model_owner.is_some())
             .field("data_shared", &self.data_owner.is_some())
+            .field("model_view", &self.view.is_some())
             .finish()
     }
 }
@@ -114,16 +120,59 @@ impl Data {
     /// # Errors
     /// A message when MuJoCo cannot allocate the data.
     pub fn new(model: MjModel) -> Result<Self, String> {
+        Self::with_view(View {
+            model,
+            mapping: None,
+        })
+    }
+
+    /// Allocates the data of a view of `shared` (see [`SharedModel`]): the model's arrays
+    /// are shared page by page until this environment writes them, the data is its own.
+    ///
+    /// # Errors
+    /// A message when MuJoCo cannot allocate the data.
+    pub fn new_shared(shared: &Arc<SharedModel>) -> Result<Self, String> {
+        Self::with_view(shared.view())
+    }
+
+    fn with_view(view: View) -> Result<Self, String> {
+        let View { model, mapping } = view;
         let model = Box::new(model);
         // SAFETY: a compiled model; a null result is handled.
         let ptr = unsafe { mj_makeData(model.ffi()) };
-        let data = NonNull::new(ptr).ok_or_else(|| "mj_makeData returned null".to_owned())?;
+        let Some(data) = NonNull::new(ptr) else {
+            if mapping.is_some() {
+                // SAFETY: a view's header, freed before its mapping.
+                unsafe { View::free_header(*model) };
+            }
+            return Err("mj_makeData returned null".to_owned());
+        };
         Ok(Self {
             data,
             model: ManuallyDrop::new(model),
             model_owner: None,
             data_owner: None,
+            view: mapping,
         })
+    }
+
+    /// The shared model this data's model is a copy-on-write view of (`None` for a model of
+    /// its own).
+    pub fn shared_model(&self) -> Option<&Arc<SharedModel>> {
+        self.view.as_ref().map(|(_, shared)| shared)
+    }
+
+    /// Replaces a view of a shared model by a model of this crate's own (`mj_copyModel` of
+    /// the view's current values); nothing to do for a model already private.
+    pub fn make_model_private(&mut self) {
+        if self.view.is_none() {
+            return;
+        }
+        let copy = Box::new(MjModel::clone(&self.model));
+        let old = std::mem::replace(&mut self.model, ManuallyDrop::new(copy));
+        // SAFETY: the view's header (its buffer is the mapping), freed before the mapping.
+        unsafe { View::free_header(*ManuallyDrop::into_inner(old)) };
+        self.view = None;
     }
 
     /// The raw `mjData`.
@@ -196,6 +245,7 @@ impl Data {
         if self.model_owner.is_some() {
             return Ok(());
         }
+        self.make_model_private();
         let (m, _) = self.raw_mut();
         self.model_owner = Some(wrap(m)?);
         Ok(())
@@ -410,14 +460,15 @@ impl Data {
 impl Data {
     /// Frees the data and gives the model back; `None` (both freed as on drop) when either
     /// belongs to another owner.
-    pub(crate) fn into_model(self) -> Option<MjModel> {
+    pub(crate) fn into_model(mut self) -> Option<MjModel> {
         if self.model_owner.is_some() || self.data_owner.is_some() {
             return None;
         }
+        self.make_model_private();
         let mut this = ManuallyDrop::new(self);
         // SAFETY: the data was made by `mj_makeData` here and is freed once; the model is
-        // taken out of its `ManuallyDrop` once, and `this` is never dropped (its owners are
-        // `None`, so nothing else is left to free).
+        // taken out of its `ManuallyDrop` once, and `this` is never dropped (its owners and
+        // view are `None`, so nothing else is left to free).
         unsafe {
             mj_deleteData(this.data.as_ptr());
             Some(*ManuallyDrop::take(&mut this.model))
@@ -432,8 +483,14 @@ impl Drop for Data {
             unsafe { mj_deleteData(self.data.as_ptr()) };
         }
         if self.model_owner.is_none() {
-            // SAFETY: dropped once; the model is this crate's.
-            unsafe { ManuallyDrop::drop(&mut self.model) };
+            if self.view.is_some() {
+                // SAFETY: a view's header, taken once; its mapping is dropped after it.
+                unsafe { View::free_header(*ManuallyDrop::take(&mut self.model)) };
+                drop(self.view.take());
+            } else {
+                // SAFETY: dropped once; the model is this crate's.
+                unsafe { ManuallyDrop::drop(&mut self.model) };
+            }
         }
         // A handed-over model's memory is the other owner's; only mujoco-rs's small handle
         // (its `Box`) is left unfreed, since dropping it would free that memory.

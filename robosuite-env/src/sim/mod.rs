@@ -8,6 +8,7 @@ mod guard;
 pub mod mju;
 mod names;
 mod resize;
+mod shared;
 mod version;
 mod xml;
 
@@ -17,6 +18,7 @@ pub use names::{actuator_for_joint, actuator_id, body_id, geom_id, joint_id, sen
 pub use resize::{
     BoxGeomUpdate, reshape_body_from, resize_box_body, resize_cylinder_body, resized_box_bodies,
 };
+pub use shared::SharedModel;
 pub use version::{MUJOCO_VERSION, check_mujoco_version};
 pub use xml::scene_xml;
 
@@ -24,6 +26,7 @@ use guard::Call;
 use gym_core::{Error, Result};
 use mujoco_rs::mujoco_c::{mjData, mjModel, mjtWarning};
 use mujoco_rs::wrappers::mj_model::{MjModel, MjtDisableBit};
+use std::sync::Arc;
 
 /// The largest magnitude accepted for a position or velocity in [`Sim::set_state`]: far
 /// beyond any posture or speed of robosuite's scenes, and four orders of magnitude below
@@ -41,8 +44,11 @@ const DIVERGENCE_WARNINGS: [(mjtWarning, &str); 4] = [
 
 /// A compiled model with its data: what one environment instance simulates.
 ///
-/// The model is owned (not shared) so that per-episode randomisation, such as Lift's cube
-/// size, can edit it in place without recompiling.
+/// The model is this simulator's own, either a plain copy ([`Sim::new`]) or a copy-on-write
+/// view of a [`SharedModel`] ([`Sim::new_shared`]): reads share the compiled model's memory
+/// with every other view, and the first write to a page of it (per-episode randomisation
+/// such as Lift's cube size, edited in place without recompiling) copies that page for this
+/// simulator alone. Either way no write is ever seen by another simulator.
 ///
 /// MuJoCo's fatal errors do not end the process: [`Sim::forward`], [`Sim::step1`],
 /// [`Sim::step2`] and [`Sim::step`] return [`Error::Simulation`] (see the `guard` module), and
@@ -65,8 +71,24 @@ impl Sim {
         // SAFETY: a compiled model; the shim allocates and frees one mjData.
         unsafe { guard::trial_make_data(model.ffi()) }
             .map_err(|e| Error::model(format!("MuJoCo cannot allocate mjData: {e}")))?;
-        let data =
-            Data::new(model).map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
+        Self::checked(Data::new(model))
+    }
+
+    /// As [`Sim::new`] on a copy-on-write view of `shared` (see [`Sim`]): the compiled
+    /// model's memory is shared with every other simulator made from it.
+    ///
+    /// # Errors
+    /// As [`Sim::new`].
+    pub fn new_shared(shared: &Arc<SharedModel>) -> Result<Self> {
+        // SAFETY: a compiled model; the shim allocates and frees one mjData.
+        unsafe { guard::trial_make_data(shared.model().ffi()) }
+            .map_err(|e| Error::model(format!("MuJoCo cannot allocate mjData: {e}")))?;
+        Self::checked(Data::new_shared(shared))
+    }
+
+    /// The trial step of [`Sim::new`] on a fresh data.
+    fn checked(data: std::result::Result<Data, String>) -> Result<Self> {
+        let data = data.map_err(|e| Error::model(format!("cannot allocate mjData: {e}")))?;
         let mut sim = Self { data, failed: None };
         sim.forward()
             .and_then(|()| sim.step())
@@ -138,6 +160,12 @@ impl Sim {
     /// The model.
     pub fn model(&self) -> &MjModel {
         self.data.model()
+    }
+
+    /// The shared model this simulator's model is a copy-on-write view of (`None` for a
+    /// model of its own; see [`Sim`]).
+    pub fn shared_model(&self) -> Option<&Arc<SharedModel>> {
+        self.data.shared_model()
     }
 
     /// The data.

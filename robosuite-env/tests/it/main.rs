@@ -23,6 +23,7 @@ mod render;
 mod robosuite_replay;
 mod scripted_lift;
 mod sensor_skip;
+mod shared_model;
 mod stack_env;
 mod task_options;
 mod texture_free_scene;
