@@ -110,7 +110,12 @@ impl CameraRig {
                 width = width.max(c.width);
                 height = height.max(c.height);
             }
-            let renderer = crate::render::OffscreenRenderer::new(model, width, height)?;
+            let renderer = crate::render::OffscreenRenderer::on_device(
+                model,
+                width,
+                height,
+                config.render_gpu_device_id,
+            )?;
             Ok(Some(Self {
                 cameras,
                 specs,

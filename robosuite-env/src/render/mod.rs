@@ -79,9 +79,25 @@ impl OffscreenRenderer {
     /// [`Error::Render`] when no EGL context can be opened (the message names the missing
     /// library); [`Error::InvalidArgument`] for a zero size or one above [`MAX_SIZE`].
     pub fn new(model: &MjModel, width: usize, height: usize) -> Result<Self> {
+        Self::on_device(model, width, height, None)
+    }
+
+    /// [`OffscreenRenderer::new`] on EGL device `device` (robosuite's
+    /// `render_gpu_device_id`; `None`: `MUJOCO_EGL_DEVICE_ID`, else the first device that
+    /// opens), see [`GlContext::with_device`].
+    ///
+    /// # Errors
+    /// As [`OffscreenRenderer::new`]; [`Error::InvalidArgument`] for a device index that
+    /// does not exist (the message lists the devices found).
+    pub fn on_device(
+        model: &MjModel,
+        width: usize,
+        height: usize,
+        device: Option<usize>,
+    ) -> Result<Self> {
         check_size("width", width)?;
         check_size("height", height)?;
-        let mut gl = GlContext::new()?;
+        let mut gl = GlContext::with_device(device)?;
         let context = {
             let _current = gl.make_current()?;
             // SAFETY: the GL context is current on this thread; the MjrContext is only used
