@@ -252,6 +252,6 @@ def test_bad_camera_options_raise_value_error(kwargs: dict[str, Any], match: str
         lift(**args)
 
 
-def test_has_renderer_still_refused() -> None:
-    with pytest.raises(ValueError, match="has_renderer"):
-        lift(has_renderer=True)
+def test_an_unknown_viewer_is_refused() -> None:
+    with pytest.raises(ValueError, match="renderer"):
+        lift(has_renderer=True, renderer="pygame")
