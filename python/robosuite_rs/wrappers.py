@@ -162,7 +162,7 @@ class GymWrapper(RustEnv):
         self._route: Any = None
         self._missing: list[str] = []
         self._next_frame = 0.0
-        if getattr(env, "has_renderer", False):
+        if getattr(env, "has_renderer", False) and self.render_mode is None:
             # Gymnasium's on-screen mode: the env's viewer, shown at every step and reset.
             self.metadata = dict(self.metadata, render_modes=[*self.metadata.get("render_modes", []), "human"])
             self.render_mode = "human"
