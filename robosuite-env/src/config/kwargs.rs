@@ -393,7 +393,11 @@ fn check_renderer_config(value: &Value) -> Result<()> {
         let cam = match v {
             Value::Null => continue,
             Value::Object(cam) => cam,
-            other => return Err(bad(format!("cam_config must be None or a dict, got {other}"))),
+            other => {
+                return Err(bad(format!(
+                    "cam_config must be None or a dict, got {other}"
+                )));
+            }
         };
         for name in ["lookat", "distance", "azimuth", "elevation"] {
             let ok = match (name, cam.get(name)) {
@@ -406,7 +410,11 @@ fn check_renderer_config(value: &Value) -> Result<()> {
             if !ok {
                 return Err(bad(format!(
                     "cam_config needs `{name}` ({}), got {}",
-                    if name == "lookat" { "3 finite numbers" } else { "a finite number" },
+                    if name == "lookat" {
+                        "3 finite numbers"
+                    } else {
+                        "a finite number"
+                    },
                     cam.get(name).map_or("nothing".to_owned(), Value::to_string)
                 )));
             }
