@@ -120,7 +120,12 @@ fn run(args: &Args) -> Result<(), String> {
         })?;
     let period = Duration::from_secs_f64(1.0 / env.config().control_freq);
     let mut rng = rng_from_seed(args.seed);
-    let dim = env.action_space().shape().unwrap_or(&[]).iter().product::<usize>();
+    let dim = env
+        .action_space()
+        .shape()
+        .unwrap_or(&[])
+        .iter()
+        .product::<usize>();
     let (mut obs, _) = env
         .reset(Some(args.seed), None)
         .map_err(|e| e.to_string())?;
