@@ -7,35 +7,10 @@
 //!
 //! Run with `cargo run --release -p examples --example lift_demo [seed]`.
 
-use examples::format_info;
-use gym_core::{DictValue, Env, Space, rng_from_seed};
-use ndarray::{ArrayD, IxDyn};
+use examples::{LiftScript, format_info, vec3};
+use gym_core::{Env, Space, rng_from_seed};
 use robosuite_env::EnvConfig;
 use std::time::Instant;
-
-/// The phases of the scripted grasp.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Phase {
-    Approach,
-    Descend,
-    Grasp(u32),
-    Lift,
-}
-
-fn vec3(obs: &DictValue, key: &str) -> [f64; 3] {
-    let v = obs[key].as_array().expect("array observation").to_f64_vec();
-    [v[0], v[1], v[2]]
-}
-
-/// A proportional step toward `target`, saturating at the action bounds.
-fn toward(eef: [f64; 3], target: [f64; 3], grip: f64) -> ArrayD<f64> {
-    let mut a = ArrayD::zeros(IxDyn(&[7]));
-    for i in 0..3 {
-        a[[i]] = ((target[i] - eef[i]) / 0.05).clamp(-1.0, 1.0);
-    }
-    a[[6]] = grip;
-    a
-}
 
 fn main() -> gym_core::Result<()> {
     let seed = std::env::args()
@@ -57,17 +32,12 @@ fn main() -> gym_core::Result<()> {
         "cube starts at     ({:.3}, {:.3}, {:.3})",
         cube0[0], cube0[1], cube0[2]
     );
-    let mut phase = Phase::Approach;
+    let mut script = LiftScript::new(&obs);
     let mut total = 0.0;
     let mut first_success = None;
     for t in 1.. {
-        let (eef, cube) = (vec3(&obs, "robot0_eef_pos"), vec3(&obs, "cube_pos"));
-        let action = match phase {
-            Phase::Approach => toward(eef, [cube[0], cube[1], cube[2] + 0.1], -1.0),
-            Phase::Descend => toward(eef, [cube[0], cube[1], cube[2] - 0.005], -1.0),
-            Phase::Grasp(_) => toward(eef, eef, 1.0),
-            Phase::Lift => toward(eef, [cube0[0], cube0[1], 1.05], 1.0),
-        };
+        let (eef, phase) = (vec3(&obs, "robot0_eef_pos"), script.phase);
+        let action = script.act(&obs);
         let step = env.step(&action)?;
         total += step.reward;
         if step.info.get_bool("success") == Some(true) && first_success.is_none() {
@@ -77,25 +47,13 @@ fn main() -> gym_core::Result<()> {
                 format_info(&step.info)
             );
         }
-        let next = match phase {
-            Phase::Approach
-                if (eef[0] - cube[0]).hypot(eef[1] - cube[1]) < 0.01
-                    && (eef[2] - cube[2] - 0.1).abs() < 0.02 =>
-            {
-                Phase::Descend
-            }
-            Phase::Descend if (eef[2] - cube[2]).abs() < 0.01 => Phase::Grasp(0),
-            Phase::Grasp(n) if n >= 12 => Phase::Lift,
-            Phase::Grasp(n) => Phase::Grasp(n + 1),
-            p => p,
-        };
+        let next = script.phase;
         if std::mem::discriminant(&next) != std::mem::discriminant(&phase) {
             println!(
                 "step {t:3}: {phase:?} done, eef ({:.3}, {:.3}, {:.3}) -> {next:?}",
                 eef[0], eef[1], eef[2]
             );
         }
-        phase = next;
         obs = step.observation;
         if step.terminated || step.truncated {
             let cube = vec3(&obs, "cube_pos");

@@ -31,6 +31,7 @@ from gymnasium import error as gymnasium_error
 from . import _native
 from ._env_observables import EnvObservables
 from .compat import served_macro
+from .renderers import MjviewerRenderer, OpenCVViewer, load_renderer_config
 
 __all__ = [
     "make",
@@ -151,6 +152,12 @@ class RobosuiteEnv:
         # Whether visualize() ever ran (only then does a reset hide the sites again).
         self._visualized = False
         self._vis_cache: Any = None
+        self._viewer: Any = None
+        self._closed = False
+        self.has_renderer = False
+        self.renderer = "mjviewer"
+        self.renderer_config: dict[str, Any] | None = None
+        self.render_camera: list[str] | None = ["frontview"]
 
     # --- robosuite's env object: env.sim, env.robots, the XML round trip ----------------
     @property
@@ -236,6 +243,10 @@ class RobosuiteEnv:
         if not in_place:  # a new model and data: env.sim and env.robots are made anew
             self._sim = None
             self._robots = None
+        if isinstance(self._viewer, OpenCVViewer):
+            self._viewer.sim = self.sim
+        elif self._viewer is not None:
+            self._viewer.update()  # a window on the new model
 
     def get_ep_meta(self) -> dict[str, Any]:
         """Episode metadata (a copy), ``{}`` unless set."""
@@ -470,10 +481,13 @@ class RobosuiteEnv:
     # --- robosuite's API -------------------------------------------------------------
     def reset(self, seed: int | None = None) -> OrderedDict[str, np.ndarray]:
         """Starts an episode; ``seed`` (an extension of robosuite's API) re-seeds the env.
-        Sites shown by :meth:`visualize` are hidden again, as robosuite's reset does."""
+        Sites shown by :meth:`visualize` are hidden again, as robosuite's reset does. An
+        open mjviewer window stays open and shows the new episode."""
         obs = self._obsv.after_reset(self._native.reset(seed))
         if self._visualized:
             self.visualize({vis: False for vis in self._visualizations})
+        if self._viewer is not None and self.renderer != "mujoco" and self._viewer.viewer is not None:
+            self._viewer.update()
         return obs
 
     def step(self, action: Any) -> tuple[OrderedDict[str, np.ndarray], float, bool, dict[str, Any]]:
@@ -485,9 +499,68 @@ class RobosuiteEnv:
                 an observable's sensor, corrupter, filter or delayer fails (the step is
                 then taken all the same, and the message says so).
         """
-        if self._obsv.fast:
-            return self._native.step(action)
-        return self._obsv.step(action)
+        out = self._native.step(action) if self._obsv.fast else self._obsv.step(action)
+        if self._viewer is not None and self.renderer != "mujoco":
+            self._viewer.update()  # robosuite's mjviewer shows every step
+        return out
+
+    # --- robosuite's on-screen viewer --------------------------------------------------
+    @property
+    def viewer(self) -> Any:
+        """robosuite's ``env.viewer``: the on-screen viewer of ``has_renderer=True`` (a
+        :class:`~robosuite_rs.renderers.MjviewerRenderer` or
+        :class:`~robosuite_rs.renderers.OpenCVViewer`, with ``set_camera`` and
+        ``add_keypress_callback``), ``None`` without one."""
+        return self._viewer
+
+    def render(self) -> None:
+        """robosuite's ``env.render()``: shows the current state in the on-screen window
+        (opened at the first call or step): MuJoCo's viewer is synced, the OpenCV window
+        draws the offscreen frame of ``render_camera``.
+
+        Raises:
+            RuntimeError: for an env made without ``has_renderer=True`` (frames come from
+                ``env.sim.render`` or Gymnasium's ``render_mode="rgb_array"``), a closed env,
+                or no display (the message names ``DISPLAY`` / ``MUJOCO_GL``).
+        """
+        if self._viewer is None:
+            raise RuntimeError(
+                "render() shows the on-screen viewer: make the env with has_renderer=True (renderer="
+                "'mjviewer' or 'mujoco'); for frames use env.sim.render(...) or render_mode='rgb_array'"
+                + (" (this env is closed)" if self._closed else "")
+            )
+        self._viewer.render()
+
+    def close_renderer(self) -> None:
+        """robosuite's ``close_renderer``: closes the window (the next ``render()`` opens it again)."""
+        if self._viewer is not None:
+            self._viewer.close_window()
+
+    def _init_viewer(self, kwargs: dict[str, Any]) -> None:
+        """robosuite's ``initialize_renderer`` for ``make``'s (already checked) arguments."""
+        self.has_renderer = bool(kwargs.get("has_renderer", False))
+        self.renderer = str(kwargs.get("renderer") or "mjviewer").lower()
+        camera = kwargs.get("render_camera", "frontview")
+        self.render_camera = None if camera is None else [camera] if isinstance(camera, str) else list(camera)
+        config = kwargs.get("renderer_config")
+        self.renderer_config = dict(config) if config is not None else (
+            None if self.renderer == "mujoco" else load_renderer_config(self.renderer)
+        )
+        if not self.has_renderer:
+            return
+        from .renderers import check_display
+
+        model = self.sim.model
+        # ValueError listing the model's cameras for an unknown one
+        camera_ids = None if self.render_camera is None else [model.camera_name2id(c) for c in self.render_camera]
+        if self.renderer == "mujoco":
+            viewer: Any = OpenCVViewer(self.sim)  # ImportError without opencv-python
+            if camera_ids is not None:
+                viewer.set_camera(camera_id=camera_ids)
+        else:
+            viewer = MjviewerRenderer(self, camera_id=None if camera_ids is None else camera_ids[0], **(self.renderer_config or {}))
+        check_display()
+        self._viewer = viewer
 
     @property
     def action_spec(self) -> tuple[np.ndarray, np.ndarray]:
@@ -605,8 +678,12 @@ class RobosuiteEnv:
         self._native.set_state(state)
 
     def close(self) -> None:
-        """Closes the env; calling it again does nothing. ``env.sim``'s arrays stay
-        readable (they belong to Python)."""
+        """Closes the env and its viewer window; calling it again does nothing.
+        ``env.sim``'s arrays stay readable (they belong to Python)."""
+        if self._viewer is not None:
+            self._viewer.close()
+            self._viewer = None
+        self._closed = True
         self._native.close()
 
     def __repr__(self) -> str:
@@ -705,8 +782,12 @@ def make(
     arguments (camera observations are off by default here; ``has_offscreen_renderer``
     defaults to ``True`` as in robosuite), Gymnasium's ``render_mode`` (``"rgb_array"``,
     ``"depth_array"`` or ``None``) drawn from ``render_camera`` at ``render_width`` ×
-    ``render_height``, and robosuite's viewer arguments with the values this build honours
-    (``has_renderer=False``). ``model_xml``: a robosuite-style scene file to run the task
+    ``render_height``, and robosuite's on-screen viewer: ``has_renderer=True`` with
+    ``renderer="mjviewer"`` (MuJoCo's viewer, the default; ``renderer_config={"cam_config":
+    ...}`` places its free camera) or ``renderer="mujoco"`` (an OpenCV window; needs
+    opencv-python), showing ``render_camera`` (``None``: the free camera; a list: side by
+    side in the OpenCV window), see ``env.render()`` / ``env.viewer``;
+    ``render_mode="human"`` is ``has_renderer=True``. ``model_xml``: a robosuite-style scene file to run the task
     on, e.g. one saved from robosuite with ``env.sim.model.get_xml()``.
 
     Raises:
@@ -715,7 +796,13 @@ def make(
             lists the model's cameras).
         TypeError: for an unknown keyword argument (the message lists robosuite's and the
             task's own).
+        RuntimeError: for ``has_renderer=True`` without a display (the message names
+            ``DISPLAY`` / ``MUJOCO_GL``).
+        ImportError: for ``renderer="mujoco"`` without opencv-python.
     """
+    if kwargs.get("render_mode") == "human":
+        # Gymnasium's on-screen mode is robosuite's viewer.
+        kwargs = dict(kwargs, render_mode=None, has_renderer=True)
     config = _native_kwargs(robots, kwargs)
     convention = served_macro("IMAGE_CONVENTION", "opengl")
     if convention != "opengl":
@@ -726,6 +813,11 @@ def make(
     env._make_args = (env_name, config, model)
     env._obsv.hard_reset = bool(kwargs.get("hard_reset", True))
     env._controller_configs = _controller_config_dicts(kwargs.get("controller_configs"), robots, env)
+    try:
+        env._init_viewer(kwargs)
+    except BaseException:
+        env.close()
+        raise
     return env
 
 
@@ -887,6 +979,11 @@ def make_vec(
         )
     if vector_kwargs:
         raise VectorizeError(f"vector_kwargs are for vectorization_mode='sync' or 'async', got {vector_kwargs}")
+    if kwargs.get("has_renderer"):
+        raise VectorizeError(
+            "has_renderer=True: the Rust vector env shows no window; use vectorization_mode='sync' "
+            "(a window per sub-env) or has_renderer=False"
+        )
     if kwargs.get("render_mode") is not None:
         raise VectorizeError(
             f"render_mode={kwargs['render_mode']!r}: the Rust vector env does not render; "

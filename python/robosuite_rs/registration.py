@@ -29,8 +29,9 @@ def make_gym_env(env_name: str, keys: list[str] | None = None, flatten_obs: bool
 
 # Read by ``gymnasium.make`` before it calls the entry point: with these render modes it
 # maps ``render_mode="rgb_array_list"`` to ``RenderCollection`` over ``"rgb_array"`` (the
-# env's own ``metadata`` also has ``render_fps``, its control frequency).
-make_gym_env.metadata = {"render_modes": ["rgb_array", "depth_array"]}  # type: ignore[attr-defined]
+# env's own ``metadata`` also has ``render_fps``, its control frequency) and passes
+# ``render_mode="human"`` on (robosuite's viewer, see ``make``).
+make_gym_env.metadata = {"render_modes": ["rgb_array", "depth_array", "human"]}  # type: ignore[attr-defined]
 
 
 def make_registered_env(env_id: str, **kwargs: Any) -> gymnasium.Env:  # type: ignore[type-arg]

@@ -119,7 +119,10 @@ class GymWrapper(RustEnv):
     * Stepping: while every observable of ``env`` is as made, ``step`` / ``reset`` are one
       call into Rust; otherwise they run ``env.step`` / ``env.reset`` (robosuite's
       observables, substep by substep), with the same results on an unmodified env.
-    * ``render()`` draws the env's ``render_mode`` (``make(..., render_mode="rgb_array")``).
+    * ``render()`` draws the env's ``render_mode`` (``make(..., render_mode="rgb_array")``);
+      an env made with ``has_renderer=True`` (or ``render_mode="human"``) gives Gymnasium's
+      ``render_mode="human"``: its window shows every step and reset at
+      ``metadata["render_fps"]``.
     * ``action_space`` is a ``float32`` Box (robosuite's ``action_spec`` bounds); actions
       are taken as ``float32``.
     * Unlike robosuite's wrapper, ``reset(seed=...)`` really seeds the episode, the
@@ -168,6 +171,11 @@ class GymWrapper(RustEnv):
         self._route_key: tuple[int, bool] | None = None
         self._route: Any = None
         self._missing: list[str] = []
+        self._next_frame = 0.0
+        if getattr(env, "has_renderer", False) and self.render_mode is None:
+            # Gymnasium's on-screen mode: the env's viewer, shown at every step and reset.
+            self.metadata = dict(self.metadata, render_modes=[*self.metadata.get("render_modes", []), "human"])
+            self.render_mode = "human"
 
     def _replan(self) -> None:
         """After a change of ``env``'s observables: which keys are missing, and whether the
@@ -219,12 +227,16 @@ class GymWrapper(RustEnv):
         """
         native = self._check_observed()
         if native is not None:
-            return super().reset(seed=seed, options=options)
-        if options:
-            raise ValueError(f"unknown key `{next(iter(options))}`; available: ")
-        gym.Env.reset(self, seed=seed)
-        obs = self.env.reset(seed)
-        return self._observe(obs), {"success": bool(self.env.check_success())}
+            out = super().reset(seed=seed, options=options)
+        else:
+            if options:
+                raise ValueError(f"unknown key `{next(iter(options))}`; available: ")
+            gym.Env.reset(self, seed=seed)
+            obs = self.env.reset(seed)
+            out = self._observe(obs), {"success": bool(self.env.check_success())}
+        if self.render_mode == "human":
+            self.render()
+        return out
 
     def step(self, action: Any) -> tuple[Any, SupportsFloat, bool, bool, dict[str, Any]]:
         """Applies ``action``.
@@ -236,13 +248,45 @@ class GymWrapper(RustEnv):
         """
         obsv = self.env._obsv
         if (obsv.version, obsv.fast) == self._route_key and self._route is not None:
-            return self._route.step(action)
-        if self._check_observed() is not None:
-            return self._route.step(action)
-        obs, reward, done, info = self.env.step(_f32(action))
-        env = self.env
-        truncated = env.timestep >= env.horizon and not env.ignore_done
-        return self._observe(obs), float(reward), bool(done and not truncated), bool(truncated), info
+            out = self._route.step(action)
+        elif self._check_observed() is not None:
+            out = self._route.step(action)
+        else:
+            obs, reward, done, info = self.env.step(_f32(action))
+            env = self.env
+            truncated = env.timestep >= env.horizon and not env.ignore_done
+            out = self._observe(obs), float(reward), bool(done and not truncated), bool(truncated), info
+        if self.render_mode == "human":
+            self.render()
+        return out
+
+    def render(self) -> Any:
+        """The frame of ``render_mode`` (``"rgb_array"`` / ``"depth_array"``, see
+        :meth:`RustEnv.render`); with ``"human"`` (an env made with ``has_renderer=True`` or
+        ``render_mode="human"``) shows the env's viewer window, at most
+        ``metadata["render_fps"]`` times a second (``step`` and ``reset`` call it), and
+        returns ``None``.
+
+        Raises:
+            RuntimeError: as ``env.render()`` (no display, a closed env).
+        """
+        if self.render_mode != "human":
+            return super().render()
+        import time
+
+        fps = self.metadata.get("render_fps")
+        if fps:
+            now = time.perf_counter()
+            if self._next_frame > now:
+                time.sleep(self._next_frame - now)
+            self._next_frame = max(now, self._next_frame) + 1.0 / float(fps)
+        self.env.render()
+        return None
+
+    def close(self) -> None:
+        """Closes the env and its viewer window; calling it again does nothing."""
+        self.env.close()
+        super().close()
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickling and ``copy.deepcopy``: a GymWrapper over a copy of the wrapped env (see

@@ -4,8 +4,9 @@
 #   python/scripts/test.sh [pytest args...]
 #
 # Creates <repo>/.venv if missing (python3 -m venv), installs maturin, pytest, pytest-xdist,
-# hypothesis, gymnasium, numpy, mujoco==3.17.0, moviepy (for RecordVideo) and h5py
-# (robosuite_rs.datasets) into it, builds the extension in release mode with
+# hypothesis, gymnasium, numpy, mujoco==3.17.0, moviepy (for RecordVideo), h5py
+# (robosuite_rs.datasets) and opencv-python (the renderer="mujoco" viewer) into it, installs
+# Xvfb (the viewer tests' virtual display) with apt-get when missing and possible, builds the extension in release mode with
 # `maturin develop` (the same build `pip install .` runs), builds the example of a user's
 # own module (python/examples/own_module) and runs pytest on python/tests.
 # Environment: PYTHON (default python3) picks the interpreter the virtualenv is made from;
@@ -30,7 +31,7 @@ if [ ! -x "$VENV/bin/python" ]; then
 fi
 PY="$VENV/bin/python"
 # Quiet, idempotent: pip skips what is already installed.
-"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy pytest-xdist h5py
+"$PY" -m pip install --quiet --disable-pip-version-check "maturin>=1.9,<2" pytest "gymnasium>=1.1" numpy "mujoco==3.17.0" hypothesis moviepy pytest-xdist h5py opencv-python
 
 start=$(date +%s)
 "$VENV/bin/maturin" develop --release --quiet --manifest-path "$ROOT/python/native/Cargo.toml"
@@ -38,6 +39,8 @@ echo "test.sh: extension built in $(( $(date +%s) - start )) s"
 if [ "${ROBOSUITE_RS_BUILD_ONLY:-0}" = "1" ]; then
     exit 0
 fi
+# Not fatal here: without Xvfb only the viewer tests fail, saying what to install.
+sh "$ROOT/build-support/install-xvfb.sh" || true
 
 # The example of a user's own pyo3 module (python/examples/own_module, which depends on the
 # robosuite-rs package installed above), tested by tests/test_own_module.py;

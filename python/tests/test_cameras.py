@@ -274,6 +274,6 @@ def test_render_quality_fast_is_close_to_robosuite_quality_and_deterministic() -
         lift(use_camera_obs=True, render_quality="ultra")
 
 
-def test_has_renderer_still_refused() -> None:
-    with pytest.raises(ValueError, match="has_renderer"):
-        lift(has_renderer=True)
+def test_an_unknown_viewer_is_refused() -> None:
+    with pytest.raises(ValueError, match="renderer"):
+        lift(has_renderer=True, renderer="pygame")

@@ -108,5 +108,5 @@ def test_gymnasium_make_kwargs_reach_the_env() -> None:
     assert env.observation_space.shape == (10,)
     assert env.unwrapped.env.horizon == 7
     assert env.unwrapped.env.reward_scale is None
-    with pytest.raises(ValueError, match="has_renderer"):
-        gym.make("robosuite_rs/Lift-v0", has_renderer=True)
+    with pytest.raises(ValueError, match="renderer"):
+        gym.make("robosuite_rs/Lift-v0", has_renderer=True, renderer="pygame")

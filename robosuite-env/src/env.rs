@@ -1286,7 +1286,12 @@ impl RobosuiteEnv {
                 .viewer_renderer
                 .as_ref()
                 .map_or((0, 0), OffscreenRenderer::max_size);
-            let renderer = OffscreenRenderer::new(self.sim.model(), width.max(w0), height.max(h0))?;
+            let renderer = OffscreenRenderer::on_device(
+                self.sim.model(),
+                width.max(w0),
+                height.max(h0),
+                self.config.cameras.render_gpu_device_id,
+            )?;
             self.viewer_renderer = Some(renderer);
         }
         let n = width * height;

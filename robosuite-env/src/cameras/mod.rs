@@ -135,6 +135,10 @@ pub struct CameraConfig {
     pub image_convention: ImageConvention,
     /// How frames are drawn (default [`RenderQuality::Fast`]).
     pub render_quality: RenderQuality,
+    /// The EGL device frames are drawn on (robosuite's `render_gpu_device_id`, an index in
+    /// EGL's device order); `None`: `MUJOCO_EGL_DEVICE_ID` if set, else the first device
+    /// that opens.
+    pub render_gpu_device_id: Option<usize>,
 }
 
 impl Default for CameraConfig {
@@ -153,6 +157,7 @@ impl Default for CameraConfig {
             render_width: 256,
             image_convention: ImageConvention::OpenGl,
             render_quality: RenderQuality::Fast,
+            render_gpu_device_id: None,
         }
     }
 }
@@ -235,8 +240,9 @@ impl CameraConfig {
                 RenderMode::RgbArray | RenderMode::DepthArray => {}
                 RenderMode::Human => {
                     return Err(Error::unsupported(
-                        "render_mode=\"human\" needs a display and a viewer window; this build \
-                         renders offscreen only: use \"rgb_array\" or \"depth_array\"",
+                        "render_mode=\"human\" needs a viewer window, which the Rust env does \
+                         not open (Python's robosuite_rs opens one for it, Rust programs see the \
+                         `view` example): use \"rgb_array\" or \"depth_array\"",
                     ));
                 }
                 other => {

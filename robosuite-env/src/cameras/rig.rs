@@ -125,8 +125,13 @@ impl CameraRig {
                 super::RenderQuality::Fast => 2,
                 super::RenderQuality::Robosuite => 1,
             };
-            let mut renderer =
-                crate::render::OffscreenRenderer::with_supersampling(model, width, height, factor)?;
+            let mut renderer = crate::render::OffscreenRenderer::with_options(
+                model,
+                width,
+                height,
+                factor,
+                config.render_gpu_device_id,
+            )?;
             renderer.set_reflection(config.render_quality == super::RenderQuality::Robosuite);
             Ok(Some(Self {
                 cameras,

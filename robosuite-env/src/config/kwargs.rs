@@ -71,8 +71,11 @@ struct Kwargs {
     /// `None`, a level, levels for every camera, or one list (or `None`) per camera.
     #[serde(default, deserialize_with = "present")]
     camera_segmentations: Option<Value>,
-    /// A camera name; `None` (robosuite's free camera) keeps the default `frontview`.
-    render_camera: Option<String>,
+    /// A camera name, `None` (robosuite's free camera; frames keep the default
+    /// `frontview`) or, for the `"mujoco"` viewer, a list of names shown side by side
+    /// (frames draw the first).
+    #[serde(default, deserialize_with = "one_or_many")]
+    render_camera: Option<Vec<Option<String>>>,
     /// Gymnasium's render mode: `"rgb_array"`, `"depth_array"` or `None`.
     #[serde(default, deserialize_with = "present")]
     render_mode: Option<Option<String>>,
@@ -80,20 +83,24 @@ struct Kwargs {
     render_width: Option<usize>,
     /// robosuite's `macros.IMAGE_CONVENTION`: `"opengl"` or `"opencv"`.
     image_convention: Option<String>,
-    /// robosuite's on-screen viewer: `False` only.
+    /// robosuite's on-screen viewer window, opened by the Python package (`env.render()`)
+    /// and by the `view` example; the Rust env itself draws no window.
     has_renderer: Option<bool>,
-    /// robosuite's viewer kind (`"mjviewer"`, `"mujoco"`): no effect without a viewer.
-    #[allow(dead_code)] // taken for robosuite's signature; nothing reads it
+    /// robosuite's viewer kind, any case: `"mjviewer"` (MuJoCo's interactive viewer, the
+    /// default) or `"mujoco"` (an OpenCV window over offscreen frames, which turns the
+    /// offscreen renderer on).
     renderer: Option<String>,
-    /// robosuite's viewer settings: `None` only.
+    /// robosuite's viewer settings: `None` or `{"cam_config": None | {"lookat": [x, y, z],
+    /// "distance": d, "azimuth": a, "elevation": e}}` (the mjviewer's free camera).
     #[serde(default, deserialize_with = "present")]
     renderer_config: Option<Value>,
     /// `False` only.
     render_collision_mesh: Option<bool>,
     /// `True` only.
     render_visual_mesh: Option<bool>,
-    /// The GPU robosuite renders offscreen on (`-1`: any); frames here are drawn on the
-    /// first EGL device that opens.
+    /// The EGL device frames are drawn on, an index in EGL's device order (`-1`:
+    /// `MUJOCO_EGL_DEVICE_ID` if set, else the first device that opens); an index that
+    /// does not exist is an error when the renderer opens, listing the devices.
     render_gpu_device_id: Option<i64>,
     /// How frames are drawn: `"fast"` (default) or `"robosuite"` ([`RenderQuality`]).
     render_quality: Option<String>,
@@ -153,7 +160,7 @@ impl EnvConfig {
     /// [`Error::UnknownEnv`] for an unknown task; [`Error::UnknownKey`] for an argument
     /// that is neither robosuite's nor the task's (listing both);
     /// [`Error::InvalidArgument`] naming the argument (and item) of the wrong type or out of
-    /// range, or a robosuite setting this build does not have (an on-screen viewer).
+    /// range, or a robosuite setting this build does not have (collision meshes).
     pub fn from_kwargs(env_name: &str, kwargs: &Map<String, Value>) -> Result<Self> {
         let names = kwarg_names();
         let mut own = Map::new();
@@ -268,11 +275,18 @@ impl Kwargs {
         if let Some(segs) = &self.camera_segmentations {
             cams.camera_segmentations = segmentations(segs)?;
         }
-        if let Some(camera) = self.render_camera {
+        if let Some(camera) = self.render_camera.into_iter().flatten().flatten().next() {
             cams.render_camera = camera;
+        }
+        if self.has_renderer == Some(true) && renderer_name(self.renderer.as_deref())? == "mujoco" {
+            // robosuite's OpenCV viewer shows offscreen frames.
+            cams.has_offscreen_renderer = true;
         }
         if let Some(mode) = self.render_mode {
             cams.render_mode = mode.as_deref().map(render_mode).transpose()?;
+        }
+        if let Some(id) = self.render_gpu_device_id {
+            cams.render_gpu_device_id = usize::try_from(id).ok();
         }
         cams.render_height = self.render_height.unwrap_or(cams.render_height);
         cams.render_width = self.render_width.unwrap_or(cams.render_width);
@@ -298,12 +312,24 @@ impl Kwargs {
 /// robosuite's arguments of its viewer and GPU choice that are taken only with the values
 /// this build honours.
 fn check_compat(k: &Kwargs) -> Result<()> {
-    if k.has_renderer == Some(true) {
-        return Err(Error::invalid_argument(
-            "has_renderer",
-            "True is not supported: no on-screen viewer in this build; use \
-             has_offscreen_renderer=True, use_camera_obs=True or render_mode=\"rgb_array\"",
-        ));
+    let renderer = renderer_name(k.renderer.as_deref())?;
+    if let Some(cameras) = &k.render_camera {
+        if cameras.is_empty() {
+            return Err(Error::invalid_argument(
+                "render_camera",
+                "give a camera name, None or a list of camera names",
+            ));
+        }
+        if cameras.len() > 1 && (renderer == "mjviewer" || cameras.iter().any(Option::is_none)) {
+            return Err(Error::invalid_argument(
+                "render_camera",
+                "a list of cameras is shown by renderer=\"mujoco\" only, and holds names \
+                 (mjviewer shows one camera)",
+            ));
+        }
+    }
+    if let Some(config) = &k.renderer_config {
+        check_renderer_config(config)?;
     }
     let fixed = [
         (
@@ -315,11 +341,6 @@ fn check_compat(k: &Kwargs) -> Result<()> {
             "render_visual_mesh",
             k.render_visual_mesh == Some(false),
             "True",
-        ),
-        (
-            "renderer_config",
-            matches!(&k.renderer_config, Some(v) if !v.is_null()),
-            "None",
         ),
         (
             "mount_types",
@@ -342,6 +363,75 @@ fn check_compat(k: &Kwargs) -> Result<()> {
             "render_gpu_device_id",
             format!("must be an int >= -1 (-1: any device), got {id}"),
         ));
+    }
+    Ok(())
+}
+
+/// robosuite's viewer names (lower-cased, as robosuite's `initialize_renderer` does);
+/// `None` is robosuite's default, `"mjviewer"`.
+fn renderer_name(name: Option<&str>) -> Result<&'static str> {
+    match name.map(str::to_ascii_lowercase).as_deref() {
+        None | Some("mjviewer") => Ok("mjviewer"),
+        Some("mujoco") => Ok("mujoco"),
+        Some(other) => Err(Error::invalid_argument(
+            "renderer",
+            format!(
+                "`{other}` is not a valid renderer name; valid: mjviewer (MuJoCo's viewer), \
+                 mujoco (an OpenCV window)"
+            ),
+        )),
+    }
+}
+
+/// `renderer_config`: `None` or robosuite's mjviewer settings, `{"cam_config": ...}`.
+fn check_renderer_config(value: &Value) -> Result<()> {
+    let bad = |why: String| Error::invalid_argument("renderer_config", why);
+    let map = match value {
+        Value::Null => return Ok(()),
+        Value::Object(map) => map,
+        other => return Err(bad(format!("must be None or a dict, got {other}"))),
+    };
+    for (key, v) in map {
+        if key != "cam_config" {
+            return Err(bad(format!("unsupported key `{key}`; valid: cam_config")));
+        }
+        let cam = match v {
+            Value::Null => continue,
+            Value::Object(cam) => cam,
+            other => {
+                return Err(bad(format!(
+                    "cam_config must be None or a dict, got {other}"
+                )));
+            }
+        };
+        for name in ["lookat", "distance", "azimuth", "elevation"] {
+            let ok = match (name, cam.get(name)) {
+                ("lookat", Some(Value::Array(xyz))) => {
+                    xyz.len() == 3 && xyz.iter().all(|x| x.as_f64().is_some_and(f64::is_finite))
+                }
+                (_, Some(x)) => x.as_f64().is_some_and(f64::is_finite),
+                (_, None) => false,
+            };
+            if !ok {
+                return Err(bad(format!(
+                    "cam_config needs `{name}` ({}), got {}",
+                    if name == "lookat" {
+                        "3 finite numbers"
+                    } else {
+                        "a finite number"
+                    },
+                    cam.get(name).map_or("nothing".to_owned(), Value::to_string)
+                )));
+            }
+        }
+        if let Some(extra) = cam
+            .keys()
+            .find(|k| !["lookat", "distance", "azimuth", "elevation"].contains(&k.as_str()))
+        {
+            return Err(bad(format!(
+                "cam_config: unsupported key `{extra}`; valid: lookat, distance, azimuth, elevation"
+            )));
+        }
     }
     Ok(())
 }
@@ -595,18 +685,52 @@ mod tests {
         });
         assert!(config("Lift", ok).is_ok());
         for (bad, key) in [
-            (json!({"has_renderer": true}), "has_renderer"),
             (
                 json!({"render_collision_mesh": true}),
                 "render_collision_mesh",
             ),
             (json!({"renderer_config": {"cam_id": 0}}), "renderer_config"),
+            (
+                json!({"renderer_config": {"cam_config": {"distance": 2}}}),
+                "renderer_config",
+            ),
+            (json!({"renderer": "pygame"}), "renderer"),
+            (
+                json!({"has_renderer": true, "render_camera": ["frontview", "agentview"]}),
+                "render_camera",
+            ),
+            (json!({"render_camera": []}), "render_camera"),
             (json!({"mount_types": ["RethinkMount"]}), "mount_types"),
             (json!({"render_gpu_device_id": -2}), "render_gpu_device_id"),
             (json!({"render_quality": "ultra"}), "render_quality"),
         ] {
             assert_eq!(invalid("Lift", bad).0, key);
         }
+    }
+
+    #[test]
+    fn robosuites_viewers_are_taken() {
+        // MuJoCo's viewer (the default) leaves the offscreen renderer as asked.
+        let mj = config(
+            "Lift",
+            json!({"has_renderer": true, "has_offscreen_renderer": false,
+                   "renderer_config": {"cam_config": {"lookat": [0, 0, 1], "distance": 2,
+                                                      "azimuth": 180, "elevation": -20}}}),
+        )
+        .unwrap();
+        assert!(!mj.cameras.has_offscreen_renderer);
+        // robosuite's OpenCV viewer draws offscreen frames, so it turns the renderer on;
+        // a list of cameras is its side-by-side view, and frames draw the first.
+        let cv = config(
+            "Lift",
+            json!({"has_renderer": true, "renderer": "MuJoCo", "has_offscreen_renderer": false,
+                   "render_camera": ["agentview", "frontview"]}),
+        )
+        .unwrap();
+        assert!(cv.cameras.has_offscreen_renderer);
+        assert_eq!(cv.cameras.render_camera, "agentview");
+        let free = config("Lift", json!({"has_renderer": true, "render_camera": null})).unwrap();
+        assert_eq!(free.cameras.render_camera, "frontview");
     }
 
     #[test]

@@ -47,6 +47,17 @@ impl Drop for CurrentGuard<'_> {
     }
 }
 
+/// An EGL device by what identifies it: its DRM node, `"Mesa software"`, or its name.
+fn describe(device: &Device) -> String {
+    if let Some(path) = device.drm_device_node_path() {
+        path.display().to_string()
+    } else if device.extensions().contains("EGL_MESA_device_software") {
+        "Mesa software".to_owned()
+    } else {
+        device.name().unwrap_or("unnamed").to_owned()
+    }
+}
+
 impl GlContext {
     /// Opens a context on the first EGL device that gives one.
     ///
@@ -54,8 +65,60 @@ impl GlContext {
     /// [`Error::Render`] naming the missing library when libEGL cannot be loaded, or saying
     /// why no device opened a context.
     pub fn new() -> Result<Self> {
-        let devices = Device::query_devices()
-            .map_err(|e| Error::Render(format!("cannot load libEGL.so.1 ({e}); {EGL_HINT}")))?;
+        Self::with_device(None)
+    }
+
+    /// Opens a context on EGL device `index` (in EGL's `EGL_EXT_device_enumeration`
+    /// order), or with `None` on the device `MUJOCO_EGL_DEVICE_ID` names (as MuJoCo's own
+    /// Python bindings do) or else the first that gives one.
+    ///
+    /// # Errors
+    /// [`Error::InvalidArgument`] (naming `render_gpu_device_id`, or `MUJOCO_EGL_DEVICE_ID`
+    /// for a value from the environment) for an index that does not exist, listing the
+    /// devices found; [`Error::Render`] as [`GlContext::new`], or when the chosen device
+    /// gives no context.
+    pub fn with_device(index: Option<usize>) -> Result<Self> {
+        let devices: Vec<Device> = Device::query_devices()
+            .map_err(|e| Error::Render(format!("cannot load libEGL.so.1 ({e}); {EGL_HINT}")))?
+            .collect();
+        let chosen = match index {
+            Some(i) => Some((i, "render_gpu_device_id")),
+            None => match std::env::var("MUJOCO_EGL_DEVICE_ID") {
+                Ok(v) => Some((
+                    v.trim().parse::<usize>().map_err(|_| {
+                        Error::invalid_argument(
+                            "MUJOCO_EGL_DEVICE_ID",
+                            format!("must be a device index (an int >= 0), got {v:?}"),
+                        )
+                    })?,
+                    "MUJOCO_EGL_DEVICE_ID",
+                )),
+                Err(_) => None,
+            },
+        };
+        if let Some((i, name)) = chosen {
+            let found = devices
+                .iter()
+                .enumerate()
+                .map(|(j, d)| format!("{j}: {}", describe(d)))
+                .collect::<Vec<_>>();
+            let device = devices.get(i).ok_or_else(|| {
+                Error::invalid_argument(
+                    name,
+                    format!(
+                        "EGL device {i} does not exist; EGL lists {} device(s): [{}]",
+                        found.len(),
+                        found.join(", ")
+                    ),
+                )
+            })?;
+            return Self::on_device(device).map_err(|e| {
+                Error::Render(format!(
+                    "EGL device {i} ({}) opened no OpenGL context ({e}); {EGL_HINT}",
+                    describe(device)
+                ))
+            });
+        }
         let mut last = None;
         for device in devices {
             match Self::on_device(&device) {
@@ -93,17 +156,10 @@ impl GlContext {
         let surface_attrs = SurfaceAttributesBuilder::<PbufferSurface>::new().build(one, one);
         // SAFETY: display and config are valid and the size is positive.
         let surface = unsafe { display.create_pbuffer_surface(&config, &surface_attrs)? };
-        let name = if let Some(path) = device.drm_device_node_path() {
-            path.display().to_string()
-        } else if device.extensions().contains("EGL_MESA_device_software") {
-            "Mesa software".to_owned()
-        } else {
-            device.name().unwrap_or("unnamed").to_owned()
-        };
         Ok(Self {
             context: Some(context),
             surface,
-            device: name,
+            device: describe(device),
         })
     }
 

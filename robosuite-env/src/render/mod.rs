@@ -81,7 +81,23 @@ impl OffscreenRenderer {
     /// [`Error::Render`] when no EGL context can be opened (the message names the missing
     /// library); [`Error::InvalidArgument`] for a zero size or one above [`MAX_SIZE`].
     pub fn new(model: &MjModel, width: usize, height: usize) -> Result<Self> {
-        Self::with_supersampling(model, width, height, 1)
+        Self::with_options(model, width, height, 1, None)
+    }
+
+    /// [`OffscreenRenderer::new`] on EGL device `device` (robosuite's
+    /// `render_gpu_device_id`; `None`: `MUJOCO_EGL_DEVICE_ID`, else the first device that
+    /// opens), see [`GlContext::with_device`].
+    ///
+    /// # Errors
+    /// As [`OffscreenRenderer::new`]; [`Error::InvalidArgument`] for a device index that
+    /// does not exist (the message lists the devices found).
+    pub fn on_device(
+        model: &MjModel,
+        width: usize,
+        height: usize,
+        device: Option<usize>,
+    ) -> Result<Self> {
+        Self::with_options(model, width, height, 1, device)
     }
 
     /// [`OffscreenRenderer::new`] drawing frames at up to `factor` times their size and
@@ -103,6 +119,21 @@ impl OffscreenRenderer {
         height: usize,
         factor: usize,
     ) -> Result<Self> {
+        Self::with_options(model, width, height, factor, None)
+    }
+
+    /// [`OffscreenRenderer::with_supersampling`] on EGL device `device` (see
+    /// [`OffscreenRenderer::on_device`]).
+    ///
+    /// # Errors
+    /// As [`OffscreenRenderer::with_supersampling`] and [`OffscreenRenderer::on_device`].
+    pub fn with_options(
+        model: &MjModel,
+        width: usize,
+        height: usize,
+        factor: usize,
+        device: Option<usize>,
+    ) -> Result<Self> {
         check_size("width", width)?;
         check_size("height", height)?;
         if !(1..=4).contains(&factor) {
@@ -116,7 +147,7 @@ impl OffscreenRenderer {
         } else {
             1
         };
-        let mut gl = GlContext::new()?;
+        let mut gl = GlContext::with_device(device)?;
         let context = {
             let _current = gl.make_current()?;
             // SAFETY: the GL context is current on this thread; the MjrContext is only used
