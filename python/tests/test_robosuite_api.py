@@ -92,7 +92,6 @@ def test_controller_configs() -> None:
 @pytest.mark.parametrize(
     "kwargs",
     [
-        {"has_renderer": True},
         {"render_collision_mesh": True},
         {"render_visual_mesh": False},
     ],
