@@ -1064,12 +1064,8 @@ impl RobosuiteEnv {
         let spec = crate::registry::make_task(self.rebind.spec.name())?;
         let mut fresh = Self::from_scene_xml(spec.as_ref(), xml, self.config.clone())?;
         fresh.set_rng(self.rng.clone(), self.rng_seeded);
-        for (spec, &(enabled, active)) in self.obs_specs.iter().zip(&self.obs_flags) {
-            if !self.observable_exists(spec) {
-                continue;
-            }
-            fresh.modify_observable(&spec.key, ObservableFlag::Enabled, enabled)?;
-            fresh.modify_observable(&spec.key, ObservableFlag::Active, active)?;
+        if fresh.obs_specs == self.obs_specs && fresh.obs_flags != self.obs_flags {
+            fresh.set_observable_flags(self.obs_flags.clone())?;
         }
         let (obs, info) = fresh.reset_deterministic()?;
         *self = fresh;
@@ -1198,6 +1194,15 @@ impl RobosuiteEnv {
             ObservableFlag::Enabled => flags[i].0 = value,
             ObservableFlag::Active => flags[i].1 = value,
         }
+        self.set_observable_flags(flags)
+    }
+
+    /// Every observable's `(enabled, active)` flags at once, with the observation layout
+    /// and space they give.
+    ///
+    /// # Errors
+    /// As [`ObsLayout::space`].
+    fn set_observable_flags(&mut self, flags: Vec<(bool, bool)>) -> Result<()> {
         let shown: std::collections::HashSet<&str> = self
             .obs_specs
             .iter()

@@ -718,11 +718,19 @@ fn reset_from_xml_string_loads_a_resized_scene_in_place() {
     // Two scenes as robosuite saves them per episode: equal but for the cube's size.
     let (xml_a, xml_b) = (saved_lift_scene(0.99), saved_lift_scene(1.0317));
     let mut env = make("Lift").unwrap();
-    let (_, _, load) = env.reset_from_xml_string(&xml_a).unwrap();
+    // observable flags are kept by both kinds of load
+    let flag = robosuite_env::ObservableFlag::Active;
+    env.modify_observable("robot0_joint_pos", flag, true)
+        .unwrap();
+    let flags = env.observables();
+    let (first, _, load) = env.reset_from_xml_string(&xml_a).unwrap();
     assert_eq!(load, robosuite_env::SceneLoad::Compiled);
+    assert_eq!(env.observables(), flags);
+    assert!(first.contains_key("robot0_joint_pos"));
     let model_ptr = env.sim().model().ffi() as *const _;
     env.reset(Some(3), None).unwrap(); // a reset draws another cube size: overwritten below
     let (obs, _, load) = env.reset_from_xml_string(&xml_b).unwrap();
+    assert_eq!(env.observables(), flags);
     assert_eq!(load, robosuite_env::SceneLoad::InPlace);
     assert_eq!(
         env.sim().model().ffi() as *const _,
