@@ -119,6 +119,8 @@ pub struct RobosuiteEnv {
     obs_flags: Vec<(bool, bool)>,
     #[cfg(feature = "render")]
     viewer_renderer: Option<crate::render::OffscreenRenderer>,
+    /// Whether [`RobosuiteEnv::visualize`] was called: resets then hide the sites again.
+    visualized: bool,
     /// The configured task and its part of the scene, to bind the task again when the
     /// model is replaced in place ([`RobosuiteEnv::reset_from_xml_string`]).
     rebind: Arc<Rebind>,
@@ -502,6 +504,7 @@ impl RobosuiteEnv {
             obs_flags,
             #[cfg(feature = "render")]
             viewer_renderer: None,
+            visualized: false,
             rebind: Arc::new(Rebind {
                 spec: spec.clone_box(),
                 scene: composed.task_scene,
@@ -973,6 +976,16 @@ pub struct CameraFrame {
 /// robosuite's env object beyond the Gymnasium API: direct simulator access, observation
 /// refresh, deterministic reset, the scene as MJCF, observable flags and free rendering.
 impl RobosuiteEnv {
+    /// The task's robosuite name (`"Lift"`).
+    pub(crate) fn task_name(&self) -> &str {
+        self.rebind.spec.name()
+    }
+
+    /// Marks the sites as shown by [`RobosuiteEnv::visualize`] (the next reset hides them).
+    pub(crate) fn set_visualized(&mut self, visualized: bool) {
+        self.visualized = visualized;
+    }
+
     /// The simulator, mutably (robosuite's `env.sim`): what is written here (positions,
     /// velocities, controls, model values that keep every size) is what the next step
     /// starts from. Call [`Sim::forward`] after writing positions, as with robosuite.
@@ -1391,6 +1404,10 @@ impl gym_core::Env for RobosuiteEnv {
         self.task.clear_observation_cache();
         self.task.place_objects(&mut self.sim, &mut self.rng)?;
         self.sim.forward()?;
+        if self.visualized {
+            // robosuite's reset calls `visualize` with every setting off.
+            self.visualize(crate::wrappers::VisualizationSettings::all(false));
+        }
         self.begin_episode()
     }
 

@@ -45,6 +45,7 @@ pub mod math;
 #[doc(hidden)]
 pub mod mjcf;
 pub mod models;
+pub mod modders;
 pub mod observables;
 pub mod placement;
 pub mod prelude;
@@ -56,6 +57,7 @@ pub mod robots;
 pub mod saved;
 pub mod sim;
 pub mod tasks;
+pub mod wrappers;
 
 pub use config::{EnvConfig, EnvConfiguration};
 #[cfg(feature = "render")]
