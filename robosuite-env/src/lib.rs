@@ -44,8 +44,8 @@ pub mod env;
 pub mod math;
 #[doc(hidden)]
 pub mod mjcf;
-pub mod models;
 pub mod modders;
+pub mod models;
 pub mod observables;
 pub mod placement;
 pub mod prelude;

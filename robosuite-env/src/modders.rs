@@ -165,9 +165,18 @@ impl LightingModder {
     /// negative or not finite.
     pub fn new(model: &MjModel, args: LightingArgs) -> Result<Self> {
         for (key, v) in [
-            ("position_perturbation_size", args.position_perturbation_size),
-            ("direction_perturbation_size", args.direction_perturbation_size),
-            ("specular_perturbation_size", args.specular_perturbation_size),
+            (
+                "position_perturbation_size",
+                args.position_perturbation_size,
+            ),
+            (
+                "direction_perturbation_size",
+                args.direction_perturbation_size,
+            ),
+            (
+                "specular_perturbation_size",
+                args.specular_perturbation_size,
+            ),
             ("ambient_perturbation_size", args.ambient_perturbation_size),
             ("diffuse_perturbation_size", args.diffuse_perturbation_size),
         ] {
@@ -322,8 +331,14 @@ impl CameraModder {
                 "CameraModder needs one of randomize_position, randomize_rotation, randomize_fovy",
             ));
         }
-        check_size("position_perturbation_size", args.position_perturbation_size)?;
-        check_size("rotation_perturbation_size", args.rotation_perturbation_size)?;
+        check_size(
+            "position_perturbation_size",
+            args.position_perturbation_size,
+        )?;
+        check_size(
+            "rotation_perturbation_size",
+            args.rotation_perturbation_size,
+        )?;
         check_size("fovy_perturbation_size", args.fovy_perturbation_size)?;
         let n = model.ffi().ncam.max(0) as usize;
         let cameras = check_names(
@@ -527,7 +542,8 @@ pub struct TextureModder {
     skybox: Option<usize>,
     textures: Vec<Option<Tex>>,
     default_bitmaps: Vec<Option<Vec<u8>>>,
-    default_rgb: Vec<[f32; 3]>,
+    /// Per selected geom: its rgba, and its material's rgba (textured geoms).
+    default_rgba: Vec<([f32; 4], [f32; 4])>,
     default_material: Vec<[f32; 3]>,
 }
 
@@ -542,7 +558,10 @@ impl TextureModder {
     pub fn new(model: &MjModel, args: ColorArgs) -> Result<Self> {
         for (key, v) in [
             ("local_rgb_interpolation", args.local_rgb_interpolation),
-            ("local_material_interpolation", args.local_material_interpolation),
+            (
+                "local_material_interpolation",
+                args.local_material_interpolation,
+            ),
         ] {
             if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
                 return Err(Error::invalid_argument(
@@ -593,9 +612,9 @@ impl TextureModder {
                 ColorGeom { geom, textured }
             })
             .collect();
-        let skybox = (0..textures.len())
-            .rev()
-            .find(|&t| model.tex_type()[t] == MjtTexture::mjTEXTURE_SKYBOX && textures[t].is_some());
+        let skybox = (0..textures.len()).rev().find(|&t| {
+            model.tex_type()[t] == MjtTexture::mjTEXTURE_SKYBOX && textures[t].is_some()
+        });
         if args.randomize_skybox && skybox.is_none() {
             return Err(Error::invalid_argument(
                 "randomize_skybox",
@@ -608,7 +627,7 @@ impl TextureModder {
             skybox,
             textures,
             default_bitmaps: Vec::new(),
-            default_rgb: Vec::new(),
+            default_rgba: Vec::new(),
             default_material: Vec::new(),
         };
         modder.save_defaults(model);
@@ -652,12 +671,14 @@ impl TextureModder {
             bitmaps[t] = self.bitmap(model, t).map(<[u8]>::to_vec);
         }
         self.default_bitmaps = bitmaps;
-        self.default_rgb = self
+        self.default_rgba = self
             .geoms
             .iter()
             .map(|g| {
-                let c = model.geom_rgba()[g.geom];
-                [c[0], c[1], c[2]]
+                let mat = g
+                    .textured
+                    .map_or([1.0; 4], |(_, mat)| model.mat_rgba()[mat]);
+                (model.geom_rgba()[g.geom], mat)
             })
             .collect();
         self.default_material = self
@@ -674,21 +695,19 @@ impl TextureModder {
             .collect();
     }
 
-    /// Writes the saved defaults back; returns the textures changed (to upload).
+    /// Writes the saved defaults back (textures, materials and every colour the
+    /// randomization whitened); returns the textures changed (to upload).
     pub fn restore_defaults(&self, sim: &mut Sim) -> Vec<usize> {
         let m = sim.model_mut();
         for (i, g) in self.geoms.iter().enumerate() {
-            match g.textured {
-                Some((_, mat)) => {
-                    let [r, s, p] = self.default_material[i];
-                    m.mat_reflectance_mut()[mat] = r;
-                    m.mat_shininess_mut()[mat] = s;
-                    m.mat_specular_mut()[mat] = p;
-                }
-                None => {
-                    let c = self.default_rgb[i];
-                    m.geom_rgba_mut()[g.geom][..3].copy_from_slice(&c);
-                }
+            let (geom_rgba, mat_rgba) = self.default_rgba[i];
+            m.geom_rgba_mut()[g.geom] = geom_rgba;
+            if let Some((_, mat)) = g.textured {
+                let [r, s, p] = self.default_material[i];
+                m.mat_reflectance_mut()[mat] = r;
+                m.mat_shininess_mut()[mat] = s;
+                m.mat_specular_mut()[mat] = p;
+                m.mat_rgba_mut()[mat] = mat_rgba;
             }
         }
         let used = self.used_textures();
@@ -739,7 +758,7 @@ impl TextureModder {
                     } else {
                         1.0
                     };
-                    let d = self.default_rgb[i];
+                    let d = self.default_rgba[i].0;
                     let c: [f32; 3] =
                         std::array::from_fn(|k| ((1.0 - w) * f64::from(d[k]) + w * draw[k]) as f32);
                     m.geom_rgba_mut()[g.geom][..3].copy_from_slice(&c);
@@ -999,19 +1018,46 @@ impl DynamicsModder {
     /// perturbation size or ratio that is negative or not finite.
     pub fn new(model: &MjModel, args: DynamicsArgs) -> Result<Self> {
         for (key, v) in [
-            ("density_perturbation_ratio", args.density_perturbation_ratio),
-            ("viscosity_perturbation_ratio", args.viscosity_perturbation_ratio),
-            ("position_perturbation_size", args.position_perturbation_size),
-            ("quaternion_perturbation_size", args.quaternion_perturbation_size),
-            ("inertia_perturbation_ratio", args.inertia_perturbation_ratio),
+            (
+                "density_perturbation_ratio",
+                args.density_perturbation_ratio,
+            ),
+            (
+                "viscosity_perturbation_ratio",
+                args.viscosity_perturbation_ratio,
+            ),
+            (
+                "position_perturbation_size",
+                args.position_perturbation_size,
+            ),
+            (
+                "quaternion_perturbation_size",
+                args.quaternion_perturbation_size,
+            ),
+            (
+                "inertia_perturbation_ratio",
+                args.inertia_perturbation_ratio,
+            ),
             ("mass_perturbation_ratio", args.mass_perturbation_ratio),
-            ("friction_perturbation_ratio", args.friction_perturbation_ratio),
+            (
+                "friction_perturbation_ratio",
+                args.friction_perturbation_ratio,
+            ),
             ("solref_perturbation_ratio", args.solref_perturbation_ratio),
             ("solimp_perturbation_ratio", args.solimp_perturbation_ratio),
-            ("stiffness_perturbation_ratio", args.stiffness_perturbation_ratio),
-            ("frictionloss_perturbation_size", args.frictionloss_perturbation_size),
+            (
+                "stiffness_perturbation_ratio",
+                args.stiffness_perturbation_ratio,
+            ),
+            (
+                "frictionloss_perturbation_size",
+                args.frictionloss_perturbation_size,
+            ),
             ("damping_perturbation_size", args.damping_perturbation_size),
-            ("armature_perturbation_size", args.armature_perturbation_size),
+            (
+                "armature_perturbation_size",
+                args.armature_perturbation_size,
+            ),
         ] {
             check_size(key, v)?;
         }
@@ -1150,41 +1196,121 @@ impl DynamicsModder {
         };
         let pick = |p: Perturb, randomizing: bool| if randomizing { p } else { off };
         let r = rng.is_some();
-        let density = pick(self.perturb(a.randomize_density, a.density_perturbation_ratio, true, (0.0, inf)), r);
+        let density = pick(
+            self.perturb(
+                a.randomize_density,
+                a.density_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
+            r,
+        );
         let viscosity = pick(
-            self.perturb(a.randomize_viscosity, a.viscosity_perturbation_ratio, true, (0.0, inf)),
+            self.perturb(
+                a.randomize_viscosity,
+                a.viscosity_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
             r,
         );
         let position = pick(
-            self.perturb(a.randomize_position, a.position_perturbation_size, false, (-inf, inf)),
+            self.perturb(
+                a.randomize_position,
+                a.position_perturbation_size,
+                false,
+                (-inf, inf),
+            ),
             r,
         );
         let quaternion = pick(
-            self.perturb(a.randomize_quaternion, a.quaternion_perturbation_size, false, (-inf, inf)),
+            self.perturb(
+                a.randomize_quaternion,
+                a.quaternion_perturbation_size,
+                false,
+                (-inf, inf),
+            ),
             r,
         );
-        let inertia = pick(self.perturb(a.randomize_inertia, a.inertia_perturbation_ratio, true, (0.0, inf)), r);
-        let mass = pick(self.perturb(a.randomize_mass, a.mass_perturbation_ratio, true, (0.0, inf)), r);
+        let inertia = pick(
+            self.perturb(
+                a.randomize_inertia,
+                a.inertia_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
+            r,
+        );
+        let mass = pick(
+            self.perturb(
+                a.randomize_mass,
+                a.mass_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
+            r,
+        );
         let friction = pick(
-            self.perturb(a.randomize_friction, a.friction_perturbation_ratio, true, (0.0, inf)),
+            self.perturb(
+                a.randomize_friction,
+                a.friction_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
             r,
         );
-        let solref = pick(self.perturb(a.randomize_solref, a.solref_perturbation_ratio, true, (0.0, 1.0)), r);
-        let solimp = pick(self.perturb(a.randomize_solimp, a.solimp_perturbation_ratio, true, (0.0, inf)), r);
+        let solref = pick(
+            self.perturb(
+                a.randomize_solref,
+                a.solref_perturbation_ratio,
+                true,
+                (0.0, 1.0),
+            ),
+            r,
+        );
+        let solimp = pick(
+            self.perturb(
+                a.randomize_solimp,
+                a.solimp_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
+            r,
+        );
         let stiffness = pick(
-            self.perturb(a.randomize_stiffness, a.stiffness_perturbation_ratio, true, (0.0, inf)),
+            self.perturb(
+                a.randomize_stiffness,
+                a.stiffness_perturbation_ratio,
+                true,
+                (0.0, inf),
+            ),
             r,
         );
         let frictionloss = pick(
-            self.perturb(a.randomize_frictionloss, a.frictionloss_perturbation_size, false, (0.0, inf)),
+            self.perturb(
+                a.randomize_frictionloss,
+                a.frictionloss_perturbation_size,
+                false,
+                (0.0, inf),
+            ),
             r,
         );
         let damping = pick(
-            self.perturb(a.randomize_damping, a.damping_perturbation_size, false, (0.0, inf)),
+            self.perturb(
+                a.randomize_damping,
+                a.damping_perturbation_size,
+                false,
+                (0.0, inf),
+            ),
             r,
         );
         let armature = pick(
-            self.perturb(a.randomize_armature, a.armature_perturbation_size, false, (0.0, inf)),
+            self.perturb(
+                a.randomize_armature,
+                a.armature_perturbation_size,
+                false,
+                (0.0, inf),
+            ),
             r,
         );
         // Without an RNG every perturbation is off and draws nothing.
@@ -1228,7 +1354,9 @@ impl DynamicsModder {
             }
             let is_free = m.jnt_type()[j] == free;
             let dofs = &self.dofs[j];
-            for (perturb, default, which) in [(frictionloss, fl, 0), (damping, dm, 1), (armature, ar, 2)] {
+            for (perturb, default, which) in
+                [(frictionloss, fl, 0), (damping, dm, 1), (armature, ar, 2)]
+            {
                 buf.clear();
                 buf.resize(default.len(), 0.0);
                 perturb.apply_slice(rng, default, &mut buf);

@@ -256,10 +256,7 @@ impl RobosuiteEnv {
                     let p = pos(t);
                     (0..3).map(|k| (p[k] - g[k]).powi(2)).sum::<f64>()
                 };
-                let dist = targets
-                    .iter()
-                    .map(|&t| sq(t))
-                    .fold(f64::INFINITY, f64::min);
+                let dist = targets.iter().map(|&t| sq(t)).fold(f64::INFINITY, f64::min);
                 let scaled = (1.0 - (dist / 0.1).min(1.0)).powi(15);
                 (*grip, [(1.0 - scaled) as f32, scaled as f32, 0.0])
             })
@@ -287,7 +284,15 @@ impl RobosuiteEnv {
 
 /// MJCF `<site>` attributes an indicator may set besides its fields.
 const SITE_ATTRIBUTES: [&str; 9] = [
-    "class", "group", "quat", "axisangle", "xyaxes", "zaxis", "euler", "fromto", "material",
+    "class",
+    "group",
+    "quat",
+    "axisangle",
+    "xyaxes",
+    "zaxis",
+    "euler",
+    "fromto",
+    "material",
 ];
 /// MJCF site types.
 const SITE_TYPES: [&str; 5] = ["sphere", "capsule", "ellipsoid", "cylinder", "box"];
@@ -360,7 +365,9 @@ impl IndicatorConfig {
             ));
         }
         if self.rgba.iter().chain(&self.pos).any(|v| !v.is_finite()) {
-            return bad(format!("indicator `{n}`: rgba and pos must be finite numbers"));
+            return bad(format!(
+                "indicator `{n}`: rgba and pos must be finite numbers"
+            ));
         }
         if let Some((k, _)) = self
             .attributes
@@ -401,7 +408,8 @@ fn add_indicators(xml: &str, indicators: &[IndicatorConfig]) -> Result<String> {
             site.attributes.insert(k.clone(), v.clone());
         }
         let mut body = Element::new("body");
-        body.attributes.insert("name".into(), format!("{}_body", c.name));
+        body.attributes
+            .insert("name".into(), format!("{}_body", c.name));
         body.attributes.insert("pos".into(), join(&c.pos));
         body.children.push(XMLNode::Element(site));
         world.children.push(XMLNode::Element(body));
@@ -490,7 +498,10 @@ impl VisualizationWrapper {
             if configs[..i].iter().any(|o| o.name == c.name) {
                 return Err(Error::invalid_argument(
                     "indicator_configs",
-                    format!("indicator names must be distinct, `{}` is given twice", c.name),
+                    format!(
+                        "indicator names must be distinct, `{}` is given twice",
+                        c.name
+                    ),
                 ));
             }
             if model.name_to_id(mjtObj::mjOBJ_SITE, &c.name).is_some()
@@ -950,13 +961,17 @@ mod tests {
         let mut marker = IndicatorConfig::new("marker");
         marker.site_type = Some("box".into());
         marker.pos = [0.1, -0.1, 1.0];
-        marker
-            .attributes
-            .push(("group".into(), "1".into()));
+        marker.attributes.push(("group".into(), "1".into()));
         let out = add_indicators(xml, &[IndicatorConfig::default_indicator(0), marker]).unwrap();
-        assert!(out.contains("<body name=\"indicator0_body\" pos=\"0 0 0\">"), "{out}");
+        assert!(
+            out.contains("<body name=\"indicator0_body\" pos=\"0 0 0\">"),
+            "{out}"
+        );
         assert!(out.contains("rgba=\"1 0 0 0.5\""), "{out}");
-        assert!(out.contains("<body name=\"marker_body\" pos=\"0.1 -0.1 1\">"), "{out}");
+        assert!(
+            out.contains("<body name=\"marker_body\" pos=\"0.1 -0.1 1\">"),
+            "{out}"
+        );
         assert!(out.contains("group=\"1\""), "{out}");
     }
 
@@ -973,7 +988,10 @@ mod tests {
             }
         );
         let err = s.set("walls", true).unwrap_err();
-        assert!(err.to_string().contains("Invalid visualization setting"), "{err}");
+        assert!(
+            err.to_string().contains("Invalid visualization setting"),
+            "{err}"
+        );
         assert!(s.robots && !s.env);
     }
 }
