@@ -432,7 +432,7 @@ fn same_seed_same_domain_other_seed_other_domain() {
     assert_ne!(fa, fc);
     assert_ne!(da, dc);
     // Steps randomize again, identically for the same seed; the trajectories agree.
-    for _ in 0..3 {
+    for _ in 0..2 {
         let sa = a.step(&zero()).unwrap();
         let sb = b.step(&zero()).unwrap();
         assert_eq!(
@@ -441,10 +441,14 @@ fn same_seed_same_domain_other_seed_other_domain() {
         );
     }
     assert!(domain(&mut a) == domain(&mut b));
-    // Without a seed the env's seed decides.
-    let (f1, _, d1) = domain(&mut dr(None, 7, args()));
-    let (f2, _, d2) = domain(&mut dr(None, 7, args()));
-    let (f3, _, d3) = domain(&mut dr(None, 8, args()));
+    // Without a seed the env's seed decides (cameras and dynamics, the fast modders).
+    let fast = || DomainRandomizationArgs {
+        randomize_color: false,
+        ..args()
+    };
+    let (f1, _, d1) = domain(&mut dr(None, 7, fast()));
+    let (f2, _, d2) = domain(&mut dr(None, 7, fast()));
+    let (f3, _, d3) = domain(&mut dr(None, 8, fast()));
     assert!(f1 == f2 && d1 == d2);
     assert!(f1 != f3 && d1 != d3);
 }
