@@ -447,6 +447,7 @@ def test_randomize_every_n_steps() -> None:
         ({"lighting_randomization_args": {"diffuse_perturbation_size": float("nan")}}, "finite number >= 0"),
         ({"dynamics_randomization_args": {"mass_perturbation_ratio": float("inf")}}, "finite number >= 0"),
         ({"camera_randomization_args": {"camera_names": ["nowhere"]}}, "unknown camera"),
+        ({"camera_randomization_args": {"fovy_perturbation_size": 90.0}}, "out of \\(0, 180\\)"),
         ({"dynamics_randomization_args": {"joint_names": ["robot0_joint99"]}}, "unknown joint"),
         ({"color_randomization_args": {"texture_variations": ["stripes"]}}, "texture_variations"),
         ({"color_randomization_args": {"local_rgb_interpolation": 1.5}}, "at most 1"),

@@ -983,13 +983,18 @@ impl Perturb {
     }
 }
 
+/// A body's position, quaternion, inertia and mass.
+type BodyValues = ([f64; 3], [f64; 4], [f64; 3], f64);
+/// A joint's stiffness, and its dofs' frictionloss, damping and armature.
+type JointValues = (f64, Vec<f64>, Vec<f64>, Vec<f64>);
+
 #[derive(Debug, Clone, Default)]
 struct DynamicsDefaults {
     density: f64,
     viscosity: f64,
-    body: Vec<([f64; 3], [f64; 4], [f64; 3], f64)>,
+    body: Vec<BodyValues>,
     geom: Vec<([f64; 3], [f64; 2], [f64; 5])>,
-    joint: Vec<(f64, Vec<f64>, Vec<f64>, Vec<f64>)>,
+    joint: Vec<JointValues>,
 }
 
 /// robosuite's `DynamicsModder`: each [`DynamicsModder::randomize`] perturbs, from the
@@ -1158,15 +1163,6 @@ impl DynamicsModder {
         };
     }
 
-    fn perturb(&self, on: bool, amount: f64, ratio: bool, clip: (f64, f64)) -> Perturb {
-        Perturb {
-            on,
-            amount,
-            ratio,
-            clip,
-        }
-    }
-
     /// Writes the saved defaults back and runs `mj_forward`.
     ///
     /// # Errors
@@ -1185,137 +1181,98 @@ impl DynamicsModder {
     }
 
     /// Writes the defaults, perturbed when `rng` is given, then `mj_forward`.
-    fn write(&self, sim: &mut Sim, mut rng: Option<&mut EnvRng>) -> Result<()> {
+    fn write(&self, sim: &mut Sim, rng: Option<&mut EnvRng>) -> Result<()> {
         let a = &self.args;
         let inf = f64::INFINITY;
-        let off = Perturb {
-            on: false,
-            amount: 0.0,
-            ratio: false,
-            clip: (-inf, inf),
+        let randomizing = rng.is_some();
+        // Without an RNG every perturbation is off and nothing is drawn.
+        let p = |on: bool, amount: f64, ratio: bool, clip: (f64, f64)| Perturb {
+            on: on && randomizing,
+            amount,
+            ratio,
+            clip,
         };
-        let pick = |p: Perturb, randomizing: bool| if randomizing { p } else { off };
-        let r = rng.is_some();
-        let density = pick(
-            self.perturb(
-                a.randomize_density,
-                a.density_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let (size, ratio) = (false, true);
+        let density = p(
+            a.randomize_density,
+            a.density_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let viscosity = pick(
-            self.perturb(
-                a.randomize_viscosity,
-                a.viscosity_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let viscosity = p(
+            a.randomize_viscosity,
+            a.viscosity_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let position = pick(
-            self.perturb(
-                a.randomize_position,
-                a.position_perturbation_size,
-                false,
-                (-inf, inf),
-            ),
-            r,
+        let position = p(
+            a.randomize_position,
+            a.position_perturbation_size,
+            size,
+            (-inf, inf),
         );
-        let quaternion = pick(
-            self.perturb(
-                a.randomize_quaternion,
-                a.quaternion_perturbation_size,
-                false,
-                (-inf, inf),
-            ),
-            r,
+        let quaternion = p(
+            a.randomize_quaternion,
+            a.quaternion_perturbation_size,
+            size,
+            (-inf, inf),
         );
-        let inertia = pick(
-            self.perturb(
-                a.randomize_inertia,
-                a.inertia_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let inertia = p(
+            a.randomize_inertia,
+            a.inertia_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let mass = pick(
-            self.perturb(
-                a.randomize_mass,
-                a.mass_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let mass = p(
+            a.randomize_mass,
+            a.mass_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let friction = pick(
-            self.perturb(
-                a.randomize_friction,
-                a.friction_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let friction = p(
+            a.randomize_friction,
+            a.friction_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let solref = pick(
-            self.perturb(
-                a.randomize_solref,
-                a.solref_perturbation_ratio,
-                true,
-                (0.0, 1.0),
-            ),
-            r,
+        let solref = p(
+            a.randomize_solref,
+            a.solref_perturbation_ratio,
+            ratio,
+            (0.0, 1.0),
         );
-        let solimp = pick(
-            self.perturb(
-                a.randomize_solimp,
-                a.solimp_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let solimp = p(
+            a.randomize_solimp,
+            a.solimp_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let stiffness = pick(
-            self.perturb(
-                a.randomize_stiffness,
-                a.stiffness_perturbation_ratio,
-                true,
-                (0.0, inf),
-            ),
-            r,
+        let stiffness = p(
+            a.randomize_stiffness,
+            a.stiffness_perturbation_ratio,
+            ratio,
+            (0.0, inf),
         );
-        let frictionloss = pick(
-            self.perturb(
-                a.randomize_frictionloss,
-                a.frictionloss_perturbation_size,
-                false,
-                (0.0, inf),
-            ),
-            r,
+        let frictionloss = p(
+            a.randomize_frictionloss,
+            a.frictionloss_perturbation_size,
+            size,
+            (0.0, inf),
         );
-        let damping = pick(
-            self.perturb(
-                a.randomize_damping,
-                a.damping_perturbation_size,
-                false,
-                (0.0, inf),
-            ),
-            r,
+        let damping = p(
+            a.randomize_damping,
+            a.damping_perturbation_size,
+            size,
+            (0.0, inf),
         );
-        let armature = pick(
-            self.perturb(
-                a.randomize_armature,
-                a.armature_perturbation_size,
-                false,
-                (0.0, inf),
-            ),
-            r,
+        let armature = p(
+            a.randomize_armature,
+            a.armature_perturbation_size,
+            size,
+            (0.0, inf),
         );
-        // Without an RNG every perturbation is off and draws nothing.
         let mut spare = gym_core::rng_from_seed(0);
-        let rng: &mut EnvRng = match rng.as_deref_mut() {
+        let rng: &mut EnvRng = match rng {
             Some(rng) => rng,
             None => &mut spare,
         };

@@ -889,7 +889,7 @@ impl DomainRandomizationWrapper {
     /// As [`DomainRandomizationWrapper::randomize_domain`].
     pub fn step_randomization(&mut self) -> Result<()> {
         let n = self.args.randomize_every_n_steps;
-        if n > 0 && self.step_counter % n == 0 {
+        if n > 0 && self.step_counter.is_multiple_of(n) {
             self.randomize_domain()?;
         }
         self.step_counter += 1;

@@ -293,7 +293,9 @@ class CameraModder(BaseModder):
 
     Raises:
         ModderError: for an unknown camera name, no ``randomize_*`` flag set, a flag that
-            is not a bool, or a perturbation size that is negative or not finite.
+            is not a bool, a perturbation size that is negative or not finite, or a
+            ``fovy_perturbation_size`` that could take a camera's ``fovy`` out of
+            ``(0, 180)`` degrees.
     """
 
     def __init__(
@@ -318,6 +320,15 @@ class CameraModder(BaseModder):
         self.position_perturbation_size = _check_size("position_perturbation_size", position_perturbation_size)
         self.rotation_perturbation_size = _check_size("rotation_perturbation_size", rotation_perturbation_size)
         self.fovy_perturbation_size = _check_size("fovy_perturbation_size", fovy_perturbation_size)
+        if self.randomize_fovy:
+            size = self.fovy_perturbation_size
+            for name in self.camera_names:
+                fovy = float(self.model.cam_fovy[self._id(name)])
+                if fovy - size <= 0 or fovy + size >= 180:
+                    raise ModderError(
+                        f"fovy_perturbation_size {size} could take camera {name} (fovy {fovy})"
+                        " out of (0, 180) degrees"
+                    )
         self.save_defaults()
 
     def save_defaults(self) -> None:
