@@ -149,9 +149,6 @@ class RobosuiteEnv:
         self._xml_processors: list[Any] = []
         self._controller_configs: list[dict[str, Any] | None] = []
         self._obsv = EnvObservables(native)
-        # Whether visualize() ever ran (only then does a reset hide the sites again).
-        self._visualized = False
-        self._vis_cache: Any = None
         self._viewer: Any = None
         self._closed = False
         self.has_renderer = False
@@ -289,67 +286,9 @@ class RobosuiteEnv:
         missing = sorted(self._visualizations - set(vis_settings))
         if missing:
             raise _VisualizationError(f"vis_settings needs the keys {sorted(self._visualizations)}; missing {missing}")
-        self._visualized = True
-        model = self.sim.model
-        sites, _ = self._visual_sites()
-        for setting, ids in sites.items():
-            _set_sites_visibility(model, ids, bool(vis_settings[setting]))
-        if vis_settings["grippers"]:
-            self._visualize_task_grippers()
-
-    def _visual_sites(self) -> tuple[dict[str, np.ndarray], dict[str, "MujocoObject"]]:
-        """Per setting, the ids of the sites it toggles, and the task's objects by name
-        (kept until the scene is replaced)."""
-        sim = self.sim
-        if self._vis_cache is None or self._vis_cache[0] is not sim:
-            m = sim.model
-            objects = self.model.mujoco_objects
-
-            def ids(names: list[str]) -> np.ndarray:
-                return np.array([m.site_name2id(n) for n in names], dtype=np.int64)
-
-            sites = {
-                "env": ids([s for o in objects for s in o.sites]),
-                "robots": ids([s for r in self.robots for s in r.robot_model.sites]),
-                "grippers": ids(
-                    [s for r in self.robots for g in r.gripper.values() if g is not None for s in g.sites]
-                ),
-            }
-            self._vis_cache = (sim, sites, {o.name: o for o in objects})
-        return self._vis_cache[1], self._vis_cache[2]
-
-    def _visualize_task_grippers(self) -> None:
-        """The task's grip-site colouring (each robosuite task's ``visualize``)."""
-        name = self.name
-        _, objects = self._visual_sites()
-        robot0 = self.robots[0]
-        if name == "Lift" and "cube" in objects:
-            self._visualize_gripper_to_target(robot0.gripper, objects["cube"])
-        elif name == "Stack" and "cubeA" in objects:
-            self._visualize_gripper_to_target(robot0.gripper, objects["cubeA"])
-        elif name == "ToolHang" and "tool" in objects:
-            self._visualize_gripper_to_target(robot0.gripper, objects["tool"])
-        elif name == "Door" and "Door" in objects:
-            self._visualize_gripper_to_target(robot0.gripper, "Door_handle", target_type="site")
-        elif name.startswith("NutAssembly") or name.startswith("PickPlace"):
-            if name.startswith("NutAssembly"):
-                targets = [(f"{o.name}_handle_site", "site") for o in objects.values() if o.name.endswith("Nut")]
-            else:
-                targets = [(o.root_body, "body") for o in objects.values() if not o.name.startswith("Visual")]
-            for gripper in robot0.gripper.values():
-                if gripper is None or not targets:
-                    continue
-                dists = [self._gripper_to_target(gripper, t, kind, return_distance=True) for t, kind in targets]
-                target, kind = targets[int(np.argmin(dists))]
-                self._visualize_gripper_to_target(gripper, target, target_type=kind)
-        elif name == "TwoArmLift" and "pot" in objects:
-            handles = ["pot_handle0", "pot_handle1"]
-            if len(self.robots) == 1:
-                grippers = [robot0.gripper[arm] for arm in robot0.arms]
-            else:
-                grippers = [r.gripper[r.arms[0]] for r in self.robots]
-            for gripper, handle in zip(grippers, handles):
-                self._visualize_gripper_to_target(gripper, handle, target_type="site")
+        self._native.visualize(
+            bool(vis_settings["env"]), bool(vis_settings["robots"]), bool(vis_settings["grippers"])
+        )
 
     def _gripper_to_target(
         self, gripper: Any, target: Any, target_type: str = "body", return_distance: bool = False
@@ -484,8 +423,6 @@ class RobosuiteEnv:
         Sites shown by :meth:`visualize` are hidden again, as robosuite's reset does. An
         open mjviewer window stays open and shows the new episode."""
         obs = self._obsv.after_reset(self._native.reset(seed))
-        if self._visualized:
-            self.visualize({vis: False for vis in self._visualizations})
         if self._viewer is not None and self.renderer != "mujoco" and self._viewer.viewer is not None:
             self._viewer.update()
         return obs
@@ -696,16 +633,6 @@ class _VisualizationError(ValueError, KeyError):
 
     def __str__(self) -> str:
         return str(self.args[0]) if self.args else ""
-
-
-def _set_sites_visibility(model: Any, ids: np.ndarray, visible: bool) -> None:
-    """robosuite's ``set_sites_visibility`` for the sites ``ids``: a site is shown by a
-    positive alpha, hidden by a negative one (sites of alpha 0 stay as they are)."""
-    if ids.size == 0:
-        return
-    alpha = model.site_rgba[ids, 3]
-    flip = alpha < 0 if visible else alpha > 0
-    model.site_rgba[ids, 3] = np.where(flip, -alpha, alpha)
 
 
 class MujocoObject:

@@ -649,6 +649,22 @@ impl PyRobosuiteEnv {
             .map_err(to_pyerr)
     }
 
+    /// robosuite's `visualize(vis_settings)`: shows or hides the task objects' (`env`),
+    /// robots' and grippers' sites and colours the grip sites by their distance to the
+    /// task's target ([`RobosuiteEnv::visualize`]).
+    fn visualize(&self, py: Python<'_>, env: bool, robots: bool, grippers: bool) -> PyResult<()> {
+        py.detach(|| {
+            self.lock().map(|mut e| {
+                e.visualize(robosuite_env::wrappers::VisualizationSettings {
+                    env,
+                    robots,
+                    grippers,
+                });
+            })
+        })
+        .map_err(to_pyerr)
+    }
+
     /// Uploads texture `texture` (its bitmap changed in `sim.model.tex_data`) to the env's
     /// renderers again (MuJoCo's `mjr_uploadTexture`).
     fn upload_texture(&self, py: Python<'_>, texture: usize) -> PyResult<()> {

@@ -28,6 +28,8 @@
 //!   a [`Bound`](tasks::Bound) [`Task`](tasks::Task)), the table and two-arm helpers, and
 //!   the tasks;
 //! * [`placement`]: robosuite's placement samplers;
+//! * [`wrappers`]: robosuite's `VisualizationWrapper` and `DomainRandomizationWrapper`,
+//!   with the [`modders`] (texture, camera, lighting, dynamics) the latter runs;
 //! * [`prelude`]: what a user and a task author need, in one import;
 //! * [`RobosuiteEnv`], [`EnvConfig`] and the name registry ([`make`], [`make_with`],
 //!   [`register_envs`]), all reading one table of tasks ([`TASKS`]).

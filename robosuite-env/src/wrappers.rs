@@ -6,6 +6,32 @@
 //! Both are Gymnasium wrappers ([`gym_core::StepWrapper`]): `reset` and `step` do what
 //! robosuite's do, everything else forwards to the env. A wrapper that refuses its
 //! arguments returns the env untouched inside [`Refused`].
+//!
+//! ```no_run
+//! use gym_core::{Env, Wrapper};
+//! use robosuite_env::wrappers::{
+//!     DomainRandomizationArgs, DomainRandomizationWrapper, IndicatorConfig,
+//!     VisualizationWrapper,
+//! };
+//!
+//! let mut env = VisualizationWrapper::new(
+//!     robosuite_env::make("Lift")?,
+//!     vec![IndicatorConfig::default_indicator(0)],
+//! )?;
+//! env.reset(Some(0), None)?;
+//! env.set_indicator_pos("indicator0", [0.0, 0.1, 1.0])?;
+//! env.set_visualization_setting("robots", false)?;
+//!
+//! let mut env = DomainRandomizationWrapper::new(
+//!     env.into_inner(),
+//!     DomainRandomizationArgs {
+//!         seed: Some(0),
+//!         ..Default::default()
+//!     },
+//! )?;
+//! env.reset(Some(0), None)?; // a new look, new cameras, lights and dynamics
+//! # Ok::<(), gym_core::Error>(())
+//! ```
 
 use crate::env::RobosuiteEnv;
 use crate::modders::{
