@@ -533,7 +533,7 @@ struct ColorGeom {
 /// `randomize_local`) and, with `randomize_material`, a random reflectance / shininess /
 /// specular; each other geom a random colour; and the skybox a random texture. It returns
 /// the textures it changed, which must be uploaded to the render contexts
-/// ([`RobosuiteEnv::upload_texture`](crate::RobosuiteEnv::upload_texture)) for frames to
+/// (`RobosuiteEnv::upload_texture`, feature `render`) for frames to
 /// show them (the wrapper does).
 #[derive(Debug, Clone)]
 pub struct TextureModder {

@@ -722,7 +722,7 @@ const STREAM_SALT: u64 = 0x9E37_79B9_7F4A_7C15;
 /// the reset's values as the defaults) and before every `randomize_every_n_steps`-th step,
 /// each time from the defaults. Before each reset the defaults are written back, so the
 /// env resets from its own model. Changed textures are uploaded to the env's render
-/// contexts, so camera observations and [`RobosuiteEnv::render_camera`] show them.
+/// contexts, so camera observations and `RobosuiteEnv::render_camera` show them.
 ///
 /// Draws come from an [`EnvRng`] seeded by `seed`, or without one from the env's RNG at
 /// every reset (the env's own stream is not advanced): the same seed gives the same
