@@ -43,7 +43,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .name_to_id(MjtObjBase::mjOBJ_CAMERA, "agentview")
         .ok_or("Lift has an agentview camera")?;
     for episode in 0..2 {
+        let start = std::time::Instant::now();
         env.reset(Some(episode), None)?;
+        let reset = start.elapsed();
         // Frames without the robots', grippers' and cube's sites (robosuite's look).
         env.inner_mut().visualize(VisualizationSettings::all(false));
         let frame = env
@@ -53,9 +55,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         save_png(&path, &frame.rgb)?;
         let cube = robosuite_env::sim::body_id(env.inner().sim().model(), "cube_main")?;
         println!(
-            "{}: cube mass {:.4} kg",
+            "{}: cube mass {:.4} kg (reset and randomization {:.0} ms)",
             path.display(),
-            env.inner().sim().model().body_mass()[cube]
+            env.inner().sim().model().body_mass()[cube],
+            reset.as_secs_f64() * 1e3
         );
     }
     Ok(())

@@ -891,6 +891,12 @@ impl DomainRandomizationWrapper {
     /// # Errors
     /// As [`DomainRandomizationWrapper::randomize_domain`].
     pub fn restore_default_domain(&mut self) -> Result<()> {
+        self.restore(true)
+    }
+
+    /// [`DomainRandomizationWrapper::restore_default_domain`]; `upload = false` leaves the
+    /// render contexts' textures as they are (for a randomization that follows at once).
+    fn restore(&mut self, upload: bool) -> Result<()> {
         let sim = self.env.sim_mut();
         let changed = match &self.texture {
             Some(t) => t.restore_defaults(sim),
@@ -905,7 +911,10 @@ impl DomainRandomizationWrapper {
         if let Some(d) = &self.dynamics {
             d.restore_defaults(sim)?;
         }
-        self.upload(&changed)
+        if upload {
+            self.upload(&changed)?;
+        }
+        Ok(())
     }
 
     /// Counts a step and randomizes on every `randomize_every_n_steps`-th (robosuite's
@@ -946,7 +955,10 @@ impl StepWrapper for DomainRandomizationWrapper {
         seed: Option<u64>,
         options: Option<&ResetOptions>,
     ) -> Result<(DictValue, Info)> {
-        this.restore_default_domain()?;
+        // The textures are uploaded once, after the randomization, when one follows: the
+        // frames the env's reset draws in between are replaced.
+        let randomizes_textures = this.args.randomize_on_reset && this.texture.is_some();
+        this.restore(!randomizes_textures)?;
         let (obs, info) = this.env.reset(seed, options)?;
         this.save_default_domain();
         this.step_counter = 0;
