@@ -429,7 +429,7 @@ fn same_seed_same_domain_other_seed_other_domain() {
     let (fb, bb, db) = domain(&mut b);
     let (fc, _, dc) = domain(&mut c);
     assert!(fa == fb && ba == bb && da == db, "same seed, same domain");
-    assert_ne!(fa, fc);
+    assert!(fa != fc, "other seed, same frame");
     assert_ne!(da, dc);
     // Steps randomize again, identically for the same seed; the trajectories agree.
     for _ in 0..2 {
@@ -473,16 +473,38 @@ fn textures_reach_the_frames_and_other_envs_are_untouched() {
     );
     env.randomize_domain().unwrap();
     let second = frame(env.inner_mut(), "agentview");
-    assert_ne!(first, second);
+    assert!(first != second, "randomize_domain did not change the frame");
     // The textures went back with the defaults: the next reset starts from the plain look.
     env.restore_default_domain().unwrap();
-    assert_eq!(frame(env.inner_mut(), "agentview"), plain_frame);
+    assert!(
+        frame(env.inner_mut(), "agentview") == plain_frame,
+        "the restored frame differs from the plain env's"
+    );
+    // A reset randomizes again and uploads what it drew: uploading every texture anew
+    // changes nothing in the frame.
+    env.reset(Some(0), None).unwrap();
+    let after_reset = frame(env.inner_mut(), "agentview");
+    assert!(
+        after_reset != plain_frame,
+        "the reset did not randomize the look"
+    );
+    let ntex = env.inner().sim().model().ffi().ntex as usize;
+    for t in 0..ntex {
+        env.inner_mut().upload_texture(t).unwrap();
+    }
+    assert!(
+        frame(env.inner_mut(), "agentview") == after_reset,
+        "uploading every texture changed the frame: the reset did not upload"
+    );
     // Another env of the same configuration never saw any of it.
     let mut other = make("Lift");
     other.reset(Some(0), None).unwrap();
     assert_eq!(model_bytes(&other), plain_bytes);
     assert_eq!(model_bytes(&plain), plain_bytes);
-    assert_eq!(frame(&mut other, "agentview"), plain_frame);
+    assert!(
+        frame(&mut other, "agentview") == plain_frame,
+        "another env's frame changed"
+    );
 }
 
 #[test]
