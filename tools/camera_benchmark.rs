@@ -9,6 +9,13 @@
 //! ```text
 //! cargo run --release -p tools --features render --bin camera_benchmark -- \
 //!     [--steps N] [--depth] [--only TEXT] [--fixture FILE]... [--png DIR]
+//! cargo run --release -p tools --features render --bin camera_benchmark -- --contexts N
+//! ```
+//!
+//! `--contexts N` prints instead the process CPU time per Lift env made with and without a
+//! camera (the render context's cost), over `N` envs made one after another.
+//!
+//! ```text
 //! ```
 
 use gym_core::{Env, Frame, RenderMode};
@@ -51,6 +58,45 @@ fn steps_per_second(cameras: CameraConfig, steps: usize) -> gym_core::Result<(f6
     }
     let cpu_ms = (process_cpu() - cpu) * 1e3 / steps as f64;
     Ok((steps as f64 / start.elapsed().as_secs_f64(), cpu_ms))
+}
+
+/// Process CPU milliseconds per Lift env made (and reset) with `cameras`, over `n` envs made
+/// one after another after a first one (which also starts the driver), each dropped before
+/// the next is made.
+fn make_cost(cameras: &CameraConfig, n: usize) -> gym_core::Result<f64> {
+    let mut split = [0.0; 3];
+    let make = |split: &mut [f64; 3]| -> gym_core::Result<()> {
+        let t0 = process_cpu();
+        let mut env = make_with(
+            "Lift",
+            EnvConfig::default()
+                .with_seed(0)
+                .with_cameras(cameras.clone()),
+        )?;
+        let t1 = process_cpu();
+        env.reset(Some(0), None)?;
+        let t2 = process_cpu();
+        env.reset(Some(0), None)?;
+        let t3 = process_cpu();
+        split[0] += t1 - t0;
+        split[1] += t2 - t1;
+        split[2] += t3 - t2;
+        Ok(())
+    };
+    make(&mut split)?;
+    split = [0.0; 3];
+    let cpu = process_cpu();
+    for _ in 0..n {
+        make(&mut split)?;
+    }
+    let n = n.max(1) as f64;
+    println!(
+        "    make {:.1} ms, first reset {:.1} ms, second reset {:.1} ms",
+        split[0] * 1e3 / n,
+        split[1] * 1e3 / n,
+        split[2] * 1e3 / n
+    );
+    Ok((process_cpu() - cpu) * 1e3 / n)
 }
 
 fn hex(s: &str) -> Vec<u8> {
@@ -169,6 +215,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .position(|a| a == "--only")
         .and_then(|i| args.get(i + 1));
     let depth = args.iter().any(|a| a == "--depth");
+    if let Some(n) = args
+        .iter()
+        .position(|a| a == "--contexts")
+        .and_then(|i| args.get(i + 1))
+        .and_then(|s| s.parse::<usize>().ok())
+    {
+        let plain = make_cost(&CameraConfig::default(), n)?;
+        println!("Lift envs made one after another, process CPU ms per env ({n} envs):");
+        println!("  no cameras:                {plain:8.1} ms");
+        for quality in [RenderQuality::Robosuite, RenderQuality::Fast] {
+            let cameras = CameraConfig {
+                render_quality: quality,
+                ..CameraConfig::observe(["agentview"], 84, 84)
+            };
+            let with = make_cost(&cameras, n)?;
+            println!(
+                "  agentview 84x84, {:9}: {with:8.1} ms (render context {:.1} ms)",
+                quality.as_str(),
+                with - plain
+            );
+        }
+        return Ok(());
+    }
     let (none, none_cpu) = steps_per_second(CameraConfig::default(), steps)?;
     println!(
         "Lift, zero actions, {steps} steps, one thread: env steps/s (wall) and process CPU ms per step"

@@ -10,6 +10,7 @@
 //! returns it (see [`real_depth`]).
 
 mod gl;
+mod reuse;
 
 pub use gl::{EGL_HINT, GlContext};
 
@@ -107,13 +108,16 @@ pub struct OffscreenRenderer {
     fine_depth: Vec<f32>,
     size: (usize, usize),
     supersample: Supersampling,
-    gl: GlContext,
+    // `None` only during the drop.
+    gl: Option<GlContext>,
+    /// Where the contexts go when the renderer drops (`None`: freed, after a texture upload).
+    reuse: Option<reuse::Key>,
 }
 
 impl std::fmt::Debug for OffscreenRenderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("OffscreenRenderer")
-            .field("device", &self.gl.device())
+            .field("device", &self.device())
             .field("size", &self.size)
             .finish()
     }
@@ -203,20 +207,31 @@ impl OffscreenRenderer {
         } else {
             Supersampling::NONE
         };
-        let mut gl = GlContext::with_device(device)?;
-        let context = {
+        let key = reuse::Key::of(model, device);
+        let (mut gl, context) = match reuse::take(&key) {
+            Some(kept) => kept,
+            None => {
+                let mut gl = GlContext::with_device(device)?;
+                let context = {
+                    let _current = gl.make_current()?;
+                    // SAFETY: the GL context is current on this thread; the MjrContext is
+                    // only used (and dropped) while it is current again (see `Send` above).
+                    let mut context = unsafe { MjrContext::new(model) };
+                    context.change_font(MjtFontScale::mjFONTSCALE_150);
+                    context
+                };
+                (gl, context)
+            }
+        };
+        let mut context = context;
+        {
             let _current = gl.make_current()?;
-            // SAFETY: the GL context is current on this thread; the MjrContext is only used
-            // (and dropped) while it is current again (see `Send` above).
-            let mut context = unsafe { MjrContext::new(model) };
-            context.change_font(MjtFontScale::mjFONTSCALE_150);
             context.resize_offscreen(
                 buffer(width, supersampling) as u32,
                 buffer(height, supersampling) as u32,
             );
             context.offscreen();
-            context
-        };
+        }
         // robosuite's defaults (`render_collision_mesh=False`, `render_visual_mesh=True`):
         // geom group 0 (collision) hidden, group 1 (visual) shown.
         let mut option = MjvOption::default();
@@ -232,13 +247,14 @@ impl OffscreenRenderer {
             fine_depth: Vec::new(),
             size: (width, height),
             supersample: supersampling,
-            gl,
+            gl: Some(gl),
+            reuse: Some(key),
         })
     }
 
     /// The EGL device drawing the frames.
     pub fn device(&self) -> &str {
-        self.gl.device()
+        self.gl.as_ref().map_or("", GlContext::device)
     }
 
     /// Shows or hides geom group `group` (0..6); robosuite's `render_collision_mesh` is
@@ -264,11 +280,17 @@ impl OffscreenRenderer {
                 format!("texture id {texture} out of range (the model has {ntex} textures)"),
             ));
         }
-        let _current = self.gl.make_current()?;
+        let gl = self
+            .gl
+            .as_mut()
+            .ok_or_else(|| Error::Render("no OpenGL context".into()))?;
+        let _current = gl.make_current()?;
         let context = self
             .context
             .as_ref()
             .ok_or_else(|| Error::Render("no rendering context".into()))?;
+        // The context's textures are no longer the model's as compiled: it is not reused.
+        self.reuse = None;
         context
             .upload_texture(model, texture)
             .map_err(|e| Error::Render(format!("mjr_uploadTexture: {e}")))
@@ -339,11 +361,15 @@ impl OffscreenRenderer {
             size,
             supersample,
             gl,
+            reuse: _,
         } = self;
         let context = context
             .as_ref()
             .ok_or_else(|| Error::Render("the rendering context was freed".into()))?;
-        let _current = gl.make_current()?;
+        let _current = gl
+            .as_mut()
+            .ok_or_else(|| Error::Render("no OpenGL context".into()))?
+            .make_current()?;
         let mut pass = Pass {
             context,
             scene,
@@ -441,11 +467,10 @@ impl Pass<'_> {
         let f = supersample.factor_for(r.width, r.height);
         // Depth is read at the multisampling pattern's sample 0: factor 4 has a sub-pixel
         // there; otherwise the view moves to put the bottom-left sub-pixel's centre there.
-        let shift =
-            (r.out.depth.is_some() && supersample.factor > 1 && f != 4).then(|| {
-                let centre = 0.5 / f as f32;
-                (SAMPLE_0.0 - centre, SAMPLE_0.1 - centre)
-            });
+        let shift = (r.out.depth.is_some() && supersample.factor > 1 && f != 4).then(|| {
+            let centre = 0.5 / f as f32;
+            (SAMPLE_0.0 - centre, SAMPLE_0.1 - centre)
+        });
         let mut camera = match r.camera {
             View::Fixed(id) => MjvCamera::new_fixed(id),
             View::Free(c) => MjvCamera {
@@ -646,11 +671,10 @@ pub struct Request<'a> {
 
 impl Drop for OffscreenRenderer {
     fn drop(&mut self) {
-        if let Some(context) = self.context.take() {
-            match self.gl.make_current() {
-                Ok(_current) => drop(context),
-                // Freeing GL objects without their context is undefined: leak them instead.
-                Err(_) => std::mem::forget(context),
+        if let (Some(context), Some(gl)) = (self.context.take(), self.gl.take()) {
+            match self.reuse.take() {
+                Some(key) => reuse::put(key, gl, context),
+                None => reuse::free(gl, context),
             }
         }
     }
