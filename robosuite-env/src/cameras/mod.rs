@@ -77,9 +77,10 @@ pub enum RenderQuality {
     /// 2× their size, each 2×2 block averaged); larger ones are drawn at their size, where
     /// aliased edges weigh less. Depth is read where robosuite's multisampled depth buffer
     /// resolves it (sample 0 of the 4× pattern, the view moved by a fraction of a pixel;
-    /// see [`crate::render::Supersampling`]). On a CPU (Mesa's llvmpipe) 4.5–6× cheaper per
-    /// frame than `Robosuite` at 84×84 (with or without depth) and 256×256; mean absolute
-    /// difference to robosuite 1.5.2's frames 3.1–4.1 of 255 (`Robosuite`: 2.9–3.5).
+    /// see [`crate::render::Supersampling`]). On a CPU (Mesa's llvmpipe) about 4–7× cheaper
+    /// per env step than `Robosuite` (one or two cameras, 84×84 or 256×256, with or without
+    /// depth); mean absolute difference to robosuite 1.5.2's frames 3.1–4.1 of 255
+    /// (`Robosuite`: 2.9–3.5), depth equal to `Robosuite`'s.
     #[default]
     Fast,
     /// The model's own settings, as robosuite draws: 4× multisampling and reflections.
