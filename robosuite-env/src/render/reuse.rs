@@ -56,9 +56,9 @@ impl Key {
             m.nskinface,
             m.nflex,
         ] {
-            h.write_i64(i64::from(n));
+            h.write_i64(n);
         }
-        h.write_i64(m.nbuffer as i64);
+        h.write_i64(m.nbuffer);
         // SAFETY: `mjVisual` (floats and ints) and `mjStatistic` (doubles) have no padding;
         // the buffer holds `nbuffer` bytes.
         unsafe {
