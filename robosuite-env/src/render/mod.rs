@@ -207,8 +207,26 @@ impl OffscreenRenderer {
         } else {
             Supersampling::NONE
         };
+        let (buffer_w, buffer_h) = (
+            buffer(width, supersampling) as u32,
+            buffer(height, supersampling) as u32,
+        );
         let key = reuse::Key::of(model, device);
-        let (mut gl, context) = match reuse::take(&key) {
+        let kept = reuse::take(&key).and_then(|(mut gl, mut context)| {
+            match gl.make_current() {
+                Ok(_current) => {
+                    context.resize_offscreen(buffer_w, buffer_h);
+                    context.offscreen();
+                }
+                // Its GL context is lost: its objects cannot be freed, so they are leaked.
+                Err(_) => {
+                    std::mem::forget(context);
+                    return None;
+                }
+            }
+            Some((gl, context))
+        });
+        let (gl, context) = match kept {
             Some(kept) => kept,
             None => {
                 let mut gl = GlContext::with_device(device)?;
@@ -218,20 +236,13 @@ impl OffscreenRenderer {
                     // only used (and dropped) while it is current again (see `Send` above).
                     let mut context = unsafe { MjrContext::new(model) };
                     context.change_font(MjtFontScale::mjFONTSCALE_150);
+                    context.resize_offscreen(buffer_w, buffer_h);
+                    context.offscreen();
                     context
                 };
                 (gl, context)
             }
         };
-        let mut context = context;
-        {
-            let _current = gl.make_current()?;
-            context.resize_offscreen(
-                buffer(width, supersampling) as u32,
-                buffer(height, supersampling) as u32,
-            );
-            context.offscreen();
-        }
         // robosuite's defaults (`render_collision_mesh=False`, `render_visual_mesh=True`):
         // geom group 0 (collision) hidden, group 1 (visual) shown.
         let mut option = MjvOption::default();

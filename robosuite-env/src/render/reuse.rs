@@ -16,11 +16,13 @@ use std::sync::Mutex;
 /// How many dropped contexts are kept.
 pub(super) const KEEP: usize = 2;
 
-/// What a render context was made from: the EGL device asked for and a fingerprint of
-/// everything `mjr_makeContext` reads from the model (sizes, visual settings, statistics and
-/// the whole model buffer: textures, meshes, materials, plane geoms).
+/// What a render context was made from: the process, the EGL device asked for and a
+/// fingerprint of everything `mjr_makeContext` reads from the model (sizes, visual settings,
+/// statistics and the whole model buffer: textures, meshes, materials, plane geoms).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(super) struct Key {
+    // A forked child never takes its parent's contexts.
+    process: u32,
     device: Option<usize>,
     env_device: Option<String>,
     fingerprint: u64,
@@ -78,6 +80,7 @@ impl Key {
             }
         }
         Self {
+            process: std::process::id(),
             device,
             env_device: std::env::var("MUJOCO_EGL_DEVICE_ID").ok(),
             fingerprint: h.finish(),
