@@ -4,10 +4,10 @@
 Run it with a Python that has robosuite 1.5.2 (and mujoco 3.3.7), for example the
 virtualenv scripts/record_robosuite.sh makes, with Mesa's EGL installed:
 
-    MUJOCO_GL=egl .bench-venv/robosuite/bin/python scripts/record_robosuite_cameras.py
+    MUJOCO_GL=egl .bench-venv/robosuite/bin/python scripts/record_robosuite_cameras.py [--size N] [OUT]
 
 It writes robosuite-env/tests/fixtures/robosuite/lift_cameras.json: Lift (Panda, seed 0)
-with `agentview` and `robot0_eye_in_hand` at 64x64, depth and element segmentation on; the
+with `agentview` and `robot0_eye_in_hand` at 64x64 (or `--size N`, written to OUT), depth and element segmentation on; the
 cube size and the state [time, qpos, qvel] after reset; every observation key with its
 shape and dtype; GymWrapper's default keys; and both cameras' RGB frames (hex of the uint8
 bytes) and depth frames (hex of the little-endian float32 bytes), as robosuite returns them
@@ -30,7 +30,13 @@ SIZE = 64
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "robosuite-env/tests/fixtures/robosuite/lift_cameras.json"
+    args = sys.argv[1:]
+    size = SIZE
+    if "--size" in args:
+        i = args.index("--size")
+        size = int(args[i + 1])
+        del args[i : i + 2]
+    out = args[0] if args else "robosuite-env/tests/fixtures/robosuite/lift_cameras.json"
     env = suite.make(
         "Lift",
         robots="Panda",
@@ -38,8 +44,8 @@ def main():
         has_offscreen_renderer=True,
         use_camera_obs=True,
         camera_names=CAMERAS,
-        camera_heights=SIZE,
-        camera_widths=SIZE,
+        camera_heights=size,
+        camera_widths=size,
         camera_depths=True,
         camera_segmentations="element",
         seed=0,
@@ -56,7 +62,7 @@ def main():
     record = {
         "robosuite": suite.__version__,
         "task": "Lift",
-        "size": SIZE,
+        "size": size,
         "cameras": CAMERAS,
         "cube_size": [float(x) for x in env.cube.size],
         "state": [float(x) for x in env.sim.get_state().flatten()],

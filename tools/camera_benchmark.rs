@@ -1,11 +1,21 @@
 //! Env steps per second and process CPU time per step of Lift with camera observations
-//! (one and two cameras, 84×84 and 256×256) at each render quality, with each quality's mean
-//! absolute difference to robosuite's frames (the camera tests' fixture), on whatever EGL
-//! device opens (Mesa's software device on a CPU-only machine); writes PNGs of every
-//! default camera.
+//! (one and two cameras, 84×84 and 256×256, `--depth`: with depth) at each render quality,
+//! with each quality's mean absolute difference to robosuite's frames (the camera tests'
+//! 64×64 fixture, or each `--fixture` file written by
+//! `scripts/record_robosuite_cameras.py --size N`), on whatever EGL device opens (Mesa's
+//! software device on a CPU-only machine); `--only TEXT` keeps the setups whose name
+//! contains it; writes PNGs of every default camera.
 //!
 //! ```text
-//! cargo run --release -p tools --features render --bin camera_benchmark -- [--steps N] [--png DIR]
+//! cargo run --release -p tools --features render --bin camera_benchmark -- \
+//!     [--steps N] [--depth] [--only TEXT] [--fixture FILE]... [--png DIR]
+//! cargo run --release -p tools --features render --bin camera_benchmark -- --contexts N
+//! ```
+//!
+//! `--contexts N` prints instead the process CPU time per Lift env made with and without a
+//! camera (the render context's cost), over `N` envs made one after another.
+//!
+//! ```text
 //! ```
 
 use gym_core::{Env, Frame, RenderMode};
@@ -50,6 +60,45 @@ fn steps_per_second(cameras: CameraConfig, steps: usize) -> gym_core::Result<(f6
     Ok((steps as f64 / start.elapsed().as_secs_f64(), cpu_ms))
 }
 
+/// Process CPU milliseconds per Lift env made (and reset) with `cameras`, over `n` envs made
+/// one after another after a first one (which also starts the driver), each dropped before
+/// the next is made.
+fn make_cost(cameras: &CameraConfig, n: usize) -> gym_core::Result<f64> {
+    let mut split = [0.0; 3];
+    let make = |split: &mut [f64; 3]| -> gym_core::Result<()> {
+        let t0 = process_cpu();
+        let mut env = make_with(
+            "Lift",
+            EnvConfig::default()
+                .with_seed(0)
+                .with_cameras(cameras.clone()),
+        )?;
+        let t1 = process_cpu();
+        env.reset(Some(0), None)?;
+        let t2 = process_cpu();
+        env.reset(Some(0), None)?;
+        let t3 = process_cpu();
+        split[0] += t1 - t0;
+        split[1] += t2 - t1;
+        split[2] += t3 - t2;
+        Ok(())
+    };
+    make(&mut split)?;
+    split = [0.0; 3];
+    let cpu = process_cpu();
+    for _ in 0..n {
+        make(&mut split)?;
+    }
+    let n = n.max(1) as f64;
+    println!(
+        "    make {:.1} ms, first reset {:.1} ms, second reset {:.1} ms",
+        split[0] * 1e3 / n,
+        split[1] * 1e3 / n,
+        split[2] * 1e3 / n
+    );
+    Ok((process_cpu() - cpu) * 1e3 / n)
+}
+
 fn hex(s: &str) -> Vec<u8> {
     (0..s.len())
         .step_by(2)
@@ -59,12 +108,13 @@ fn hex(s: &str) -> Vec<u8> {
 
 /// Mean absolute difference (of 255) of agentview's and robot0_eye_in_hand's 64×64 frames
 /// to robosuite's from the same state (the fixture of the camera tests).
-fn difference_to_robosuite(quality: RenderQuality) -> Result<Vec<f64>, Box<dyn std::error::Error>> {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../robosuite-env/tests/fixtures/robosuite/lift_cameras.json"
-    );
+fn difference_to_robosuite(
+    quality: RenderQuality,
+    path: &str,
+    depth: bool,
+) -> Result<(usize, Vec<f64>), Box<dyn std::error::Error>> {
     let fx: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path)?)?;
+    let size = fx["size"].as_u64().unwrap_or(64) as usize;
     let floats = |key: &str| -> Vec<f64> {
         fx[key]
             .as_array()
@@ -72,10 +122,14 @@ fn difference_to_robosuite(quality: RenderQuality) -> Result<Vec<f64>, Box<dyn s
             .unwrap_or_default()
     };
     let cameras = CameraConfig {
-        camera_depths: vec![true],
-        camera_segmentations: vec![vec![Segmentation::Element]],
+        camera_depths: vec![depth],
+        camera_segmentations: if depth {
+            vec![vec![Segmentation::Element]]
+        } else {
+            Vec::new()
+        },
         render_quality: quality,
-        ..CameraConfig::observe(["agentview", "robot0_eye_in_hand"], 64, 64)
+        ..CameraConfig::observe(["agentview", "robot0_eye_in_hand"], size, size)
     };
     let mut env = make_with(
         "Lift",
@@ -96,6 +150,10 @@ fn difference_to_robosuite(quality: RenderQuality) -> Result<Vec<f64>, Box<dyn s
             .map(|(a, b)| (f64::from(*a) - f64::from(*b)).abs())
             .sum();
         out.push(sum / theirs.len().max(1) as f64);
+        if !depth {
+            out.push(f64::NAN);
+            continue;
+        }
         let theirs: Vec<f32> = hex(fx["frames"][cam]["depth"].as_str().unwrap_or(""))
             .chunks_exact(4)
             .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
@@ -112,7 +170,7 @@ fn difference_to_robosuite(quality: RenderQuality) -> Result<Vec<f64>, Box<dyn s
             .sum();
         out.push(sum / theirs.len().max(1) as f64);
     }
-    Ok(out)
+    Ok((size, out))
 }
 
 fn write_png(path: &std::path::Path, frame: &ndarray::Array3<u8>) -> std::io::Result<()> {
@@ -139,6 +197,47 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|i| args.get(i + 1))
         .and_then(|s| s.parse().ok())
         .unwrap_or(100);
+    let default_fixture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../robosuite-env/tests/fixtures/robosuite/lift_cameras.json"
+    );
+    let mut fixtures: Vec<&str> = args
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| *a == "--fixture")
+        .filter_map(|(i, _)| args.get(i + 1).map(String::as_str))
+        .collect();
+    if fixtures.is_empty() {
+        fixtures.push(default_fixture);
+    }
+    let only: Option<&String> = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1));
+    let depth = args.iter().any(|a| a == "--depth");
+    if let Some(n) = args
+        .iter()
+        .position(|a| a == "--contexts")
+        .and_then(|i| args.get(i + 1))
+        .and_then(|s| s.parse::<usize>().ok())
+    {
+        let plain = make_cost(&CameraConfig::default(), n)?;
+        println!("Lift envs made one after another, process CPU ms per env ({n} envs):");
+        println!("  no cameras:                {plain:8.1} ms");
+        for quality in [RenderQuality::Robosuite, RenderQuality::Fast] {
+            let cameras = CameraConfig {
+                render_quality: quality,
+                ..CameraConfig::observe(["agentview"], 84, 84)
+            };
+            let with = make_cost(&cameras, n)?;
+            println!(
+                "  agentview 84x84, {:9}: {with:8.1} ms (render context {:.1} ms)",
+                quality.as_str(),
+                with - plain
+            );
+        }
+        return Ok(());
+    }
     let (none, none_cpu) = steps_per_second(CameraConfig::default(), steps)?;
     println!(
         "Lift, zero actions, {steps} steps, one thread: env steps/s (wall) and process CPU ms per step"
@@ -159,18 +258,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ),
     ];
     for quality in [RenderQuality::Robosuite, RenderQuality::Fast] {
-        let diff = difference_to_robosuite(quality)?;
-        println!(
-            "render_quality={}: mean |diff| to robosuite's frames: agentview {:.2}, robot0_eye_in_hand {:.2} (of 255); depth {:.1e}, {:.1e}",
-            quality.as_str(),
-            diff[0],
-            diff[2],
-            diff[1],
-            diff[3]
-        );
+        for path in &fixtures {
+            let (size, rgb) = difference_to_robosuite(quality, path, false)?;
+            let (_, diff) = difference_to_robosuite(quality, path, true)?;
+            println!(
+                "render_quality={} {size}x{size}: mean |diff| to robosuite's frames (of 255): RGB agentview {:.2}, robot0_eye_in_hand {:.2}; with depth {:.2}, {:.2}, depth {:.1e}, {:.1e}",
+                quality.as_str(),
+                rgb[0],
+                rgb[2],
+                diff[0],
+                diff[2],
+                diff[1],
+                diff[3]
+            );
+        }
         for (name, cams, size) in setups {
+            if only.is_some_and(|o| !name.contains(o.as_str())) {
+                continue;
+            }
             let cameras = CameraConfig {
                 render_quality: quality,
+                camera_depths: vec![depth],
                 ..CameraConfig::observe(cams.iter().copied(), size, size)
             };
             let (rate, cpu) = steps_per_second(cameras, steps)?;

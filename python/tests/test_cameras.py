@@ -274,6 +274,28 @@ def test_render_quality_fast_is_close_to_robosuite_quality_and_deterministic() -
         lift(use_camera_obs=True, render_quality="ultra")
 
 
+def test_fast_depth_is_robosuite_qualitys_and_a_closed_envs_context_draws_the_same() -> None:
+    def frames(quality: str, size: int) -> tuple[np.ndarray, np.ndarray]:
+        env = lift(
+            use_camera_obs=True,
+            camera_names="agentview",
+            camera_heights=size,
+            camera_widths=size,
+            camera_depths=True,
+            render_quality=quality,
+        )
+        obs = env.reset(seed=0)
+        env.close()
+        return obs["agentview_image"], obs["agentview_depth"]
+
+    for size in (48, 128):
+        # The second env of a configuration gets the first one's render context back.
+        (rgb, depth), again = frames("fast", size), frames("fast", size)
+        assert np.array_equal(rgb, again[0]) and np.array_equal(depth, again[1])
+        # Depth is read where multisampling reads it (measured: below 1e-9).
+        assert np.abs(depth - frames("robosuite", size)[1]).mean() < 1e-6
+
+
 def test_an_unknown_viewer_is_refused() -> None:
     with pytest.raises(ValueError, match="renderer"):
         lift(has_renderer=True, renderer="pygame")

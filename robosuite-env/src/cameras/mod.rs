@@ -72,17 +72,39 @@ pub enum ImageConvention {
 /// `docs/fidelity.md`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum RenderQuality {
-    /// No multisampling and no reflections; antialiased by supersampling instead (RGB frames
-    /// drawn at 2× their size, frames with depth at 4× at the 4× multisampling pattern's
-    /// positions): about 4.7× cheaper per 84×84 frame on a CPU (Mesa's llvmpipe), frames
-    /// 1.0–1.6 of 255 (mean absolute difference) from `Robosuite`'s.
+    /// No multisampling and no reflections. Frames smaller than
+    /// [`FAST_FULL_SIZE_FROM`] pixels on both sides are antialiased by supersampling (drawn at
+    /// 2× their size, each 2×2 block averaged); larger ones are drawn at their size, where
+    /// aliased edges weigh less. Depth is read where robosuite's multisampled depth buffer
+    /// resolves it (sample 0 of the 4× pattern, the view moved by a fraction of a pixel;
+    /// see [`crate::render::Supersampling`]). On a CPU (Mesa's llvmpipe) about 4–7× cheaper
+    /// per env step than `Robosuite` (one or two cameras, 84×84 or 256×256, with or without
+    /// depth); mean absolute difference to robosuite 1.5.2's frames 3.1–4.1 of 255
+    /// (`Robosuite`: 2.9–3.5), depth equal to `Robosuite`'s.
     #[default]
     Fast,
     /// The model's own settings, as robosuite draws: 4× multisampling and reflections.
     Robosuite,
 }
 
+/// [`RenderQuality::Fast`] draws frames whose width or height is at least this many pixels
+/// at their own size, smaller ones at twice their size.
+pub const FAST_FULL_SIZE_FROM: usize = 128;
+
 impl RenderQuality {
+    /// How frames are supersampled: `Fast` at 2× below [`FAST_FULL_SIZE_FROM`] pixels,
+    /// `Robosuite` not at all (it multisamples).
+    #[cfg(feature = "render")]
+    pub fn supersampling(self) -> crate::render::Supersampling {
+        match self {
+            Self::Fast => crate::render::Supersampling {
+                factor: 2,
+                full_size_from: FAST_FULL_SIZE_FROM,
+            },
+            Self::Robosuite => crate::render::Supersampling::NONE,
+        }
+    }
+
     /// The name `render_quality` takes: `"fast"` or `"robosuite"`.
     pub fn as_str(self) -> &'static str {
         match self {

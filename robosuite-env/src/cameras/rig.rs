@@ -116,20 +116,11 @@ impl CameraRig {
                 width = width.max(c.width);
                 height = height.max(c.height);
             }
-            // Fast: RGB drawn at twice the size; depth at four times, for the multisampling
-            // pattern's sample 0 (what robosuite's multisampled depth resolves to).
-            let depth = config.render_mode == Some(RenderMode::DepthArray)
-                || cameras.iter().any(|(c, _)| c.depth);
-            let factor = match config.render_quality {
-                super::RenderQuality::Fast if depth => 4,
-                super::RenderQuality::Fast => 2,
-                super::RenderQuality::Robosuite => 1,
-            };
             let mut renderer = crate::render::OffscreenRenderer::with_options(
                 model,
                 width,
                 height,
-                factor,
+                config.render_quality.supersampling(),
                 config.render_gpu_device_id,
             )?;
             renderer.set_reflection(config.render_quality == super::RenderQuality::Robosuite);

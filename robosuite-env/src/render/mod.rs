@@ -10,6 +10,7 @@
 //! returns it (see [`real_depth`]).
 
 mod gl;
+mod reuse;
 
 pub use gl::{EGL_HINT, GlContext};
 
@@ -44,6 +45,57 @@ pub struct Outputs<'a> {
     pub segmentation_type: Option<&'a mut [i32]>,
 }
 
+/// Antialiasing without multisampling: frames drawn at `factor` times their size, each block
+/// of sub-pixels averaged into one pixel (multisampling's cost on a CPU renderer grows with
+/// its samples; supersampling's with the pixels drawn, so large frames skip it).
+///
+/// A frame whose larger side is at least `full_size_from` pixels is drawn at its own size.
+/// With `factor` 4, only the four sub-pixels at the positions of OpenGL's standard 4×
+/// multisampling pattern (`(0.375, 0.125)`, `(0.875, 0.375)`, `(0.125, 0.625)`,
+/// `(0.625, 0.875)` of the pixel) are averaged; other factors average every sub-pixel.
+/// Depth takes, for each pixel, the depth at sample 0 of that pattern (what a multisampled
+/// depth buffer resolves to): at factor 4 its sub-pixel, otherwise the bottom-left sub-pixel
+/// with the view moved by a fraction of a pixel to put its centre there (the RGB of a frame
+/// with depth moves with it).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Supersampling {
+    /// Sub-pixels per side, 1..=4 (1: none).
+    pub factor: usize,
+    /// Frames whose width or height is at least this many pixels are drawn at their own size.
+    pub full_size_from: usize,
+}
+
+impl Supersampling {
+    /// No supersampling (frames drawn at their size; depth at the pixel centres).
+    pub const NONE: Self = Self {
+        factor: 1,
+        full_size_from: usize::MAX,
+    };
+
+    /// `factor` for frames of every size.
+    pub const fn at(factor: usize) -> Self {
+        Self {
+            factor,
+            full_size_from: usize::MAX,
+        }
+    }
+
+    /// The factor a `width × height` frame is drawn at.
+    pub fn factor_for(&self, width: usize, height: usize) -> usize {
+        if width.max(height) >= self.full_size_from {
+            1
+        } else {
+            self.factor
+        }
+    }
+}
+
+impl Default for Supersampling {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
 /// MuJoCo's renderer on its own headless OpenGL context, drawing a model's fixed cameras.
 pub struct OffscreenRenderer {
     // Dropped by `Drop` while the GL context is current; `None` only during the drop.
@@ -55,14 +107,17 @@ pub struct OffscreenRenderer {
     seg_ids: Vec<i32>,
     fine_depth: Vec<f32>,
     size: (usize, usize),
-    supersample: usize,
-    gl: GlContext,
+    supersample: Supersampling,
+    // `None` only during the drop.
+    gl: Option<GlContext>,
+    /// Where the contexts go when the renderer drops (`None`: freed, after a texture upload).
+    reuse: Option<reuse::Key>,
 }
 
 impl std::fmt::Debug for OffscreenRenderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("OffscreenRenderer")
-            .field("device", &self.gl.device())
+            .field("device", &self.device())
             .field("size", &self.size)
             .finish()
     }
@@ -81,7 +136,7 @@ impl OffscreenRenderer {
     /// [`Error::Render`] when no EGL context can be opened (the message names the missing
     /// library); [`Error::InvalidArgument`] for a zero size or one above [`MAX_SIZE`].
     pub fn new(model: &MjModel, width: usize, height: usize) -> Result<Self> {
-        Self::with_options(model, width, height, 1, None)
+        Self::with_options(model, width, height, Supersampling::NONE, None)
     }
 
     /// [`OffscreenRenderer::new`] on EGL device `device` (robosuite's
@@ -97,19 +152,13 @@ impl OffscreenRenderer {
         height: usize,
         device: Option<usize>,
     ) -> Result<Self> {
-        Self::with_options(model, width, height, 1, device)
+        Self::with_options(model, width, height, Supersampling::NONE, device)
     }
 
-    /// [`OffscreenRenderer::new`] drawing frames at up to `factor` times their size and
-    /// averaging each block of sub-pixels into one pixel (supersampling: antialiasing
-    /// without multisampling, whose cost on a CPU renderer grows with the samples). A frame
-    /// with depth is drawn at `factor`; with `factor` 4, only the four sub-pixels at the
-    /// positions of OpenGL's standard 4× multisampling pattern are averaged, and depth takes
-    /// the sub-pixel of sample 0, as a multisampled depth buffer resolves (other factors:
-    /// the bottom-left sub-pixel). An RGB frame without depth is drawn at `factor` or 2,
-    /// whichever is smaller, averaging every sub-pixel. Segmentations are drawn at the
-    /// frame's own size. A factor that would make the buffer larger than [`MAX_SIZE`] is
-    /// lowered to 1.
+    /// [`OffscreenRenderer::new`] drawing every frame at `factor` times its size and
+    /// averaging each block of sub-pixels into one pixel ([`Supersampling::at`]).
+    /// Segmentations are drawn at the frame's own size. A factor that would make the buffer
+    /// larger than [`MAX_SIZE`] is lowered to 1.
     ///
     /// # Errors
     /// As [`OffscreenRenderer::new`]; [`Error::InvalidArgument`] for a factor of 0 or above 4.
@@ -119,44 +168,80 @@ impl OffscreenRenderer {
         height: usize,
         factor: usize,
     ) -> Result<Self> {
-        Self::with_options(model, width, height, factor, None)
+        Self::with_options(model, width, height, Supersampling::at(factor), None)
     }
 
-    /// [`OffscreenRenderer::with_supersampling`] on EGL device `device` (see
-    /// [`OffscreenRenderer::on_device`]).
+    /// [`OffscreenRenderer::new`] with `supersampling` (see [`Supersampling`];
+    /// segmentations are drawn at the frame's own size) on EGL device `device` (see
+    /// [`OffscreenRenderer::on_device`]). A factor that would make the buffer larger than
+    /// [`MAX_SIZE`] is lowered to 1.
     ///
     /// # Errors
-    /// As [`OffscreenRenderer::with_supersampling`] and [`OffscreenRenderer::on_device`].
+    /// As [`OffscreenRenderer::new`] and [`OffscreenRenderer::on_device`];
+    /// [`Error::InvalidArgument`] for a factor of 0 or above 4.
     pub fn with_options(
         model: &MjModel,
         width: usize,
         height: usize,
-        factor: usize,
+        supersampling: Supersampling,
         device: Option<usize>,
     ) -> Result<Self> {
         check_size("width", width)?;
         check_size("height", height)?;
+        let factor = supersampling.factor;
         if !(1..=4).contains(&factor) {
             return Err(Error::invalid_argument(
                 "supersample",
                 format!("must be in 1..=4, got {factor}"),
             ));
         }
-        let factor = if width * factor <= MAX_SIZE && height * factor <= MAX_SIZE {
-            factor
-        } else {
-            1
+        // The buffer holds every frame that fits `width × height` at the factor it is drawn
+        // at: the sides below `full_size_from` at `factor`, the others at 1.
+        let buffer = |side: usize, s: Supersampling| {
+            side.max(s.factor * side.min(s.full_size_from.saturating_sub(1)))
         };
-        let mut gl = GlContext::with_device(device)?;
-        let context = {
-            let _current = gl.make_current()?;
-            // SAFETY: the GL context is current on this thread; the MjrContext is only used
-            // (and dropped) while it is current again (see `Send` above).
-            let mut context = unsafe { MjrContext::new(model) };
-            context.change_font(MjtFontScale::mjFONTSCALE_150);
-            context.resize_offscreen((width * factor) as u32, (height * factor) as u32);
-            context.offscreen();
-            context
+        let supersampling = if buffer(width, supersampling) <= MAX_SIZE
+            && buffer(height, supersampling) <= MAX_SIZE
+        {
+            supersampling
+        } else {
+            Supersampling::NONE
+        };
+        let (buffer_w, buffer_h) = (
+            buffer(width, supersampling) as u32,
+            buffer(height, supersampling) as u32,
+        );
+        let key = reuse::Key::of(model, device);
+        let kept = reuse::take(&key).and_then(|(mut gl, mut context)| {
+            match gl.make_current() {
+                Ok(_current) => {
+                    context.resize_offscreen(buffer_w, buffer_h);
+                    context.offscreen();
+                }
+                // Its GL context is lost: its objects cannot be freed, so they are leaked.
+                Err(_) => {
+                    std::mem::forget(context);
+                    return None;
+                }
+            }
+            Some((gl, context))
+        });
+        let (gl, context) = match kept {
+            Some(kept) => kept,
+            None => {
+                let mut gl = GlContext::with_device(device)?;
+                let context = {
+                    let _current = gl.make_current()?;
+                    // SAFETY: the GL context is current on this thread; the MjrContext is
+                    // only used (and dropped) while it is current again (see `Send` above).
+                    let mut context = unsafe { MjrContext::new(model) };
+                    context.change_font(MjtFontScale::mjFONTSCALE_150);
+                    context.resize_offscreen(buffer_w, buffer_h);
+                    context.offscreen();
+                    context
+                };
+                (gl, context)
+            }
         };
         // robosuite's defaults (`render_collision_mesh=False`, `render_visual_mesh=True`):
         // geom group 0 (collision) hidden, group 1 (visual) shown.
@@ -172,14 +257,15 @@ impl OffscreenRenderer {
             seg_ids: Vec::new(),
             fine_depth: Vec::new(),
             size: (width, height),
-            supersample: factor,
-            gl,
+            supersample: supersampling,
+            gl: Some(gl),
+            reuse: Some(key),
         })
     }
 
     /// The EGL device drawing the frames.
     pub fn device(&self) -> &str {
-        self.gl.device()
+        self.gl.as_ref().map_or("", GlContext::device)
     }
 
     /// Shows or hides geom group `group` (0..6); robosuite's `render_collision_mesh` is
@@ -205,11 +291,17 @@ impl OffscreenRenderer {
                 format!("texture id {texture} out of range (the model has {ntex} textures)"),
             ));
         }
-        let _current = self.gl.make_current()?;
+        let gl = self
+            .gl
+            .as_mut()
+            .ok_or_else(|| Error::Render("no OpenGL context".into()))?;
+        let _current = gl.make_current()?;
         let context = self
             .context
             .as_ref()
             .ok_or_else(|| Error::Render("no rendering context".into()))?;
+        // The context's textures are no longer the model's as compiled: it is not reused.
+        self.reuse = None;
         context
             .upload_texture(model, texture)
             .map_err(|e| Error::Render(format!("mjr_uploadTexture: {e}")))
@@ -280,11 +372,15 @@ impl OffscreenRenderer {
             size,
             supersample,
             gl,
+            reuse: _,
         } = self;
         let context = context
             .as_ref()
             .ok_or_else(|| Error::Render("the rendering context was freed".into()))?;
-        let _current = gl.make_current()?;
+        let _current = gl
+            .as_mut()
+            .ok_or_else(|| Error::Render("no OpenGL context".into()))?
+            .make_current()?;
         let mut pass = Pass {
             context,
             scene,
@@ -312,7 +408,7 @@ struct Pass<'p> {
     seg_rgb: &'p mut Vec<u8>,
     seg_ids: &'p mut Vec<i32>,
     fine_depth: &'p mut Vec<f32>,
-    supersample: usize,
+    supersample: Supersampling,
 }
 
 /// Checks one request against the model and the offscreen buffer of `size`.
@@ -379,13 +475,13 @@ impl Pass<'_> {
             supersample,
         } = self;
         let context: &MjrContext = context;
-        // Depth needs the multisampling pattern's sample 0 (factor 4); RGB alone is close
-        // enough to multisampled frames at factor 2, for a quarter of the pixels.
-        let f = if r.out.depth.is_some() {
-            *supersample
-        } else {
-            (*supersample).min(2)
-        };
+        let f = supersample.factor_for(r.width, r.height);
+        // Depth is read at the multisampling pattern's sample 0: factor 4 has a sub-pixel
+        // there; otherwise the view moves to put the bottom-left sub-pixel's centre there.
+        let shift = (r.out.depth.is_some() && supersample.factor > 1 && f != 4).then(|| {
+            let centre = 0.5 / f as f32;
+            (SAMPLE_0.0 - centre, SAMPLE_0.1 - centre)
+        });
         let mut camera = match r.camera {
             View::Fixed(id) => MjvCamera::new_fixed(id),
             View::Free(c) => MjvCamera {
@@ -417,6 +513,12 @@ impl Pass<'_> {
         // Geoms the camera cannot see are dropped before drawing (identical frames, less
         // geometry); their segment ids stay as `mjv_updateScene` gave them.
         let segments = scene.ffi().ngeom.max(0) as usize;
+        // The cameras as `mjv_updateScene` set them (restored after a moved view).
+        let cameras = shift.map(|(dx, dy)| {
+            let saved = scene.ffi().camera.clone();
+            shift_view(scene, r.width, r.height, dx, dy);
+            saved
+        });
         cull_outside_view(scene, r.width as f32 / r.height as f32);
         if f == 1 && (r.out.rgb.is_some() || r.out.depth.is_some()) {
             scene.render(&viewport, context);
@@ -446,7 +548,7 @@ impl Pass<'_> {
             }
             if let Some(depth) = r.out.depth.as_deref_mut() {
                 let row = f * r.width;
-                let (sx, sy) = samples[0];
+                let (sx, sy) = if shift.is_some() { (0, 0) } else { samples[0] };
                 for (y, out) in depth.chunks_exact_mut(r.width).enumerate() {
                     let fine_row = &fine_depth[(f * y + sy) * row..][..row];
                     for (x, o) in out.iter_mut().enumerate() {
@@ -454,6 +556,10 @@ impl Pass<'_> {
                     }
                 }
             }
+        }
+        if let Some(saved) = cameras {
+            // SAFETY: the cameras `mjv_updateScene` set come back unchanged.
+            unsafe { scene.ffi_mut() }.camera = saved;
         }
         if r.out.segmentation.is_some() || r.out.segmentation_type.is_some() {
             set_segmentation_flags(scene, true);
@@ -473,6 +579,10 @@ impl Pass<'_> {
         Ok(())
     }
 }
+
+/// Sample 0 of OpenGL's standard 4× multisampling pattern, in pixels from the pixel's bottom
+/// left corner: the sample a multisampled depth buffer resolves to.
+const SAMPLE_0: (f32, f32) = (0.375, 0.125);
 
 /// The sub-pixels `(x, y)` (from the bottom left) of an `f × f` block that make one pixel:
 /// for `f = 4`, the four positions of OpenGL's standard 4× multisampling pattern (`(0.375,
@@ -572,11 +682,10 @@ pub struct Request<'a> {
 
 impl Drop for OffscreenRenderer {
     fn drop(&mut self) {
-        if let Some(context) = self.context.take() {
-            match self.gl.make_current() {
-                Ok(_current) => drop(context),
-                // Freeing GL objects without their context is undefined: leak them instead.
-                Err(_) => std::mem::forget(context),
+        if let (Some(context), Some(gl)) = (self.context.take(), self.gl.take()) {
+            match self.reuse.take() {
+                Some(key) => reuse::put(key, gl, context),
+                None => reuse::free(gl, context),
             }
         }
     }
@@ -615,6 +724,26 @@ fn decode_segmentation(
     for (px, o) in rgb.chunks_exact(3).zip(out.iter_mut()) {
         let c = px[0] as usize | (px[1] as usize) << 8 | (px[2] as usize) << 16;
         *o = if c <= segments { ids[c] } else { ids[0] };
+    }
+}
+
+/// Moves the view window of the scene's cameras by `(dx, dy)` pixels of a `width × height`
+/// frame, so that each pixel shows what the point `(dx, dy)` pixels from its centre showed.
+fn shift_view(scene: &mut MjvScene, width: usize, height: usize, dx: f32, dy: f32) {
+    // SAFETY: only the two scene cameras' frustum values change.
+    let ffi = unsafe { scene.ffi_mut() };
+    let aspect = width as f32 / height as f32;
+    for cam in &mut ffi.camera {
+        // `mjr_render`'s half width of the window at the near plane.
+        let half = if cam.frustum_width != 0.0 {
+            cam.frustum_width
+        } else {
+            0.5 * aspect * (cam.frustum_top - cam.frustum_bottom)
+        };
+        let pixel_y = (cam.frustum_top - cam.frustum_bottom) / height as f32;
+        cam.frustum_center += dx * 2.0 * half / width as f32;
+        cam.frustum_bottom += dy * pixel_y;
+        cam.frustum_top += dy * pixel_y;
     }
 }
 
