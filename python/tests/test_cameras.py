@@ -290,7 +290,7 @@ class _Lone:
     """A single env stepped as a NEXT_STEP vector env steps its sub-env."""
 
     def __init__(self, seed: int) -> None:
-        self.env = GymWrapper(lift(horizon=3, **CAMERAS), keys=_camera_keys(), flatten_obs=False)
+        self.env = GymWrapper(suite.make("Lift", robots="Panda", horizon=3, **CAMERAS), keys=_camera_keys(), flatten_obs=False)
         self.obs, _ = self.env.reset(seed=seed)
         self.ended = False
 
