@@ -1,7 +1,7 @@
 //! [`FilterObservation`]: keeps some keys of a Dict observation or some items of a Tuple.
 
-use gym_core::spaces::{FilterKeys, FilterableSpace};
 use gym_core::spaces::AnySpace;
+use gym_core::spaces::{FilterKeys, FilterableSpace};
 use gym_core::{DynSpace, Env, ObservationWrapper, Observations, Pick, Result, Wrapper};
 
 /// Gymnasium's `FilterObservation(env, filter_keys)`: keeps the listed Dict keys (the new

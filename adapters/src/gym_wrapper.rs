@@ -38,8 +38,9 @@ use crate::FilterObservation;
 use crate::FlattenObservation;
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, FilterKeys, FilterableSpace, NumericSpace};
 use gym_core::{
-    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ObsRow, ObservationWrapper,
-    Observations, Pick, ResetOptions, Result, Scalar, Space, Step, Transition, Value, Wrapper,
+    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ObsRow,
+    ObservationWrapper, Observations, Pick, ResetOptions, Result, Scalar, Space, Step, Transition,
+    Value, Wrapper,
 };
 use ndarray::{ArrayD, IxDyn};
 

@@ -1,9 +1,9 @@
 //! The [`Env`] trait (Gymnasium's `gymnasium.Env`) and what `step` returns.
 
 use crate::error::{Error, Result};
-use crate::row::ObsRow;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
+use crate::row::ObsRow;
 use crate::space::{DynSpace, Flatten};
 use ndarray::{Array2, Array3};
 use std::any::Any;

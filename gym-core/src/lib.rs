@@ -48,8 +48,8 @@ pub use dynamic::{BoxedEnv, DynAdapter, DynEnv, IntoBoxedEnv};
 pub use env::{AsAny, Env, EnvExt, Frame, Metadata, RenderMode, Step, Transition};
 pub use error::{Error, Result, SpaceError};
 pub use info::{Info, InfoValue, ResetOptions};
-pub use row::{MAX_ROW_LEAVES, ObsRow, Pick, RowLeaf, RowLeaves};
 pub use rng::{EnvRng, entropy_seed, rng_from_seed};
+pub use row::{MAX_ROW_LEAVES, ObsRow, Pick, RowLeaf, RowLeaves};
 pub use space::{DynSpace, Flatten, Space, flatdim, flatten, flatten_space, unflatten};
 pub use spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,

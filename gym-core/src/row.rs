@@ -338,9 +338,9 @@ impl<'a> ObsRow<'a> {
                 Pick::Leaf(k) => (k, 0, self.leaf(k).map_or(0, |l| l.len)),
                 Pick::Segment { leaf, start, len } => (leaf, start, len),
             };
-            let outer = self
-                .leaf(k)
-                .ok_or_else(|| row_mismatch(format!("pick {j} names leaf {k} of {}", self.len())))?;
+            let outer = self.leaf(k).ok_or_else(|| {
+                row_mismatch(format!("pick {j} names leaf {k} of {}", self.len()))
+            })?;
             if start.checked_add(len).is_none_or(|end| end > outer.len) {
                 return Err(row_mismatch(format!(
                     "pick {j} takes {start}..{} of leaf {k}'s {} elements",
@@ -406,8 +406,12 @@ mod tests {
         let mut images = batch::<u8>(&[3, 2, 2]);
         let mut flat = batch::<f32>(&[3, 6]);
         let mut leaves = RowLeaves::new();
-        leaves.push(RowLeaf::of_batch_row(&mut images, 1).unwrap()).unwrap();
-        leaves.push(RowLeaf::of_batch_row(&mut flat, 1).unwrap()).unwrap();
+        leaves
+            .push(RowLeaf::of_batch_row(&mut images, 1).unwrap())
+            .unwrap();
+        leaves
+            .push(RowLeaf::of_batch_row(&mut flat, 1).unwrap())
+            .unwrap();
         assert!(RowLeaf::of_batch_row(&mut flat, 3).is_none());
         // SAFETY: the leaves are rows of the two local batches, untouched while `row` lives.
         let mut row = unsafe { ObsRow::from_raw(leaves.as_slice()) };
@@ -430,9 +434,7 @@ mod tests {
         let mut inner = row.rearranged(&plan, &mut buf).unwrap();
         inner.write::<u8>(0, &[9, 8, 7, 6]).unwrap();
         inner.write::<f64>(1, &[1.0, 2.0]).unwrap();
-        inner
-            .write_f64_as::<f64>(2, 2, |i| 0.1 * i as f64)
-            .unwrap();
+        inner.write_f64_as::<f64>(2, 2, |i| 0.1 * i as f64).unwrap();
         assert!(inner.write::<f64>(2, &[1.0]).is_err(), "wrong length");
         assert!(inner.write::<f64>(3, &[1.0]).is_err(), "no such leaf");
         let images = images.to_f64_vec();
@@ -449,15 +451,24 @@ mod tests {
     fn rearranged_rows_refuse_picks_outside_or_overlapping() {
         let mut flat = batch::<f32>(&[2, 4]);
         let mut leaves = RowLeaves::new();
-        leaves.push(RowLeaf::of_batch_row(&mut flat, 0).unwrap()).unwrap();
+        leaves
+            .push(RowLeaf::of_batch_row(&mut flat, 0).unwrap())
+            .unwrap();
         // SAFETY: one row of the local batch.
         let mut row = unsafe { ObsRow::from_raw(leaves.as_slice()) };
         let mut buf = RowLeaves::new();
-        let seg = |start, len| Pick::Segment { leaf: 0, start, len };
+        let seg = |start, len| Pick::Segment {
+            leaf: 0,
+            start,
+            len,
+        };
         assert!(row.rearranged(&[seg(2, 3)], &mut buf).is_err());
         assert!(row.rearranged(&[seg(0, 3), seg(2, 2)], &mut buf).is_err());
         assert!(row.rearranged(&[Pick::Leaf(1)], &mut buf).is_err());
-        assert!(row.rearranged(&[Pick::Leaf(0), Pick::Leaf(0)], &mut buf).is_err());
+        assert!(
+            row.rearranged(&[Pick::Leaf(0), Pick::Leaf(0)], &mut buf)
+                .is_err()
+        );
         assert!(row.rearranged(&[seg(0, 2), seg(2, 2)], &mut buf).is_ok());
         assert!(flat.to_f64_vec().iter().all(|&v| v == 0.0));
     }

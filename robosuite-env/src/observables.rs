@@ -397,7 +397,12 @@ impl ObsLayout {
     ///
     /// # Errors
     /// [`Error::Contract`] when the row does not have this layout's leaves.
-    pub fn write_row(&self, buf: &[f64], images: &[ArrayValue], row: &mut ObsRow<'_>) -> Result<()> {
+    pub fn write_row(
+        &self,
+        buf: &[f64],
+        images: &[ArrayValue],
+        row: &mut ObsRow<'_>,
+    ) -> Result<()> {
         let n = self.keys.len() + self.groups.len();
         if row.len() != n {
             return Err(Error::Contract {
@@ -433,9 +438,7 @@ impl ObsLayout {
         }
         for (j, g) in self.groups.iter().enumerate() {
             let mut values = self.group_values(g, buf);
-            row.write_f64_as::<f64>(self.keys.len() + j, g.len, |_| {
-                values.next().unwrap_or(0.0)
-            })?;
+            row.write_f64_as::<f64>(self.keys.len() + j, g.len, |_| values.next().unwrap_or(0.0))?;
         }
         Ok(())
     }

@@ -194,8 +194,7 @@ impl<E: Env> Slot<E> {
                     Ok(Done::Stepped(t))
                 }
                 None => {
-                    let t =
-                        env.step_into(&self.action, &mut self.observation, &mut self.info)?;
+                    let t = env.step_into(&self.action, &mut self.observation, &mut self.info)?;
                     Ok(Done::Stepped(t))
                 }
             },

@@ -9,11 +9,11 @@ use adapters::{
 use gym_core::{
     AnySpace, ArrayValue, BoxedEnv, DType, Env, Error, IntoBoxedEnv, Space, Value, rng_from_seed,
 };
-use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use ndarray::{ArrayD, IxDyn};
 use robosuite_env::config::CameraConfig;
 use robosuite_env::{EnvConfig, RobosuiteEnv};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 const SIZE: usize = 24;
 
@@ -278,7 +278,11 @@ fn batches_are_written_once_per_step_and_equal_lone_envs_bit_for_bit() -> Result
             stepped += stepping;
         }
         assert!(stepped < n * steps, "autoresets happened");
-        assert_eq!(rows.load(Ordering::SeqCst), stepped, "one row write per step");
+        assert_eq!(
+            rows.load(Ordering::SeqCst),
+            stepped,
+            "one row write per step"
+        );
         assert_eq!(copies.load(Ordering::SeqCst), 0, "no step through a buffer");
 
         if flat {
@@ -334,10 +338,17 @@ fn batches_are_written_once_per_step_and_equal_lone_envs_bit_for_bit() -> Result
         }
         // Steps still pending when the loop ends have not been written yet.
         let written = rows.load(Ordering::SeqCst);
-        assert!(written > 0 && written <= stepped, "{written} rows for {stepped} steps");
+        assert!(
+            written > 0 && written <= stepped,
+            "{written} rows for {stepped} steps"
+        );
         assert!(stepped - written <= 1, "at most one env is pending");
         assert!(rows.load(Ordering::SeqCst) > 0, "the pool writes rows");
-        assert_eq!(copies.load(Ordering::SeqCst), 0, "no pool step through a buffer");
+        assert_eq!(
+            copies.load(Ordering::SeqCst),
+            0,
+            "no pool step through a buffer"
+        );
     }
     Ok(())
 }

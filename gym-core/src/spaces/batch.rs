@@ -10,13 +10,13 @@
 //! | `MultiBinary` | `Box(0, 1, (n, *shape), int8)` |
 //! | `Dict` / `Tuple` | a Dict / Tuple of the batched parts, same order |
 
+use crate::row::{RowLeaf, RowLeaves};
 use crate::spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
 use crate::{
     ArrayElement, ArrayValue, DictValue, DynSpace, Error, Flatten, Result, Space, SpaceError, Value,
 };
-use crate::row::{RowLeaf, RowLeaves};
 use ndarray::{ArrayD, Axis, IxDyn, Zip};
 
 /// The element type of a batched space.
@@ -655,12 +655,11 @@ impl BatchSpace for DictSpace {
 /// leaf appended to `out`.
 fn array_row_leaf(space: &AnySpace, b: &mut ArrayValue, i: usize, out: &mut RowLeaves) -> bool {
     let item_shape = match space {
-        AnySpace::Box(_) | AnySpace::MultiBinary(_) | AnySpace::MultiDiscrete(_) => {
-            space.shape()
-        }
+        AnySpace::Box(_) | AnySpace::MultiBinary(_) | AnySpace::MultiDiscrete(_) => space.shape(),
         _ => return false,
     };
-    item_shape.is_some() && b.shape().get(1..) == item_shape
+    item_shape.is_some()
+        && b.shape().get(1..) == item_shape
         && RowLeaf::of_batch_row(b, i).is_some_and(|l| out.push(l).is_ok())
 }
 
