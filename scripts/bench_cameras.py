@@ -3,7 +3,8 @@ GymWrapper (``--lib robosuite``, run with its virtualenv and ``MUJOCO_GL=egl``) 
 robosuite-rs's (``--lib rs``, run with the project's .venv), one camera (agentview) and two
 (agentview + robot0_eye_in_hand) at each ``--sizes``; robosuite-rs at each render quality.
 ``--vec N[,N]``: robosuite-rs's ``make_vec`` of N envs (Rust threads) instead, with
-``copy=True`` and ``copy=False`` (env steps per second: vector steps x N).
+``copy=True`` and ``copy=False`` (``--copies``; env steps per second: vector steps x N);
+``--one-camera``: agentview only.
 
 Prints one JSON object per line: lib, cameras, size, quality, num_envs, copy, steps_per_s.
 ``scripts/bench_cameras_vs_robosuite.sh`` runs both libraries and prints a table.
@@ -76,7 +77,8 @@ def main() -> None:
     parser.add_argument("--sizes", default="84,256")
     parser.add_argument("--qualities", default="fast,robosuite", help="robosuite-rs render qualities")
     parser.add_argument("--vec", default="", help="comma-separated num_envs for make_vec (robosuite-rs)")
-    parser.add_argument("--no-copy", action="store_true", help="with --vec: copy=False only")
+    parser.add_argument("--copies", default="true,false", help="with --vec: the copy values to time")
+    parser.add_argument("--one-camera", action="store_true", help="agentview only")
     args = parser.parse_args()
     sizes = [int(s) for s in args.sizes.split(",") if s]
     if args.lib == "robosuite":
@@ -85,13 +87,13 @@ def main() -> None:
     else:
         import robosuite_rs as suite
         from robosuite_rs.wrappers import GymWrapper
-    for cameras in CAMERA_SETS:
+    for cameras in CAMERA_SETS[:1] if args.one_camera else CAMERA_SETS:
         for size in sizes:
             kwargs = camera_kwargs(cameras, size)
             row = {"lib": args.lib, "cameras": "+".join(cameras), "size": size}
             if args.vec:
                 vec_cameras = dict(kwargs, flatten_obs=False, keys=[f"{c}_image" for c in cameras] + ["robot0_proprio-state"])
-                copies = [False] if args.no_copy else [True, False]
+                copies = [c.strip().lower() == "true" for c in args.copies.split(",") if c]
                 for n in [int(v) for v in args.vec.split(",") if v]:
                     for copy in copies:
                         rate = time_vec(suite, n, copy, vec_cameras, args.seconds, args.warmup)
