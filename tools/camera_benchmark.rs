@@ -191,7 +191,7 @@ fn vector_rate<V: adapters::VectorEnv>(
 
 /// `--vector`: rows against the env's own buffer, interleaved (see the module docs).
 fn vector_benchmark(counts: &[usize], steps: usize) -> Result<(), Box<dyn std::error::Error>> {
-    use adapters::{BatchSpace, GymWrapper, ThreadVectorEnv};
+    use adapters::{BatchSpace, GymWrapper, ThreadVectorEnv, VectorEnv};
     println!("ThreadVectorEnv of Lift (agentview), zero actions, {steps} vector steps:");
     println!("  env steps/s (wall) and process CPU ms per vector step");
     for &size in &[84, 256] {
