@@ -1,6 +1,6 @@
 //! The [`Env`] trait (Gymnasium's `gymnasium.Env`) and what `step` returns.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
 use crate::row::ObsRow;
@@ -228,10 +228,10 @@ pub trait Env: AsAny + Send + 'static {
     /// into `info`, the reward and end flags are returned.
     ///
     /// # Errors
-    /// As [`Env::step`]; [`Error::Unsupported`] when [`Env::writes_rows`] is `false`.
+    /// As [`Env::step`]; [`Error::Unsupported`](crate::Error::Unsupported) when [`Env::writes_rows`] is `false`.
     fn step_for_row(&mut self, action: &Self::Act, info: &mut Info) -> Result<Transition> {
         let _ = (action, info);
-        Err(Error::unsupported(
+        Err(crate::Error::unsupported(
             "this environment does not write observations into batch rows",
         ))
     }
@@ -241,11 +241,11 @@ pub trait Env: AsAny + Send + 'static {
     /// leaves' dtypes.
     ///
     /// # Errors
-    /// [`Error::Contract`] when the row does not have the observation's leaves;
-    /// [`Error::Unsupported`] when [`Env::writes_rows`] is `false`.
+    /// [`Error::Contract`](crate::Error::Contract) when the row does not have the observation's leaves;
+    /// [`Error::Unsupported`](crate::Error::Unsupported) when [`Env::writes_rows`] is `false`.
     fn write_observation_row(&self, row: &mut ObsRow<'_>) -> Result<()> {
         let _ = row;
-        Err(Error::unsupported(
+        Err(crate::Error::unsupported(
             "this environment does not write observations into batch rows",
         ))
     }
