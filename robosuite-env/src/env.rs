@@ -1431,7 +1431,7 @@ impl gym_core::Env for RobosuiteEnv {
     }
 
     /// [`Env::step_into`](gym_core::Env::step_into) without the observation (it stays in
-    /// the environment's buffers for [`write_observation_row`](Self::write_observation_row)).
+    /// the environment's buffers for [`write_observation_row`](gym_core::Env::write_observation_row)).
     fn step_for_row(&mut self, action: &ArrayD<f64>, info: &mut Info) -> Result<Transition> {
         let (transition, success) = self.advance(action)?;
         if info.len() != 1 || info.get("success").is_none() {
