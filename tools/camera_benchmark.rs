@@ -10,13 +10,17 @@
 //! cargo run --release -p tools --features render --bin camera_benchmark -- \
 //!     [--steps N] [--depth] [--only TEXT] [--fixture FILE]... [--png DIR]
 //! cargo run --release -p tools --features render --bin camera_benchmark -- --contexts N
+//! cargo run --release -p tools --features render --bin camera_benchmark -- --vector N[,N] [--steps N]
 //! ```
 //!
 //! `--contexts N` prints instead the process CPU time per Lift env made with and without a
 //! camera (the render context's cost), over `N` envs made one after another.
 //!
-//! ```text
-//! ```
+//! `--vector`: a `ThreadVectorEnv` of N Lift envs (GymWrapper, Dict observations, one
+//! thread per env) with agentview at 84×84 and 256×256, each env writing its observation
+//! straight into the batch, and the same envs behind a wrapper that hides
+//! `Env::writes_rows` (each image copied into the env's observation dict, the slot, then
+//! the batch); env steps per second and process CPU ms per vector step, interleaved.
 
 use gym_core::{Env, Frame, RenderMode};
 use ndarray::ArrayD;
@@ -185,8 +189,115 @@ fn write_png(path: &std::path::Path, frame: &ndarray::Array3<u8>) -> std::io::Re
         .map_err(std::io::Error::other)
 }
 
+/// An env whose observations reach a vector env through its own buffer (`step_into`):
+/// it does not forward [`Env::writes_rows`].
+struct ThroughBuffer<E>(E);
+
+impl<E: Env> Env for ThroughBuffer<E> {
+    type Obs = E::Obs;
+    type Act = E::Act;
+    type ObsSpace = E::ObsSpace;
+    type ActSpace = E::ActSpace;
+    fn observation_space(&self) -> &E::ObsSpace {
+        self.0.observation_space()
+    }
+    fn action_space(&self) -> &E::ActSpace {
+        self.0.action_space()
+    }
+    fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: Option<&gym_core::ResetOptions>,
+    ) -> gym_core::Result<(E::Obs, gym_core::Info)> {
+        self.0.reset(seed, options)
+    }
+    fn step(&mut self, action: &E::Act) -> gym_core::Result<gym_core::Step<E::Obs>> {
+        self.0.step(action)
+    }
+    fn step_into(
+        &mut self,
+        action: &E::Act,
+        observation: &mut E::Obs,
+        info: &mut gym_core::Info,
+    ) -> gym_core::Result<gym_core::Transition> {
+        self.0.step_into(action, observation, info)
+    }
+}
+
+/// Env steps per second and process CPU ms per vector step of `vec` with zero actions.
+fn vector_rate<V: adapters::VectorEnv>(
+    vec: &mut V,
+    actions: &adapters::BatchOf<V::ActSpace>,
+    steps: usize,
+) -> gym_core::Result<(f64, f64)> {
+    vec.reset(0u64, None)?;
+    for _ in 0..2 {
+        let _ = vec.step(actions)?;
+    }
+    let start = Instant::now();
+    let cpu = process_cpu();
+    for _ in 0..steps {
+        let _ = vec.step(actions)?;
+    }
+    let cpu_ms = (process_cpu() - cpu) * 1e3 / steps as f64;
+    let rate = (steps * vec.num_envs()) as f64 / start.elapsed().as_secs_f64();
+    Ok((rate, cpu_ms))
+}
+
+/// `--vector`: rows against the env's own buffer, interleaved (see the module docs).
+fn vector_benchmark(counts: &[usize], steps: usize) -> Result<(), Box<dyn std::error::Error>> {
+    use adapters::{BatchSpace, GymWrapper, ThreadVectorEnv, VectorEnv};
+    println!("ThreadVectorEnv of Lift (agentview), zero actions, {steps} vector steps:");
+    println!("  env steps/s (wall) and process CPU ms per vector step");
+    for &size in &[84, 256] {
+        for &n in counts {
+            let make = || -> gym_core::Result<_> {
+                let config = EnvConfig::default()
+                    .with_seed(0)
+                    .with_cameras(CameraConfig::observe(["agentview"], size, size));
+                GymWrapper::new(make_with("Lift", config)?, None, false)
+            };
+            let mut rows = ThreadVectorEnv::new((0..n).map(|_| make()).collect::<Result<_, _>>()?)?;
+            let mut buffer = ThreadVectorEnv::new(
+                (0..n)
+                    .map(|_| make().map(ThroughBuffer))
+                    .collect::<Result<_, _>>()?,
+            )?;
+            let actions = rows.single_action_space().create_empty_batch(n);
+            let (mut r_rate, mut r_cpu, mut b_rate, mut b_cpu) = (0.0, 0.0, 0.0, 0.0);
+            for _ in 0..2 {
+                let (rate, cpu) = vector_rate(&mut buffer, &actions, steps / 2)?;
+                b_rate += rate / 2.0;
+                b_cpu += cpu / 2.0;
+                let (rate, cpu) = vector_rate(&mut rows, &actions, steps / 2)?;
+                r_rate += rate / 2.0;
+                r_cpu += cpu / 2.0;
+            }
+            println!(
+                "  {n} envs {size}x{size}: rows {r_rate:6.1} steps/s {r_cpu:7.2} ms | \
+                 through the env's buffer {b_rate:6.1} steps/s {b_cpu:7.2} ms"
+            );
+        }
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
+    let vector = args
+        .iter()
+        .position(|a| a == "--vector")
+        .and_then(|i| args.get(i + 1));
+    if let Some(counts) = vector {
+        let counts: Vec<usize> = counts.split(',').filter_map(|c| c.parse().ok()).collect();
+        let steps = args
+            .iter()
+            .position(|a| a == "--steps")
+            .and_then(|i| args.get(i + 1))
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(40);
+        return vector_benchmark(&counts, steps);
+    }
     let png_dir = args
         .iter()
         .position(|a| a == "--png")

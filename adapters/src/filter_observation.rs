@@ -1,7 +1,8 @@
 //! [`FilterObservation`]: keeps some keys of a Dict observation or some items of a Tuple.
 
+use gym_core::spaces::AnySpace;
 use gym_core::spaces::{FilterKeys, FilterableSpace};
-use gym_core::{Env, ObservationWrapper, Observations, Result, Wrapper};
+use gym_core::{DynSpace, Env, ObservationWrapper, Observations, Pick, Result, Wrapper};
 
 /// Gymnasium's `FilterObservation(env, filter_keys)`: keeps the listed Dict keys (the new
 /// Dict space is sorted by key, as Gymnasium's is; [`FilterObservation::keeping_order`]
@@ -16,6 +17,30 @@ pub struct FilterObservation<E: Env> {
     keys: FilterKeys,
     space: E::ObsSpace,
     kept: Option<E::Obs>,
+    /// Where each inner Dict entry goes in a row of the filtered observations (a Dict of
+    /// arrays only).
+    plan: Option<Vec<Pick>>,
+}
+
+/// The row plan of a Dict of arrays filtered to `outer`: each inner entry's position among
+/// the kept entries, or [`Pick::Absent`].
+fn filter_plan(inner: &AnySpace, outer: &AnySpace) -> Option<Vec<Pick>> {
+    let (inner, outer) = (inner.as_dict()?, outer.as_dict()?);
+    inner
+        .iter()
+        .map(|(k, s)| {
+            matches!(
+                s,
+                AnySpace::Box(_) | AnySpace::MultiBinary(_) | AnySpace::MultiDiscrete(_)
+            )
+            .then(|| {
+                outer
+                    .keys()
+                    .position(|o| o == k)
+                    .map_or(Pick::Absent, Pick::Leaf)
+            })
+        })
+        .collect()
 }
 
 impl<E: Env> FilterObservation<E>
@@ -29,11 +54,13 @@ where
     pub fn new(env: E, keys: impl Into<FilterKeys>) -> Result<Self> {
         let keys = keys.into();
         let space = env.observation_space().filter_space(&keys)?;
+        let plan = filter_plan(&env.observation_space().to_any(), &space.to_any());
         Ok(Self {
             env,
             keys,
             space,
             kept: None,
+            plan,
         })
     }
 
@@ -44,11 +71,13 @@ where
     pub fn keeping_order(env: E, keys: impl Into<FilterKeys>) -> Result<Self> {
         let keys = keys.into();
         let space = env.observation_space().select_space(&keys)?;
+        let plan = filter_plan(&env.observation_space().to_any(), &space.to_any());
         Ok(Self {
             env,
             keys,
             space,
             kept: None,
+            plan,
         })
     }
 
@@ -99,6 +128,10 @@ where
 
     fn inner_buffer(&mut self) -> Option<&mut Option<E::Obs>> {
         Some(&mut self.kept)
+    }
+
+    fn row_plan(&self) -> Option<&[Pick]> {
+        self.plan.as_deref()
     }
 }
 

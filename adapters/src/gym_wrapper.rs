@@ -38,8 +38,9 @@ use crate::FilterObservation;
 use crate::FlattenObservation;
 use gym_core::spaces::{AnySpace, BoxSpace, DictSpace, FilterKeys, FilterableSpace, NumericSpace};
 use gym_core::{
-    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ObservationWrapper,
-    Observations, ResetOptions, Result, Scalar, Space, Step, Transition, Value, Wrapper,
+    ActionWrapper, Actions, ArrayValue, DynSpace, Env, Error, Flatten, Info, ObsRow,
+    ObservationWrapper, Observations, Pick, ResetOptions, Result, Scalar, Space, Step, Transition,
+    Value, Wrapper,
 };
 use ndarray::{ArrayD, IxDyn};
 
@@ -161,16 +162,44 @@ struct Concat<E: Env> {
     sizes: Vec<usize>,
     space: BoxSpace<f32>,
     kept: Option<E::Obs>,
+    /// Each key's segment of the flat vector, when every key is an array.
+    plan: Option<Vec<Pick>>,
 }
 
 impl<E: Env> Concat<E> {
     fn new(env: E, sizes: Vec<usize>) -> Self {
         let space = BoxSpace::unbounded(&[sizes.iter().sum()]);
+        let any = env.observation_space().to_any();
+        let arrays = any.as_dict().is_some_and(|d| {
+            d.len() == sizes.len()
+                && d.iter().all(|(_, s)| {
+                    matches!(
+                        s,
+                        AnySpace::Box(_) | AnySpace::MultiBinary(_) | AnySpace::MultiDiscrete(_)
+                    )
+                })
+        });
+        let plan = arrays.then(|| {
+            let mut start = 0;
+            sizes
+                .iter()
+                .map(|&len| {
+                    let pick = Pick::Segment {
+                        leaf: 0,
+                        start,
+                        len,
+                    };
+                    start += len;
+                    pick
+                })
+                .collect()
+        });
         Self {
             env,
             sizes,
             space,
             kept: None,
+            plan,
         }
     }
 }
@@ -262,6 +291,10 @@ where
 
     fn inner_buffer(&mut self) -> Option<&mut Option<E::Obs>> {
         Some(&mut self.kept)
+    }
+
+    fn row_plan(&self) -> Option<&[Pick]> {
+        self.plan.as_deref()
     }
 }
 
@@ -520,6 +553,27 @@ where
             }
         }
     }
+
+    fn writes_rows(this: &Self) -> bool {
+        match &this.stack {
+            Stack::Dict(s, _) => s.writes_rows(),
+            Stack::Flat(s) => s.writes_rows(),
+        }
+    }
+
+    fn step_for_row(this: &mut Self, action: &ArrayD<f32>, info: &mut Info) -> Result<Transition> {
+        match &mut this.stack {
+            Stack::Dict(s, _) => s.step_for_row(action, info),
+            Stack::Flat(s) => s.step_for_row(action, info),
+        }
+    }
+
+    fn write_observation_row(this: &Self, row: &mut ObsRow<'_>) -> Result<()> {
+        match &this.stack {
+            Stack::Dict(s, _) => s.write_observation_row(row),
+            Stack::Flat(s) => s.write_observation_row(row),
+        }
+    }
 }
 
 /// The innermost environment of a selection.
@@ -656,6 +710,18 @@ where
         info: &mut Info,
     ) -> Result<Transition> {
         this.stack.step_into(action, observation, info)
+    }
+
+    fn writes_rows(this: &Self) -> bool {
+        this.stack.writes_rows()
+    }
+
+    fn step_for_row(this: &mut Self, action: &ArrayD<f32>, info: &mut Info) -> Result<Transition> {
+        this.stack.step_for_row(action, info)
+    }
+
+    fn write_observation_row(this: &Self, row: &mut ObsRow<'_>) -> Result<()> {
+        this.stack.write_observation_row(row)
     }
 }
 

@@ -82,6 +82,21 @@ impl<E: Env> gym_core::StepWrapper for TimeLimit<E> {
         }
         Ok(transition)
     }
+
+    fn writes_rows(this: &Self) -> bool {
+        this.env.writes_rows()
+    }
+
+    fn step_for_row(this: &mut Self, action: &E::Act, info: &mut Info) -> Result<Transition> {
+        let elapsed = this.elapsed_steps.ok_or(Error::ResetNeeded)?;
+        let mut transition = this.env.step_for_row(action, info)?;
+        let elapsed = elapsed + 1;
+        this.elapsed_steps = Some(elapsed);
+        if elapsed >= this.max_episode_steps {
+            transition.truncated = true;
+        }
+        Ok(transition)
+    }
 }
 
 impl<E: Env> gym_core::Wrapper for TimeLimit<E> {

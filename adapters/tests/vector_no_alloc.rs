@@ -132,6 +132,31 @@ fn vector_steps_do_not_allocate() {
         assert_eq!(count, 0, "ThreadEnvPool, {threads} threads");
     }
 
+    // Camera observations, Dict GymWrapper, boxed: images written straight into the batch.
+    let camera = || {
+        let config = robosuite_env::EnvConfig::default().with_cameras(
+            robosuite_env::config::CameraConfig::observe(["agentview"], 24, 24),
+        );
+        robosuite_env::make_with("Lift", config)
+            .unwrap()
+            .gym_wrapper(None, false)
+            .unwrap()
+            .boxed()
+    };
+    let camera_batches: Vec<Value> = batches[..6]
+        .iter()
+        .map(|b| {
+            let rows = b.slice(ndarray::s![..2, ..]).to_owned().into_dyn();
+            Value::from(rows)
+        })
+        .collect();
+    let cameras = ThreadVectorEnv::with_threads(vec![camera(), camera()], 2).unwrap();
+    assert_eq!(
+        step_allocations(cameras, &camera_batches),
+        0,
+        "boxed ThreadVectorEnv with a camera"
+    );
+
     for flatten_obs in [true, false] {
         let mut env = robosuite_env::make("Lift")
             .unwrap()

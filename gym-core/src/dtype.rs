@@ -50,6 +50,16 @@ impl DType {
         }
     }
 
+    /// The size of one element in bytes (NumPy's `itemsize`).
+    pub fn size(self) -> usize {
+        match self {
+            DType::I8 | DType::U8 | DType::Bool => 1,
+            DType::I16 => 2,
+            DType::I32 | DType::F32 => 4,
+            DType::I64 | DType::F64 => 8,
+        }
+    }
+
     /// Parses NumPy's name of a dtype.
     pub fn from_name(name: &str) -> Option<DType> {
         DType::ALL.into_iter().find(|d| d.name() == name)

@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::for_each_array;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
+use crate::row::ObsRow;
 use crate::space::DynSpace;
 use crate::spaces::AnySpace;
 use crate::value::Value;
@@ -54,6 +55,30 @@ pub trait DynEnv: Send + 'static {
             terminated: step.terminated,
             truncated: step.truncated,
         })
+    }
+    /// See [`Env::writes_rows`]. `false` by default.
+    fn writes_rows(&self) -> bool {
+        false
+    }
+    /// See [`Env::step_for_row`].
+    ///
+    /// # Errors
+    /// As [`Env::step_for_row`].
+    fn step_for_row(&mut self, action: &Value, info: &mut Info) -> Result<Transition> {
+        let _ = (action, info);
+        Err(Error::unsupported(
+            "this environment does not write observations into batch rows",
+        ))
+    }
+    /// See [`Env::write_observation_row`].
+    ///
+    /// # Errors
+    /// As [`Env::write_observation_row`].
+    fn write_observation_row(&self, row: &mut ObsRow<'_>) -> Result<()> {
+        let _ = row;
+        Err(Error::unsupported(
+            "this environment does not write observations into batch rows",
+        ))
     }
     /// See [`Env::metadata`].
     fn metadata(&self) -> &Metadata;
@@ -162,6 +187,25 @@ impl<E: Env> DynEnv for DynAdapter<E> {
             truncated: step.truncated,
         })
     }
+    fn writes_rows(&self) -> bool {
+        self.env.writes_rows()
+    }
+    fn step_for_row(&mut self, action: &Value, info: &mut Info) -> Result<Transition> {
+        match typed_ref::<E::Act>(action) {
+            Some(a) => self.env.step_for_row(a, info),
+            None => {
+                let converted = self
+                    .env
+                    .action_space()
+                    .from_value(action)
+                    .map_err(|e| Error::InvalidAction(e.into()))?;
+                self.env.step_for_row(&converted, info)
+            }
+        }
+    }
+    fn write_observation_row(&self, row: &mut ObsRow<'_>) -> Result<()> {
+        self.env.write_observation_row(row)
+    }
     fn metadata(&self) -> &Metadata {
         self.env.metadata()
     }
@@ -254,6 +298,15 @@ impl Env for BoxedEnv {
         info: &mut Info,
     ) -> Result<Transition> {
         (**self).step_into(action, observation, info)
+    }
+    fn writes_rows(&self) -> bool {
+        (**self).writes_rows()
+    }
+    fn step_for_row(&mut self, action: &Value, info: &mut Info) -> Result<Transition> {
+        (**self).step_for_row(action, info)
+    }
+    fn write_observation_row(&self, row: &mut ObsRow<'_>) -> Result<()> {
+        (**self).write_observation_row(row)
     }
     fn metadata(&self) -> &Metadata {
         (**self).metadata()

@@ -3,6 +3,7 @@
 use crate::error::Result;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
+use crate::row::ObsRow;
 use crate::space::{DynSpace, Flatten};
 use ndarray::{Array2, Array3};
 use std::any::Any;
@@ -213,6 +214,40 @@ pub trait Env: AsAny + Send + 'static {
             terminated: step.terminated,
             truncated: step.truncated,
         })
+    }
+
+    /// Whether [`Env::step_for_row`] and [`Env::write_observation_row`] are supported:
+    /// the environment can write its observation straight into a row of a vector
+    /// environment's batch (no copy into a buffer of its own first). `false` by default.
+    fn writes_rows(&self) -> bool {
+        false
+    }
+
+    /// [`Env::step`] that keeps the observation in the environment, for
+    /// [`Env::write_observation_row`] to write into a row of a batch; the info is written
+    /// into `info`, the reward and end flags are returned.
+    ///
+    /// # Errors
+    /// As [`Env::step`]; [`Error::Unsupported`](crate::Error::Unsupported) when [`Env::writes_rows`] is `false`.
+    fn step_for_row(&mut self, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        let _ = (action, info);
+        Err(crate::Error::unsupported(
+            "this environment does not write observations into batch rows",
+        ))
+    }
+
+    /// Writes the observation of the last [`Env::step_for_row`] into `row`, one leaf per
+    /// array of the observation in the space's order (see [`ObsRow`]), converting to the
+    /// leaves' dtypes.
+    ///
+    /// # Errors
+    /// [`Error::Contract`](crate::Error::Contract) when the row does not have the observation's leaves;
+    /// [`Error::Unsupported`](crate::Error::Unsupported) when [`Env::writes_rows`] is `false`.
+    fn write_observation_row(&self, row: &mut ObsRow<'_>) -> Result<()> {
+        let _ = row;
+        Err(crate::Error::unsupported(
+            "this environment does not write observations into batch rows",
+        ))
     }
 
     /// Render modes and frame rate.

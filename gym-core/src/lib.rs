@@ -37,6 +37,7 @@ pub mod info;
 pub mod proptest;
 pub mod registry;
 pub mod rng;
+pub mod row;
 pub mod space;
 pub mod spaces;
 pub mod value;
@@ -48,6 +49,7 @@ pub use env::{AsAny, Env, EnvExt, Frame, Metadata, RenderMode, Step, Transition}
 pub use error::{Error, Result, SpaceError};
 pub use info::{Info, InfoValue, ResetOptions};
 pub use rng::{EnvRng, entropy_seed, rng_from_seed};
+pub use row::{MAX_ROW_LEAVES, ObsRow, Pick, RowLeaf, RowLeaves};
 pub use space::{DynSpace, Flatten, Space, flatdim, flatten, flatten_space, unflatten};
 pub use spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,

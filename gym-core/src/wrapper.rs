@@ -42,6 +42,7 @@ use crate::env::{Env, Frame, Metadata, RenderMode, Step, Transition};
 use crate::error::Result;
 use crate::info::{Info, ResetOptions};
 use crate::rng::EnvRng;
+use crate::row::{ObsRow, Pick, RowLeaves};
 use crate::space::{DynSpace, Flatten, Space};
 use std::any::Any;
 
@@ -149,6 +150,15 @@ pub trait ObservationWrapper: Wrapper<Kind = Observations> {
     fn inner_buffer(&mut self) -> Option<&mut Option<<Self::Inner as Env>::Obs>> {
         None
     }
+
+    /// For a wrapper whose observation is the inner observation's arrays rearranged
+    /// (filtered, reordered, concatenated) with no other change than a dtype conversion:
+    /// where each inner array goes in a row of this wrapper's observations, one [`Pick`]
+    /// per inner array. With a plan (and an inner environment that
+    /// [writes rows](Env::writes_rows)) the wrapper writes rows too. `None` by default.
+    fn row_plan(&self) -> Option<&[Pick]> {
+        None
+    }
 }
 
 /// Gymnasium's `ActionWrapper`: the wrapper accepts actions of [`ActionWrapper::space`] and
@@ -240,6 +250,28 @@ pub trait StepWrapper: Wrapper<Kind = Steps> {
         Ok(move_step(Self::step(this, action)?, observation, info))
     }
 
+    /// [`Env::writes_rows`] of the wrapper: `false` unless overridden (a wrapper that
+    /// changes steps must say how [`StepWrapper::step_for_row`] does).
+    fn writes_rows(this: &Self) -> bool {
+        let _ = this;
+        false
+    }
+
+    /// [`Env::step_for_row`] of the wrapper (see [`StepWrapper::writes_rows`]).
+    ///
+    /// # Errors
+    /// As [`Env::step_for_row`].
+    fn step_for_row(
+        this: &mut Self,
+        action: &<Self::Inner as Env>::Act,
+        info: &mut Info,
+    ) -> Result<Transition> {
+        let _ = (this, action, info);
+        Err(crate::Error::unsupported(
+            "this wrapper does not write observations into batch rows",
+        ))
+    }
+
     /// [`Env::render`] of the wrapper.
     ///
     /// # Errors
@@ -294,6 +326,34 @@ pub trait CustomWrapper: Wrapper<Kind = Custom> {
         info: &mut Info,
     ) -> Result<Transition> {
         Ok(move_step(Self::step(this, action)?, observation, info))
+    }
+
+    /// [`Env::writes_rows`] of the wrapper: `false` unless overridden.
+    fn writes_rows(this: &Self) -> bool {
+        let _ = this;
+        false
+    }
+
+    /// [`Env::step_for_row`] of the wrapper (see [`CustomWrapper::writes_rows`]).
+    ///
+    /// # Errors
+    /// As [`Env::step_for_row`].
+    fn step_for_row(this: &mut Self, action: &Self::Action, info: &mut Info) -> Result<Transition> {
+        let _ = (this, action, info);
+        Err(crate::Error::unsupported(
+            "this wrapper does not write observations into batch rows",
+        ))
+    }
+
+    /// [`Env::write_observation_row`] of the wrapper (see [`CustomWrapper::writes_rows`]).
+    ///
+    /// # Errors
+    /// As [`Env::write_observation_row`].
+    fn write_observation_row(this: &Self, row: &mut ObsRow<'_>) -> Result<()> {
+        let _ = (this, row);
+        Err(crate::Error::unsupported(
+            "this wrapper does not write observations into batch rows",
+        ))
     }
 
     /// [`Env::render`] of the wrapper.
@@ -372,6 +432,18 @@ pub trait WrapperKind<W>: sealed::Sealed + 'static {
     /// # Errors
     /// As [`Env::render`].
     fn render(w: &mut W) -> Result<Option<Frame>>;
+    /// [`Env::writes_rows`].
+    fn writes_rows(w: &W) -> bool;
+    /// [`Env::step_for_row`].
+    ///
+    /// # Errors
+    /// As [`Env::step_for_row`].
+    fn step_for_row(w: &mut W, action: &Self::Act, info: &mut Info) -> Result<Transition>;
+    /// [`Env::write_observation_row`].
+    ///
+    /// # Errors
+    /// As [`Env::write_observation_row`].
+    fn write_observation_row(w: &W, row: &mut ObsRow<'_>) -> Result<()>;
 }
 
 type InnerObs<W> = <<W as Wrapper>::Inner as Env>::Obs;
@@ -430,6 +502,27 @@ impl<W: ObservationWrapper> WrapperKind<W> for Observations {
     }
     fn render(w: &mut W) -> Result<Option<Frame>> {
         w.inner_mut().render()
+    }
+    fn writes_rows(w: &W) -> bool {
+        w.row_plan().is_some() && w.inner().writes_rows()
+    }
+    fn step_for_row(w: &mut W, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        if w.row_plan().is_none() {
+            return Err(crate::Error::unsupported(
+                "this observation wrapper does not write observations into batch rows",
+            ));
+        }
+        w.inner_mut().step_for_row(action, info)
+    }
+    fn write_observation_row(w: &W, row: &mut ObsRow<'_>) -> Result<()> {
+        let plan = w.row_plan().ok_or_else(|| {
+            crate::Error::unsupported(
+                "this observation wrapper does not write observations into batch rows",
+            )
+        })?;
+        let mut leaves = RowLeaves::new();
+        let mut inner = row.rearranged(plan, &mut leaves)?;
+        w.inner().write_observation_row(&mut inner)
     }
 }
 
@@ -536,6 +629,18 @@ impl<W: ActionWrapper> WrapperKind<W> for Actions {
     fn render(w: &mut W) -> Result<Option<Frame>> {
         w.inner_mut().render()
     }
+    fn writes_rows(w: &W) -> bool {
+        w.inner().writes_rows()
+    }
+    fn step_for_row(w: &mut W, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        let action = inner_action(w, action)?;
+        let t = w.inner_mut().step_for_row(&action, info);
+        put_back_action(w, action);
+        t
+    }
+    fn write_observation_row(w: &W, row: &mut ObsRow<'_>) -> Result<()> {
+        w.inner().write_observation_row(row)
+    }
 }
 
 impl<W: RewardWrapper> WrapperKind<W> for Rewards {
@@ -575,6 +680,17 @@ impl<W: RewardWrapper> WrapperKind<W> for Rewards {
     fn render(w: &mut W) -> Result<Option<Frame>> {
         w.inner_mut().render()
     }
+    fn writes_rows(w: &W) -> bool {
+        w.inner().writes_rows()
+    }
+    fn step_for_row(w: &mut W, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        let mut t = w.inner_mut().step_for_row(action, info)?;
+        t.reward = w.reward(t.reward);
+        Ok(t)
+    }
+    fn write_observation_row(w: &W, row: &mut ObsRow<'_>) -> Result<()> {
+        w.inner().write_observation_row(row)
+    }
 }
 
 impl<W: StepWrapper> WrapperKind<W> for Steps {
@@ -610,6 +726,15 @@ impl<W: StepWrapper> WrapperKind<W> for Steps {
     fn render(w: &mut W) -> Result<Option<Frame>> {
         <W as StepWrapper>::render(w)
     }
+    fn writes_rows(w: &W) -> bool {
+        <W as StepWrapper>::writes_rows(w) && w.inner().writes_rows()
+    }
+    fn step_for_row(w: &mut W, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        <W as StepWrapper>::step_for_row(w, action, info)
+    }
+    fn write_observation_row(w: &W, row: &mut ObsRow<'_>) -> Result<()> {
+        w.inner().write_observation_row(row)
+    }
 }
 
 impl<W: CustomWrapper> WrapperKind<W> for Custom {
@@ -644,6 +769,15 @@ impl<W: CustomWrapper> WrapperKind<W> for Custom {
     }
     fn render(w: &mut W) -> Result<Option<Frame>> {
         <W as CustomWrapper>::render(w)
+    }
+    fn writes_rows(w: &W) -> bool {
+        <W as CustomWrapper>::writes_rows(w)
+    }
+    fn step_for_row(w: &mut W, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        <W as CustomWrapper>::step_for_row(w, action, info)
+    }
+    fn write_observation_row(w: &W, row: &mut ObsRow<'_>) -> Result<()> {
+        <W as CustomWrapper>::write_observation_row(w, row)
     }
 }
 
@@ -682,6 +816,15 @@ where
         info: &mut Info,
     ) -> Result<Transition> {
         W::Kind::step_into(self, action, observation, info)
+    }
+    fn writes_rows(&self) -> bool {
+        W::Kind::writes_rows(self)
+    }
+    fn step_for_row(&mut self, action: &Self::Act, info: &mut Info) -> Result<Transition> {
+        W::Kind::step_for_row(self, action, info)
+    }
+    fn write_observation_row(&self, row: &mut ObsRow<'_>) -> Result<()> {
+        W::Kind::write_observation_row(self, row)
     }
     fn metadata(&self) -> &Metadata {
         self.inner().metadata()

@@ -840,6 +840,7 @@ def make_vec(
     vectorization_mode: str | None = None,
     vector_kwargs: dict[str, Any] | None = None,
     wrappers: Any = None,
+    copy: bool = True,
     **kwargs: Any,
 ) -> Any:
     """``num_envs`` GymWrapper'd envs as one ``gymnasium.vector.VectorEnv``; the vector
@@ -861,6 +862,11 @@ def make_vec(
       (``"sync"`` / ``"async"`` only).
     * ``wrappers``: callables applied to each sub-env (``"sync"`` / ``"async"`` only: the
       Rust envs have no Python sub-env to wrap).
+    * ``copy``: Gymnasium's vector env argument. ``True``: ``step`` / ``reset`` return
+      fresh arrays. ``False`` (Rust mode): read-only views of the batch each env writes its
+      observation into (no copy; camera images included), overwritten by the next ``step``
+      or ``reset``; copy what must outlive it. With ``"sync"`` / ``"async"`` it is passed
+      to ``SyncVectorEnv`` / ``AsyncVectorEnv``.
 
     Raises:
         ValueError: as :func:`make`, for ``num_envs < 1`` or ``max_episode_steps < 1``, or
@@ -894,6 +900,8 @@ def make_vec(
         env_id = gym_id(env_name)
         make_one = partial(_make_single_env, env_id, wrappers, single_kwargs)
         vector_cls = gymnasium.vector.SyncVectorEnv if mode == "sync" else gymnasium.vector.AsyncVectorEnv
+        if not copy:
+            vector_kwargs.setdefault("copy", False)
         return vector_cls([make_one] * num_envs, **vector_kwargs)
     if mode not in (None, "vector_entry_point"):
         raise ValueError(
@@ -930,7 +938,7 @@ def make_vec(
         steps,
         bool(pin_threads),
     )
-    return RustVectorEnv(native)
+    return RustVectorEnv(native, copy=bool(copy))
 
 
 def make_pool(
@@ -945,6 +953,7 @@ def make_pool(
     threads: int | None = None,
     pin_threads: bool = False,
     max_episode_steps: int | None = None,
+    copy: bool = True,
     **kwargs: Any,
 ) -> "EnvPool":
     """``num_envs`` GymWrapper'd envs in an asynchronous :class:`~robosuite_rs.pool.EnvPool`
@@ -952,7 +961,8 @@ def make_pool(
 
     Takes :func:`make_vec`'s arguments of its Rust mode (``threads``, ``pin_threads`` and
     ``max_episode_steps`` included); ``batch_size`` must be in ``1..num_envs``
-    (EnvPool's advice: ``num_envs`` about 2-3 x ``batch_size``).
+    (EnvPool's advice: ``num_envs`` about 2-3 x ``batch_size``). ``copy=False``: ``recv``
+    returns read-only views of the pool's batch (no copy), overwritten by the next ``recv``.
 
     Raises:
         ValueError: as :func:`make`, and for ``num_envs < 1`` or a bad ``batch_size``.
@@ -980,7 +990,7 @@ def make_pool(
         steps,
         bool(pin_threads),
     )
-    return EnvPool(native)
+    return EnvPool(native, copy=bool(copy))
 
 
 from .vector import RustVectorEnv  # noqa: E402

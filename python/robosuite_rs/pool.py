@@ -32,12 +32,16 @@ class EnvPool:
     * ``step(actions, env_id=None)`` is ``send`` then ``recv`` (default ids: the last
       ``recv``'s).
 
-    Each env's trajectory depends only on its seed and the actions sent to it.
+    Each env's trajectory depends only on its seed and the actions sent to it. Each env
+    writes its observation (camera images included) straight into its row of the batch,
+    which ``recv`` copies into fresh arrays; with ``copy=False`` it returns read-only views
+    of the batch instead (no copy), overwritten by the next ``recv``.
     """
 
-    def __init__(self, native: Any) -> None:
+    def __init__(self, native: Any, copy: bool = True) -> None:
         """Wraps ``native``, an object with the ``NativeEnvPool`` methods."""
         self._native = native
+        self.copy = bool(copy)
         self.num_envs = int(native.num_envs)
         self.batch_size = int(native.batch_size)
         self.single_observation_space = from_spec(native.observation_space_spec())
@@ -66,7 +70,7 @@ class EnvPool:
         Raises:
             ValueError: when fewer than ``batch_size`` envs are pending, or for an env's error.
         """
-        out = self._native.recv()
+        out = self._native.recv(self.copy)
         self._last_ids = out[4]["env_id"]
         return out
 

@@ -21,13 +21,17 @@ class RustVectorEnv(VectorEnv):  # type: ignore[type-arg]
       each env; ``options={"reset_mask": mask}`` resets only some envs.
     * Autoreset is Gymnasium's ``NEXT_STEP``: an env whose episode ended is reset on the
       next ``step`` (its action is ignored; reward 0, flags False).
-    * Observations are batched in Rust into fresh arrays; infos come with Gymnasium's
-      ``_key`` masks.
+    * Observations are batched in Rust: each env writes its observation (camera images
+      included) straight into its row of one batch, which ``step`` and ``reset`` copy into
+      fresh arrays; with ``copy=False`` (Gymnasium's ``AsyncVectorEnv`` argument) they
+      return read-only views of the batch instead (no copy), overwritten by the next
+      ``step`` or ``reset``. Infos come with Gymnasium's ``_key`` masks.
     """
 
-    def __init__(self, native: Any) -> None:
+    def __init__(self, native: Any, copy: bool = True) -> None:
         """Wraps ``native``, an object with the ``NativeVecEnv`` methods."""
         self._native = native
+        self.copy = bool(copy)
         self.num_envs = int(native.num_envs)
         self.single_observation_space = from_spec(native.observation_space_spec())
         self.single_action_space = from_spec(native.action_space_spec())
@@ -66,7 +70,7 @@ class RustVectorEnv(VectorEnv):  # type: ignore[type-arg]
             native_seed = None
         else:
             native_seed = [None if s is None else int(s) for s in seed]
-        return self._native.reset(native_seed, dict(options) if options else None)
+        return self._native.reset(native_seed, dict(options) if options else None, self.copy)
 
     def step(self, actions: Any) -> tuple[Any, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
         """Steps every env with its row of ``actions`` (batched as ``action_space``).
@@ -74,7 +78,7 @@ class RustVectorEnv(VectorEnv):  # type: ignore[type-arg]
         Raises:
             ValueError: for a malformed action.
         """
-        return self._native.step(actions)
+        return self._native.step(actions, self.copy)
 
     def close_extras(self, **kwargs: Any) -> None:
         """Closes the Rust envs."""

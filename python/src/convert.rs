@@ -21,6 +21,50 @@ pub fn array_to_py<'py>(py: Python<'py>, a: &ArrayValue) -> Bound<'py, PyAny> {
     for_each_array!(a, x => PyArrayDyn::from_array(py, x).into_any())
 }
 
+/// `v` with every array a read-only NumPy view of `v`'s memory (no copy), kept alive by
+/// `owner`, the Python object that owns `v`.
+///
+/// # Safety
+/// `v`'s arrays must stay allocated (never reallocated or dropped) for as long as `owner`
+/// lives; their contents may change (the views show the change).
+///
+/// # Errors
+/// Only when Python itself fails.
+pub unsafe fn value_view_to_py<'py>(
+    py: Python<'py>,
+    v: &Value,
+    owner: &Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Array(a) => {
+            // SAFETY: the caller keeps the array's memory alive for `owner`'s life, and
+            // `owner` is the view's base object.
+            let view = for_each_array!(a, x => unsafe {
+                PyArrayDyn::borrow_from_array(x, owner.clone()).into_any()
+            });
+            view.getattr("flags")?.setattr("writeable", false)?;
+            view
+        }
+        Value::Discrete(i) => i.into_pyobject(py)?.into_any(),
+        Value::Dict(d) => {
+            let out = PyDict::new(py);
+            for (k, x) in d {
+                // SAFETY: the caller's contract covers every part of `v`.
+                out.set_item(k, unsafe { value_view_to_py(py, x, owner)? })?;
+            }
+            out.into_any()
+        }
+        Value::Tuple(t) => {
+            let items = t
+                .iter()
+                // SAFETY: as above.
+                .map(|x| unsafe { value_view_to_py(py, x, owner) })
+                .collect::<PyResult<Vec<_>>>()?;
+            PyTuple::new(py, items)?.into_any()
+        }
+    })
+}
+
 /// [`value_into_py`] for a borrowed value: every array is copied once, straight into its
 /// NumPy array.
 ///

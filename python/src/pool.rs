@@ -1,7 +1,7 @@
 //! [`PyEnvPool`]: adapters' `ThreadEnvPool` (EnvPool's asynchronous mode) as a Python
 //! object; the Python class `robosuite_rs.pool.EnvPool` delegates to it.
 
-use crate::convert::{py_into_value, space_spec, value_to_py};
+use crate::convert::{py_into_value, space_spec, value_to_py, value_view_to_py};
 use crate::errors::to_pyerr;
 use crate::fork::{ForkAwareGuard, ForkAwareMutex};
 use crate::pyenv::{extract_seeds, lock_with_gil, metadata_into_py, vector_info_into_py};
@@ -101,15 +101,27 @@ impl PyEnvPool {
 
     /// `recv() -> (obs, rewards, terminations, truncations, info)` for the first
     /// `batch_size` environments to finish; `info["env_id"]` holds their ids.
-    fn recv<'py>(&self, py: Python<'py>) -> PyResult<RecvPy<'py>> {
-        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+    /// With `copy=False` the observations are read-only views of the pool's batch (no
+    /// copy), overwritten by the next `recv`.
+    #[pyo3(signature = (copy=true))]
+    fn recv<'py>(slf: &Bound<'py, Self>, copy: bool) -> PyResult<RecvPy<'py>> {
+        let py = slf.py();
+        let this = slf.borrow();
+        let mut state = lock_with_gil(py, &this.state).map_err(to_pyerr)?;
         let pool = &mut state.pool;
         let s = py.detach(move || pool.recv()).map_err(to_pyerr)?;
         let info_py = vector_info_into_py(py, s.infos)?;
         let ids: Vec<i64> = s.env_ids.iter().map(|&i| i as i64).collect();
         info_py.set_item("env_id", PyArray1::from_vec(py, ids))?;
+        let observations = if copy {
+            value_to_py(py, s.observations, false)?
+        } else {
+            // SAFETY: the pool's batch is allocated once, with the pool, which `slf` owns
+            // and never replaces; `slf` is the views' base object.
+            unsafe { value_view_to_py(py, s.observations, slf.as_any())? }
+        };
         Ok((
-            value_to_py(py, s.observations, false)?,
+            observations,
             PyArray1::from_slice(py, s.rewards),
             PyArray1::from_slice(py, s.terminations),
             PyArray1::from_slice(py, s.truncations),

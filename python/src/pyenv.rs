@@ -4,6 +4,7 @@
 
 use crate::convert::{
     array_to_py, info_into_py, py_into_value, py_to_info, space_spec, value_into_py, value_to_py,
+    value_view_to_py,
 };
 use crate::errors::to_pyerr;
 use crate::fork::{ForkAwareGuard, ForkAwareMutex};
@@ -259,8 +260,10 @@ struct VecState {
 ///
 /// A step takes one lock, converts the actions once (a NumPy array of the action space's
 /// shape is copied straight into the batch the vector env reads, casting a float dtype to
-/// the space's), steps with the GIL released, and copies the observations once, straight
-/// from the vector env's batch into fresh NumPy arrays.
+/// the space's), steps with the GIL released (environments that write rows, the robosuite
+/// tasks, write their observations, camera images included, straight into the batch), and
+/// copies the observations once more into fresh NumPy arrays, or with `copy=False` returns
+/// read-only views of the batch.
 #[pyclass(name = "NativeVecEnv", module = "robosuite_rs._native")]
 pub struct PyVecEnv {
     state: ForkAwareMutex<VecState>,
@@ -366,36 +369,61 @@ impl PyVecEnv {
     /// `reset(seed=None, options=None) -> (batched obs, infos)`. `seed`: an integer (env
     /// `i` gets `seed + i`) or one optional seed per env; `options["reset_mask"]` (a bool
     /// array) resets only some envs, the other options go to every env.
-    #[pyo3(signature = (seed=None, options=None))]
+    /// With `copy=False` the observations are views of the batch, as for `step`.
+    #[pyo3(signature = (seed=None, options=None, copy=true))]
     fn reset<'py>(
-        &self,
-        py: Python<'py>,
+        slf: &Bound<'py, Self>,
         seed: Option<&Bound<'py, PyAny>>,
         options: Option<&Bound<'py, PyDict>>,
+        copy: bool,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+        let py = slf.py();
+        let this = slf.borrow();
         let seeds = extract_seeds(seed)?;
         let options = options.map(py_to_info).transpose()?;
-        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+        let mut state = lock_with_gil(py, &this.state).map_err(to_pyerr)?;
         let vec = &mut state.vec;
         let (obs, info) = py
             .detach(move || vec.reset(seeds, options.as_ref()))
             .map_err(to_pyerr)?;
-        Ok((value_to_py(py, obs, false)?, vector_info_into_py(py, info)?))
+        let observations = if copy {
+            value_to_py(py, obs, false)?
+        } else {
+            // SAFETY: as in `step`.
+            unsafe { value_view_to_py(py, obs, slf.as_any())? }
+        };
+        Ok((observations, vector_info_into_py(py, info)?))
     }
 
-    /// `step(actions) -> (batched obs, rewards, terminations, truncations, infos)` for
-    /// batched actions (an `(n, ...)` array for Box action spaces).
-    fn step<'py>(&self, py: Python<'py>, actions: &Bound<'py, PyAny>) -> PyResult<VecStepPy<'py>> {
-        let mut state = lock_with_gil(py, &self.state).map_err(to_pyerr)?;
+    /// `step(actions, copy=True) -> (batched obs, rewards, terminations, truncations,
+    /// infos)` for batched actions (an `(n, ...)` array for Box action spaces). With
+    /// `copy=False` the observations are read-only views of the vector env's batch (no
+    /// copy), overwritten by the next `step` or `reset`.
+    #[pyo3(signature = (actions, copy=true))]
+    fn step<'py>(
+        slf: &Bound<'py, Self>,
+        actions: &Bound<'py, PyAny>,
+        copy: bool,
+    ) -> PyResult<VecStepPy<'py>> {
+        let py = slf.py();
+        let this = slf.borrow();
+        let mut state = lock_with_gil(py, &this.state).map_err(to_pyerr)?;
         let VecState {
             vec,
             actions: batch,
         } = &mut *state;
-        py_into_value(actions, &self.batched_action_space, batch)?;
+        py_into_value(actions, &this.batched_action_space, batch)?;
         let batch = &*batch;
         let s = py.detach(move || vec.step(batch)).map_err(to_pyerr)?;
+        let observations = if copy {
+            value_to_py(py, s.observations, false)?
+        } else {
+            // SAFETY: the batch is allocated once, with the vector env, which `slf` owns
+            // and never replaces; `slf` is the views' base object.
+            unsafe { value_view_to_py(py, s.observations, slf.as_any())? }
+        };
         Ok((
-            value_to_py(py, s.observations, false)?,
+            observations,
             PyArray1::from_slice(py, s.rewards),
             PyArray1::from_slice(py, s.terminations),
             PyArray1::from_slice(py, s.truncations),

@@ -299,3 +299,85 @@ def test_fast_depth_is_robosuite_qualitys_and_a_closed_envs_context_draws_the_sa
 def test_an_unknown_viewer_is_refused() -> None:
     with pytest.raises(ValueError, match="renderer"):
         lift(has_renderer=True, renderer="pygame")
+
+
+def _camera_keys() -> list[str]:
+    keys = ["cube_pos"]
+    for c in FIXTURE["cameras"]:
+        keys += [f"{c}_image", f"{c}_depth", f"{c}_segmentation_element"]
+    return keys
+
+
+class _Lone:
+    """A single env stepped as a NEXT_STEP vector env steps its sub-env."""
+
+    def __init__(self, seed: int) -> None:
+        self.env = GymWrapper(suite.make("Lift", robots="Panda", horizon=3, **CAMERAS), keys=_camera_keys(), flatten_obs=False)
+        self.obs, _ = self.env.reset(seed=seed)
+        self.ended = False
+
+    def step(self, action: np.ndarray) -> dict[str, np.ndarray]:
+        if self.ended:
+            self.obs, _ = self.env.reset()
+            self.ended = False
+        else:
+            self.obs, _, terminated, truncated, _ = self.env.step(action)
+            self.ended = terminated or truncated
+        return self.obs
+
+
+def _assert_rows(obs: dict[str, np.ndarray], row: int, expected: dict[str, np.ndarray], what: str) -> None:
+    assert list(obs) == list(expected)
+    for k, v in expected.items():
+        assert obs[k].dtype == v.dtype
+        np.testing.assert_array_equal(obs[k][row], v, err_msg=f"{what}: {k}")
+
+
+def test_vector_env_and_pool_views_are_the_batch_and_equal_single_envs() -> None:
+    import gc
+
+    keys = _camera_keys()
+    vec = suite.make_vec("Lift", 2, flatten_obs=False, keys=keys, horizon=3, copy=False, **CAMERAS)
+    copied = suite.make_vec("Lift", 2, flatten_obs=False, keys=keys, horizon=3, **CAMERAS)
+    lone = [_Lone(5 + i) for i in range(2)]
+    obs, _ = vec.reset(seed=5)
+    fresh, _ = copied.reset(seed=5)
+    addresses = {k: v.ctypes.data for k, v in obs.items()}
+    for i, single in enumerate(lone):
+        _assert_rows(obs, i, single.obs, f"reset {i}")
+    vec.action_space.seed(1)
+    for t in range(7):  # horizon 3: autoresets included
+        actions = vec.action_space.sample()
+        obs, *_ = vec.step(actions)
+        previous = fresh
+        fresh, *_ = copied.step(actions)
+        for i, single in enumerate(lone):
+            _assert_rows(obs, i, single.step(actions[i]), f"step {t}, env {i}")
+            _assert_rows(fresh, i, single.obs, f"copied step {t}, env {i}")
+        # Views: the same memory every step, read-only; copies: new arrays every step.
+        assert {k: v.ctypes.data for k, v in obs.items()} == addresses
+        assert not any(v.flags.writeable for v in obs.values())
+        assert all(fresh[k].ctypes.data != previous[k].ctypes.data for k in keys)
+    # A view keeps the vector env's memory alive after the env is closed and dropped.
+    image = obs[keys[1]]
+    expected = image.copy()
+    vec.close()
+    del vec, obs
+    gc.collect()
+    np.testing.assert_array_equal(image, expected)
+    copied.close()
+
+    pool = suite.make_pool("Lift", 3, 2, flatten_obs=False, keys=keys, horizon=3, copy=False, **CAMERAS)
+    lone = [_Lone(9 + i) for i in range(3)]
+    expected_obs = [single.obs for single in lone]
+    obs, info = pool.reset(seed=9)
+    pool.action_space.seed(2)
+    for t in range(6):
+        for k, env_id in enumerate(info["env_id"]):
+            _assert_rows(obs, k, expected_obs[env_id], f"pool round {t}, env {env_id}")
+        actions = pool.action_space.sample()
+        for k, env_id in enumerate(info["env_id"]):
+            expected_obs[env_id] = {key: v.copy() for key, v in lone[env_id].step(actions[k]).items()}
+        obs, _, _, _, info = pool.step(actions)
+        assert not any(v.flags.writeable for v in obs.values())
+    pool.close()

@@ -1441,6 +1441,29 @@ impl gym_core::Env for RobosuiteEnv {
         Ok(transition)
     }
 
+    /// Observations are written into batch rows: the camera frames and the low-dim values
+    /// go from the environment's buffers straight into a vector environment's batch.
+    fn writes_rows(&self) -> bool {
+        true
+    }
+
+    /// [`Env::step_into`](gym_core::Env::step_into) without the observation (it stays in
+    /// the environment's buffers for [`write_observation_row`](gym_core::Env::write_observation_row)).
+    fn step_for_row(&mut self, action: &ArrayD<f64>, info: &mut Info) -> Result<Transition> {
+        let (transition, success) = self.advance(action)?;
+        if info.len() != 1 || info.get("success").is_none() {
+            info.clear();
+        }
+        info.set("success", success);
+        Ok(transition)
+    }
+
+    /// Writes the current observation (that of the last step or reset) into `row`.
+    fn write_observation_row(&self, row: &mut gym_core::ObsRow<'_>) -> Result<()> {
+        let frames = self.cameras.as_ref().map_or(&[][..], CameraRig::frames);
+        self.layout.write_row(&self.buf, frames, row)
+    }
+
     fn metadata(&self) -> &Metadata {
         &self.metadata
     }

@@ -9,7 +9,8 @@
 
 use crate::sim::Sim;
 use gym_core::{
-    AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, Result, Scalar, Value,
+    AnySpace, ArrayValue, BoxSpace, DType, DictSpace, DictValue, Error, ObsRow, Result, Scalar,
+    Value,
 };
 use ndarray::{ArrayD, IxDyn};
 use std::sync::Arc;
@@ -388,6 +389,58 @@ impl ObsLayout {
                     .for_each(|(d, s)| *d = Scalar::from_f64(s)));
             }
         }
+    }
+
+    /// [`ObsLayout::write_dict_with`] into a row of a batch (one leaf per key, in order;
+    /// converted to the leaves' dtypes): the camera frames are copied once, straight into
+    /// the batch. Every leaf is checked before anything is written.
+    ///
+    /// # Errors
+    /// [`Error::Contract`] when the row does not have this layout's leaves.
+    pub fn write_row(
+        &self,
+        buf: &[f64],
+        images: &[ArrayValue],
+        row: &mut ObsRow<'_>,
+    ) -> Result<()> {
+        let n = self.keys.len() + self.groups.len();
+        if row.len() != n {
+            return Err(Error::Contract {
+                check: "observation row".into(),
+                message: format!("the row has {} leaves, the observation {n}", row.len()).into(),
+            });
+        }
+        for (j, (k, _)) in self.keys.iter().enumerate() {
+            row.check_leaf(j, k.len())?;
+        }
+        for (j, g) in self.groups.iter().enumerate() {
+            row.check_leaf(self.keys.len() + j, g.len)?;
+        }
+        for (j, (k, at)) in self.keys.iter().enumerate() {
+            if k.modality == Modality::Image {
+                if let Some(frame) = images.get(*at) {
+                    row.write_array(j, frame)?;
+                }
+                continue;
+            }
+            let src = &buf[*at..*at + k.len()];
+            let value = |i: usize| src[i];
+            match k.dtype {
+                DType::I8 => row.write_f64_as::<i8>(j, src.len(), value),
+                DType::I16 => row.write_f64_as::<i16>(j, src.len(), value),
+                DType::I32 => row.write_f64_as::<i32>(j, src.len(), value),
+                DType::I64 => row.write_f64_as::<i64>(j, src.len(), value),
+                DType::U8 => row.write_f64_as::<u8>(j, src.len(), value),
+                DType::F32 => row.write_f64_as::<f32>(j, src.len(), value),
+                DType::F64 => row.write_f64_as::<f64>(j, src.len(), value),
+                DType::Bool => row.write_f64_as::<bool>(j, src.len(), value),
+            }?;
+        }
+        for (j, g) in self.groups.iter().enumerate() {
+            let mut values = self.group_values(g, buf);
+            row.write_f64_as::<f64>(self.keys.len() + j, g.len, |_| values.next().unwrap_or(0.0))?;
+        }
+        Ok(())
     }
 
     /// Whether `dict` has this layout's keys in order with the same shapes and dtypes.

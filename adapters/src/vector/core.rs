@@ -5,10 +5,10 @@
 //! identical.
 
 use super::info::VectorInfo;
-use super::slot::{Done, Slot, Task};
+use super::slot::{Done, ObsAt, Slot, Task};
 use super::{AutoresetMode, Seeds, VectorStep};
 use crate::batch::{BatchOf, BatchSpace};
-use gym_core::{Env, Error, InfoValue, Metadata, ResetOptions, Result, Transition};
+use gym_core::{Env, Error, InfoValue, Metadata, ResetOptions, Result, RowLeaves, Transition};
 use std::any::Any;
 
 pub(crate) fn panic_message(payload: &(dyn Any + Send)) -> String {
@@ -128,6 +128,25 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
         })
     }
 
+    /// Gives `slot` its row of the batch when its environment writes rows
+    /// ([`Env::writes_rows`]) and the observation space has row leaves
+    /// ([`BatchSpace::row_leaves`]): its steps then write their observations straight
+    /// into the batch (see [`Slot::row`]).
+    pub(crate) fn attach_row<E: Env<ObsSpace = OS, ActSpace = AS>>(
+        &mut self,
+        slot: &mut Slot<E>,
+        env: &E,
+    ) {
+        let mut leaves = RowLeaves::new();
+        if env.writes_rows()
+            && self
+                .single_obs
+                .row_leaves(&mut self.observations, slot.id, &mut leaves)
+        {
+            slot.row = Some(leaves);
+        }
+    }
+
     pub(crate) fn check_open(&self) -> Result<()> {
         if self.closed {
             Err(Error::Closed)
@@ -209,8 +228,12 @@ impl<OS: BatchSpace, AS: BatchSpace> VectorCore<OS, AS> {
             Ok(Done::Stepped(t)) => {
                 self.set_step(i, t);
                 self.infos.add(&slot.info, i);
-                self.single_obs
-                    .write_item(&mut self.observations, i, &slot.observation)
+                if slot.obs_at == ObsAt::Row {
+                    Ok(())
+                } else {
+                    self.single_obs
+                        .write_item(&mut self.observations, i, &slot.observation)
+                }
             }
             Ok(Done::SteppedAndReset {
                 transition,

@@ -32,8 +32,14 @@
 //!   index); the other sub-environments' results of that call are still recorded. A panic
 //!   in a sub-environment (on any thread) becomes [`Error::Simulation`](gym_core::Error),
 //!   never a hang, and that sub-environment refuses further calls.
-//! * Steps go through [`Env::step_into`](gym_core::Env::step_into) into per-environment
-//!   buffers and the infos are refilled in place, so over environments whose `step_into`
+//! * An environment that [writes rows](gym_core::Env::writes_rows) (the robosuite tasks,
+//!   behind `GymWrapper` / `FlatGymWrapper` / `TimeLimit` / `BoxedEnv` too) writes each
+//!   step's observation straight into its row of the batch
+//!   ([`Env::write_observation_row`](gym_core::Env::write_observation_row); a pool, into
+//!   the row `recv` returns it in): camera images are copied once per step. Other
+//!   environments, resets and `SameStep` steps go through
+//!   [`Env::step_into`](gym_core::Env::step_into) into per-environment buffers, then into
+//!   the batch. The infos are refilled in place, so over environments whose `step_into`
 //!   reuses its buffers a vector step (and a pool's `send` / `recv`) does not allocate.
 //! * After `fork()`, a [`ThreadVectorEnv`] or [`ThreadEnvPool`] used in the child returns
 //!   [`Error::Unsupported`](gym_core::Error) (its threads exist only in the parent); closing

@@ -11,12 +11,12 @@
 
 use super::core::{OwnerProcess, VectorCore, in_env};
 use super::queue::IdQueue;
-use super::slot::{Done, Member, Task};
+use super::slot::{Done, Member, ObsAt, Task};
 use super::threads::pin_current;
 use super::{Seeds, ThreadOptions, VectorInfo};
 use crate::batch::{BatchOf, BatchSpace};
 use crossbeam_utils::CachePadded;
-use gym_core::{Env, Error, Result};
+use gym_core::{Env, Error, ObsRow, Result, RowLeaves};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::thread::JoinHandle;
@@ -191,18 +191,28 @@ where
                 format!("must be in 1..={n} (the number of environments), got {batch_size}"),
             ));
         }
+        let mut observations = core.single_obs.create_empty_batch(batch_size);
+        // Environments that write rows keep a step's observation until `recv` writes it
+        // into the row it returns it in (one copy, environment to batch).
+        let rows = core
+            .single_obs
+            .row_leaves(&mut observations, 0, &mut RowLeaves::new());
         let shared = Arc::new(Shared {
             members: envs
                 .into_iter()
                 .enumerate()
-                .map(|(i, env)| CachePadded::new(Mutex::new(Member::new(i, env))))
+                .map(|(i, env)| {
+                    let mut member = Member::new(i, env);
+                    member.slot.deferred = rows && member.env.writes_rows();
+                    CachePadded::new(Mutex::new(member))
+                })
                 .collect(),
             todo: IdQueue::new(n),
             finished: IdQueue::new(n),
             stop: AtomicBool::new(false),
         });
         let mut pool = Self {
-            observations: core.single_obs.create_empty_batch(batch_size),
+            observations,
             single_obs: core.single_obs,
             single_act: core.single_act,
             batch_size,
@@ -359,7 +369,7 @@ where
             let id = self.next_finished();
             self.env_ids[k] = id;
             let mut member = self.shared.member(id);
-            let slot = &mut member.slot;
+            let Member { env, slot } = &mut *member;
             let outcome = match std::mem::replace(&mut slot.done, Ok(Done::Idle)) {
                 Ok(Done::Reset) => Ok((0.0, false, false)),
                 Ok(Done::Stepped(t)) => Ok((t.reward, t.terminated, t.truncated)),
@@ -374,8 +384,25 @@ where
                 self.terminations[k] = terminated;
                 self.truncations[k] = truncated;
                 self.infos.add(&slot.info, k);
-                self.single_obs
-                    .write_item(&mut self.observations, k, &slot.observation)?;
+                if slot.obs_at == ObsAt::Env {
+                    let mut leaves = RowLeaves::new();
+                    if !self
+                        .single_obs
+                        .row_leaves(&mut self.observations, k, &mut leaves)
+                    {
+                        return Err(Error::Contract {
+                            check: "ThreadEnvPool".into(),
+                            message: "the batch has no row leaves".into(),
+                        });
+                    }
+                    // SAFETY: row `k` of the pool's own batch, which nothing else reads or
+                    // writes while `row` lives (`recv` holds `&mut self`).
+                    let mut row = unsafe { ObsRow::from_raw(leaves.as_slice()) };
+                    env.write_observation_row(&mut row)?;
+                } else {
+                    self.single_obs
+                        .write_item(&mut self.observations, k, &slot.observation)?;
+                }
                 Ok(terminated || truncated)
             });
             drop(member);

@@ -7,7 +7,7 @@
 
 use super::core::panic_message;
 use crate::batch::BatchSpace;
-use gym_core::{Env, Error, Info, ResetOptions, Result, Transition};
+use gym_core::{Env, Error, Info, ObsRow, ResetOptions, Result, RowLeaves, Transition};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// What one sub-environment does in a call.
@@ -45,6 +45,19 @@ pub(crate) enum Done<O> {
         final_observation: O,
         final_info: Info,
     },
+}
+
+/// Where the observation of a slot's last call is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum ObsAt {
+    /// In [`Slot::observation`] (to be copied into the batch).
+    #[default]
+    Slot,
+    /// Already in the slot's row of the batch ([`Slot::row`]).
+    Row,
+    /// Still in the environment ([`Env::write_observation_row`] writes it; the pool's
+    /// `recv`).
+    Env,
 }
 
 /// A sub-environment with its buffers: what a worker thread locks and runs.
@@ -97,6 +110,15 @@ pub(crate) struct Slot<E: Env> {
     pub(crate) done: Result<Done<E::Obs>>,
     /// Whether the environment panicked (it then refuses every operation).
     pub(crate) poisoned: bool,
+    /// The slot's row of its vector environment's batch, when the environment writes
+    /// rows ([`Env::writes_rows`]): a step writes its observation there, on the thread
+    /// that runs it, and nowhere else.
+    pub(crate) row: Option<RowLeaves>,
+    /// Steps keep the observation in the environment for the pool's `recv` to write into
+    /// the row it gives it.
+    pub(crate) deferred: bool,
+    /// Where the last call's observation is.
+    pub(crate) obs_at: ObsAt,
 }
 
 impl<E: Env> Slot<E>
@@ -114,6 +136,9 @@ where
             info: Info::new(),
             done: Ok(Done::Idle),
             poisoned: false,
+            row: None,
+            deferred: false,
+            obs_at: ObsAt::Slot,
         }
     }
 }
@@ -124,6 +149,7 @@ impl<E: Env> Slot<E> {
     /// refuses.
     pub(crate) fn run(&mut self, env: &mut E) {
         let task = std::mem::take(&mut self.task);
+        self.obs_at = ObsAt::Slot;
         if matches!(task, Task::Idle) {
             self.done = Ok(Done::Idle);
             return;
@@ -150,10 +176,28 @@ impl<E: Env> Slot<E> {
             Task::Idle => Ok(Done::Idle),
             Task::Reset { seed, options } => self.reset(env, seed, options.as_ref()),
             Task::AutoReset => self.reset(env, None, None),
-            Task::Step => {
-                let t = env.step_into(&self.action, &mut self.observation, &mut self.info)?;
+            Task::Step if self.deferred => {
+                let t = env.step_for_row(&self.action, &mut self.info)?;
+                self.obs_at = ObsAt::Env;
                 Ok(Done::Stepped(t))
             }
+            Task::Step => match &self.row {
+                Some(leaves) => {
+                    let t = env.step_for_row(&self.action, &mut self.info)?;
+                    // SAFETY: `leaves` is this slot's row of its vector environment's batch
+                    // (`VectorCore::attach_row`): the batch's arrays are allocated once and
+                    // never replaced, the vector environment does not touch the batch while
+                    // slots run, and the rows of different slots do not overlap.
+                    let mut row = unsafe { ObsRow::from_raw(leaves.as_slice()) };
+                    env.write_observation_row(&mut row)?;
+                    self.obs_at = ObsAt::Row;
+                    Ok(Done::Stepped(t))
+                }
+                None => {
+                    let t = env.step_into(&self.action, &mut self.observation, &mut self.info)?;
+                    Ok(Done::Stepped(t))
+                }
+            },
             Task::StepThenReset => {
                 let transition =
                     env.step_into(&self.action, &mut self.observation, &mut self.info)?;

@@ -32,11 +32,15 @@ where
     /// # Errors
     /// [`gym_core::Error::InvalidArgument`] for no environments or differing spaces.
     pub fn new(envs: Vec<E>) -> Result<Self> {
-        let core = VectorCore::new(&envs)?;
+        let mut core = VectorCore::new(&envs)?;
         let slots = envs
             .iter()
             .enumerate()
-            .map(|(i, e)| Slot::new(i, e))
+            .map(|(i, e)| {
+                let mut slot = Slot::new(i, e);
+                core.attach_row(&mut slot, e);
+                slot
+            })
             .collect();
         Ok(Self { envs, slots, core })
     }

@@ -72,12 +72,16 @@ where
     /// # Errors
     /// As [`ThreadVectorEnv::new`].
     pub fn with_options(envs: Vec<E>, options: ThreadOptions) -> Result<Self> {
-        let core = VectorCore::new(&envs)?;
+        let mut core = VectorCore::new(&envs)?;
         let num_threads = options.threads_for(envs.len());
         let members = envs
             .into_iter()
             .enumerate()
-            .map(|(i, env)| Member::new(i, env))
+            .map(|(i, env)| {
+                let mut member = Member::new(i, env);
+                core.attach_row(&mut member.slot, &member.env);
+                member
+            })
             .collect();
         let team = Team::new(members, num_threads, "vector-env", options.cpus())
             .map_err(|e| Error::unsupported(format!("cannot spawn a worker thread: {e}")))?;

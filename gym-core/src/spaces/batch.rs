@@ -10,6 +10,7 @@
 //! | `MultiBinary` | `Box(0, 1, (n, *shape), int8)` |
 //! | `Dict` / `Tuple` | a Dict / Tuple of the batched parts, same order |
 
+use crate::row::{RowLeaf, RowLeaves};
 use crate::spaces::{
     AnyBox, AnySpace, BoxSpace, DictSpace, Discrete, MultiBinary, MultiDiscrete, TupleSpace,
 };
@@ -72,6 +73,16 @@ pub trait BatchSpace: Flatten + DynSpace {
     /// [`Error::InvalidAction`] naming the first problem.
     fn check_batch(&self, batch: &BatchOf<Self>, n: usize) -> Result<()> {
         check_any_batch(self, batch, n)
+    }
+
+    /// The array leaves of item `i` of `batch` (see [`ObsRow`](crate::ObsRow)), appended to
+    /// `out`, for an environment to write its observation straight into the batch: one
+    /// for an array space, one per entry for a Dict whose entries are array spaces.
+    /// `false` (and `out` unspecified) for other spaces (the default), a batch that does
+    /// not have the space's structure, or `i` out of range.
+    fn row_leaves(&self, batch: &mut BatchOf<Self>, i: usize, out: &mut RowLeaves) -> bool {
+        let _ = (batch, i, out);
+        false
     }
 
     /// Gymnasium's `create_zero_array(space)`: the element closest to zero that is still
@@ -330,6 +341,11 @@ impl<T: ArrayElement> BatchSpace for BoxSpace<T> {
     fn zero_element(&self) -> ArrayD<T> {
         box_zero(self)
     }
+
+    fn row_leaves(&self, batch: &mut ArrayD<T>, i: usize, out: &mut RowLeaves) -> bool {
+        batch.shape().get(1..) == Some(self.low().shape())
+            && RowLeaf::of_typed_batch_row(batch, i).is_some_and(|l| out.push(l).is_ok())
+    }
 }
 
 impl BatchSpace for Discrete {
@@ -523,6 +539,14 @@ impl BatchSpace for AnySpace {
         }
     }
 
+    fn row_leaves(&self, batch: &mut Value, i: usize, out: &mut RowLeaves) -> bool {
+        match (self, batch) {
+            (AnySpace::Dict(d), Value::Dict(b)) => d.row_leaves(b, i, out),
+            (space, Value::Array(b)) => array_row_leaf(space, b, i, out),
+            _ => false,
+        }
+    }
+
     fn read_item(&self, batch: &Value, i: usize) -> Result<Value> {
         match (self, batch) {
             (AnySpace::Discrete(_), Value::Array(b)) => {
@@ -606,6 +630,14 @@ impl BatchSpace for DictSpace {
         Ok(())
     }
 
+    fn row_leaves(&self, batch: &mut DictValue, i: usize, out: &mut RowLeaves) -> bool {
+        batch.len() == self.len()
+            && self.iter().all(|(k, s)| match batch.get_mut(k) {
+                Some(Value::Array(b)) => array_row_leaf(s, b, i, out),
+                _ => false,
+            })
+    }
+
     fn read_item(&self, batch: &DictValue, i: usize) -> Result<DictValue> {
         self.iter()
             .map(|(k, s)| Ok((k.to_owned(), s.read_item(dict_entry(batch, k)?, i)?)))
@@ -617,6 +649,18 @@ impl BatchSpace for DictSpace {
             .map(|(k, s)| (k.to_owned(), s.zero_element()))
             .collect()
     }
+}
+
+/// Row `i` of the batch `b` of an array space (Box, MultiBinary, MultiDiscrete) as one
+/// leaf appended to `out`.
+fn array_row_leaf(space: &AnySpace, b: &mut ArrayValue, i: usize, out: &mut RowLeaves) -> bool {
+    let item_shape = match space {
+        AnySpace::Box(_) | AnySpace::MultiBinary(_) | AnySpace::MultiDiscrete(_) => space.shape(),
+        _ => return false,
+    };
+    item_shape.is_some()
+        && b.shape().get(1..) == item_shape
+        && RowLeaf::of_batch_row(b, i).is_some_and(|l| out.push(l).is_ok())
 }
 
 fn tuple_len_error(expected: usize, got: usize) -> Error {
