@@ -750,7 +750,7 @@ def base_policy(env, steps=60):
     return act
 
 
-def rollout(task, robot, seed, make_policy, steps, kwargs):
+def rollout(task, robot, seed, make_policy, steps, kwargs, kind=""):
     env = make(task, seed, robots=robot, **kwargs)
     obs = env.reset()
     record = {
@@ -760,11 +760,15 @@ def rollout(task, robot, seed, make_policy, steps, kwargs):
         "steps": [],
     }
     keys = obs_keys(task, obs)
-    policy = for_robot(env, make_policy(env))
+    policy = make_policy(env)
+    if kind == "scripted":
+        policy = for_robot(env, policy)
     for _ in range(steps):
         action = np.asarray(policy(obs), dtype=np.float64)
-        obs, reward, done, _ = env.step(action)
+        # Kept before the step: robosuite's mobile-base controller rotates its slice of the
+        # action in place.
         record["actions"].append([float(x) for x in action])
+        obs, reward, done, _ = env.step(action)
         record["steps"].append(
             {
                 "obs": {
@@ -827,7 +831,7 @@ def record(fixture, robot, out, resets):
     if (robot if isinstance(robot, str) else robot[0]) in MOBILE_ROBOTS:
         policies.append(("base", base_policy, 60))
     for i, (kind, make_policy, steps) in enumerate(policies):
-        r = rollout(task, robot, 100 + i, make_policy, steps, kwargs)
+        r = rollout(task, robot, 100 + i, make_policy, steps, kwargs, kind)
         r["kind"] = kind
         data["rollouts"].append(r)
     stem = fixture if fixture in SETUPS or robot == "Panda" else f"{task}-{robot}"

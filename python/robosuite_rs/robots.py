@@ -17,7 +17,7 @@ from .models.robots import RobotModel, create_robot
 __all__ = ["Robot", "RobotModel", "GripperModel", "PartController", "CompositeController", "ROBOT_CLASS_MAPPING"]
 
 #: robosuite's robot classes by robot name (the robots this build provides).
-ROBOT_CLASS_MAPPING: dict[str, str] = {name: "FixedBaseRobot" for name in sorted(_native.robot_names())}
+ROBOT_CLASS_MAPPING: dict[str, str] = dict(sorted(_native.robot_classes()))
 
 # robosuite's part controller class names by type.
 _CONTROLLER_CLASSES = {
@@ -93,7 +93,8 @@ class PartController:
 
 class CompositeController:
     """robosuite's ``robot.composite_controller``: its parts in robosuite's action order
-    (each arm's controller, then each arm's gripper)."""
+    (the body parts in the config's order, then each arm's gripper; ``HYBRID_MOBILE_BASE``
+    adds the base mode as the last entry)."""
 
     def __init__(
         self,
@@ -103,6 +104,92 @@ class CompositeController:
         limits: tuple[np.ndarray, np.ndarray],
     ) -> None:
         self.name = name
+        self.part_controllers = part_controllers
+        self._action_split_indexes = action_split
+        self._limits = limits
+
+    @property
+    def action_limits(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(low, high)`` of the robot's action."""
+        return self._limits[0].copy(), self._limits[1].copy()
+
+
+class Robot:
+    """A robot of the env (robosuite's ``env.robots[i]``)."""
+
+    @property
+    def _env(self) -> Any:
+        env = self._env_ref()
+        if env is None:
+            raise ReferenceError(f"robot {self.name!r}: its env was freed (keep a reference to the env)")
+        return env
+
+    def __init__(self, env: Any, info: dict[str, Any], model: Any, controller_config: dict[str, Any] | None) -> None:
+        # The env holds its robots; a weak reference back lets the env be freed as soon as
+        # its last user reference goes (no reference cycle for the GC to find).
+        self._env_ref = weakref.ref(env)
+        index = info["index"]
+        self.name = info["name"]
+        self.robot_type = self.name
+        self.idn = index
+        self.init_qpos = np.array(info["init_qpos"])
+        self._joint_qpos = list(info["joint_qpos"])
+        self._joint_dofs = list(info["joint_dofs"])
+        self._action_low = np.array(info["action_low"])
+        self._action_high = np.array(info["action_high"])
+        jnt_qposadr = list(model.jnt_qposadr)
+        joints = [model.joint_id2name(jnt_qposadr.index(a)) for a in self._joint_qpos]
+        arm_actuators = [i for a in info["arms"] for i in a["actuators"]]
+        #: robosuite's ``robot_model`` (a :mod:`robosuite_rs.models.robots` model), with the
+        #: env's compiled names.
+        self.robot_model: RobotModel = create_robot(self.name, idn=index)
+        self.robot_model.joints = joints
+        self.robot_model.actuators = _names(model, "actuator", arm_actuators)
+        #: robosuite's joint bookkeeping: the robot's (arm) joint names, ids, qpos and dof
+        #: addresses.
+        self.robot_joints = list(joints)
+        self._ref_joint_indexes = [model.joint_name2id(j) for j in joints]
+        self._ref_joint_pos_indexes = list(self._joint_qpos)
+        self._ref_joint_vel_indexes = list(self._joint_dofs)
+        self.arms = [a["side"] for a in info["arms"]]
+        parts_cfg = (controller_config or {}).get("body_parts", {})
+        self.gripper: dict[str, GripperModel | None] = {}
+        part_controllers: OrderedDict[str, Any] = OrderedDict()
+        split: OrderedDict[str, tuple[int, int]] = OrderedDict()
+        #: robosuite's robot class (``FixedBaseRobot``, ``WheeledRobot``, ``LeggedRobot``).
+        self.robot_class = info.get("robot_class", "FixedBaseRobot")
+        layout = {name: (start, end) for name, start, end in info.get("layout", [])}
+        for a in info["arms"]:
+            side = a["side"]
+            cfg = parts_cfg.get(side, {}) if isinstance(parts_cfg, dict) else {}
+            ref = model.site_id2name(a["eef_site"])
+            part_controllers[side] = PartController(a["controller"], side, ref, a["controller_dim"], dict(cfg))
+        #: The body parts other than arms (torso, head, base, legs) and their joints.
+        self.body_parts: dict[str, list[str]] = {}
+        for b in info.get("body_parts", []):
+            cfg = parts_cfg.get(b["name"], {}) if isinstance(parts_cfg, dict) else {}
+            part_controllers[b["name"]] = PartController(b["controller"], b["name"], "", b["controller_dim"], dict(cfg))
+            self.body_parts[b["name"]] = list(b["joints"])
+        for a in info["arms"]:
+            side = a["side"]
+            if a["gripper"] is None:
+                self.gripper[side] = None
+                continue
+            ref = model.site_id2name(a["eef_site"])
+            g_joints = [model.joint_id2name(jnt_qposadr.index(q)) for q in a["gripper_qpos"]]
+            g_acts = _names(model, "actuator", a["gripper_actuators"])
+            prefix = g_acts[0].rsplit("_", 1)[0] + "_" if g_acts else f"gripper{index}_{side}_"
+            # robosuite names a gripper's elements `gripper{robot}_{arm}_...`.
+            site_prefix = f"gripper{index}_{side}_"
+            sites = [n for n in model.site_names if isinstance(n, str) and n.startswith(site_prefix)]
+            self.gripper[side] = GripperModel(
+                a["gripper"], prefix, g_joints, g_acts, a["gripper_dim"], sites, site_prefix
+            )
+            part_controllers[f"{side}_gripper"] = PartController("GRIP", f"{side}_gripper", ref, a["gripper_dim"], {})
+        # robosuite's `_action_split_indexes`, in action order.
+        for name, (start, end) in sorted(layout.items(), key=lambda kv: kv[1]):
+            split[name] = (start, end)
+        part_controllers = OrderedDict((k, part_controllers[k]) for k in split if k in part_controllers)
         self.part_controllers = part_controllers
         self._action_split_indexes = action_split
         self._limits = limits
@@ -189,6 +276,11 @@ class Robot:
         )
 
     @property
+    def is_mobile(self) -> bool:
+        """Whether the robot has a mobile base (robosuite's ``is_mobile``)."""
+        return self.robot_class != "FixedBaseRobot"
+
+    @property
     def dof(self) -> int:
         """Degrees of freedom of the robot's joints (arms and grippers)."""
         return len(self._joint_dofs) + sum(len(g.joints) for g in self.gripper.values() if g is not None)
@@ -222,7 +314,13 @@ class Robot:
         """
         out = np.zeros(self.action_dim)
         split = self.composite_controller._action_split_indexes
+        hybrid = self.composite_controller.name == "HYBRID_MOBILE_BASE"
+        if hybrid:
+            # robosuite's HYBRID_MOBILE_BASE: the last entry is the base mode (-1: arm mode).
+            out[-1] = float(action_dict.get("base_mode", -1.0))
         for part, value in action_dict.items():
+            if hybrid and part == "base_mode":
+                continue
             if part not in split:
                 raise ValueError(f"unknown part {part!r}; parts: {list(split)}")
             start, end = split[part]

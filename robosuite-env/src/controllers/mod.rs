@@ -55,9 +55,11 @@ pub struct ArmBinding {
     pub nv: usize,
     /// The ctrlrange of each arm motor (robosuite's `actuator_range`).
     pub ctrlrange: Vec<[f64; 2]>,
-    /// Whether the base frame is read once per reset rather than live: robosuite's
-    /// `WheeledRobot` updates its arm controllers' origin only when it resets.
-    pub origin_at_reset: bool,
+    /// Whether a new goal is read in the base frame of the last torque computation (or the
+    /// reset) rather than the current one: robosuite's `WheeledRobot` updates its arm
+    /// controllers' origin only when the composite controller runs them, after the goal
+    /// is set.
+    pub stale_goal_origin: bool,
 }
 
 /// The rates a controller runs at.

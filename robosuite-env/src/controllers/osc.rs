@@ -75,8 +75,8 @@ pub struct Osc {
     /// The grip site's world pose at the reset (robosuite's `reset_goal`).
     reset_pos: Vector3<f64>,
     reset_ori: Matrix3<f64>,
-    /// The base frame read at the reset, for robots whose origin robosuite updates only
-    /// then ([`ArmBinding::origin_at_reset`]).
+    /// The base frame of the last torque computation (or the reset), for robots whose new
+    /// goals robosuite reads in it ([`ArmBinding::stale_goal_origin`]).
     origin_pos: Vector3<f64>,
     origin_ori: Matrix3<f64>,
 }
@@ -256,16 +256,17 @@ impl Osc {
         self.initial_joint.as_slice()
     }
 
-    /// The base-frame site's pose (robosuite's `origin_pos`, `origin_ori`), read live, or
-    /// as read at the reset when [`ArmBinding::origin_at_reset`].
-    fn origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
-        if self.arm.binding().origin_at_reset {
+    /// The base frame a new goal is read in: the current one, or with
+    /// [`ArmBinding::stale_goal_origin`] the one of the last torque computation.
+    fn goal_origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
+        if self.arm.binding().stale_goal_origin {
             return (self.origin_pos, self.origin_ori);
         }
-        self.live_origin(sim)
+        self.origin(sim)
     }
 
-    fn live_origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
+    /// The base-frame site's pose (robosuite's `origin_pos`, `origin_ori`), read live.
+    fn origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
         let d = sim.data();
         let s = self.arm.binding().base_site;
         (
@@ -279,7 +280,7 @@ impl Osc {
         match self.frame {
             InputRefFrame::World => (self.arm.pos, self.arm.ori),
             InputRefFrame::Base => {
-                let (p_b, r_b) = self.origin(sim);
+                let (p_b, r_b) = self.goal_origin(sim);
                 (
                     r_b.transpose() * (self.arm.pos - p_b),
                     r_b.transpose() * self.arm.ori,
@@ -396,7 +397,7 @@ impl ArmController for Osc {
 
     fn reset(&mut self, sim: &Sim) {
         self.arm.restart(sim);
-        (self.origin_pos, self.origin_ori) = self.live_origin(sim);
+        (self.origin_pos, self.origin_ori) = self.origin(sim);
         self.update_desired = false;
         self.fresh = true;
         self.reset_pos = self.arm.pos;
@@ -474,7 +475,7 @@ impl ArmController for Osc {
             ip.set_goal(self.goal_pos.as_slice());
         }
         if self.interp_ori.is_some() {
-            let (_, r_b) = self.origin(sim);
+            let (_, r_b) = self.goal_origin(sim);
             self.ori_ref = self.arm.ori;
             let err = orientation_error(&self.world_goal_ori(&r_b), &self.ori_ref);
             if let Some(io) = &mut self.interp_ori {
@@ -486,6 +487,7 @@ impl ArmController for Osc {
     fn compute(&mut self, sim: &Sim, torques: &mut [f64]) {
         self.arm.update(sim, false);
         let (p_b, r_b) = self.origin(sim);
+        (self.origin_pos, self.origin_ori) = (p_b, r_b);
         let goal_pos = match &mut self.interp_pos {
             Some(ip) => {
                 let mut g = [0.0; 3];

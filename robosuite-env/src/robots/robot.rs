@@ -393,7 +393,7 @@ impl Robot {
                 dofs: joint_dofs[range.clone()].to_vec(),
                 nv,
                 ctrlrange: ctrlrange.clone(),
-                origin_at_reset: kind == RobotKind::Wheeled,
+                stale_goal_origin: kind == RobotKind::Wheeled,
             };
             let part_path = join(&join(path, "body_parts"), arm.side);
             let part = controllers.arm(arm.side).ok_or_else(|| {
@@ -515,7 +515,7 @@ impl Robot {
                 dofs: dofs.clone(),
                 nv,
                 ctrlrange: ctrlrange.clone(),
-                origin_at_reset: false,
+                stale_goal_origin: false,
             };
             let controller: Box<dyn ArmController> = match (name, config) {
                 ("base", ArmControllerConfig::JointVelocity(c)) => {

@@ -169,4 +169,25 @@ robot_tests! {
     every_task_on_kinova3_passes_check_env => "Kinova3";
     every_task_on_ur5e_passes_check_env => "UR5e";
     every_task_on_xarm7_passes_check_env => "XArm7";
+    every_task_on_panda_omron_passes_check_env => "PandaOmron";
+}
+
+/// Tiago, a bimanual mobile robot, alone on a two-arm task (robosuite's single-robot
+/// set-up): check_env with its BASIC layout (arms, torso, head, base, grippers).
+#[test]
+fn tiago_on_two_arm_lift_passes_check_env() {
+    let mut env = make_with(
+        "TwoArmLift",
+        EnvConfig::default().with_horizon(30).with_robots(["Tiago"]),
+    )
+    .unwrap();
+    assert_eq!(env.action_dim(), 20);
+    let report = check_env(&mut env, &CheckOptions::default()).unwrap();
+    for check in [
+        conformance_tests::Check::ResetSeedDeterminism,
+        conformance_tests::Check::InvalidAction,
+        conformance_tests::Check::StepAfterEnd,
+    ] {
+        assert!(report.passed(check), "TwoArmLift on Tiago: {check:?}");
+    }
 }

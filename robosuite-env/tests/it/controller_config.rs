@@ -160,9 +160,18 @@ fn every_controller_runs_on_every_robot_with_robosuites_layout() {
             let n = arm.joints().len();
             let grip = arm.gripper().action_dim();
             assert_eq!(arm.controller().name(), *kind);
+            // A mobile robot's other parts keep their own controllers (and
+            // HYBRID_MOBILE_BASE its base mode).
+            let r = &env.robots()[0];
+            let others: usize = r
+                .body_parts()
+                .iter()
+                .map(|b| b.controller().action_dim())
+                .sum::<usize>()
+                + r.composite_controller().extra_limits().0.len();
             assert_eq!(
                 env.action_space().shape(),
-                Some(&[arm_dim(kind, n) + grip][..]),
+                Some(&[arm_dim(kind, n) + grip + others][..]),
                 "{robot} {kind}"
             );
             // It runs: a few steps of mid-range actions keep the state finite.
