@@ -272,6 +272,24 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
             .map(crate::models::bases::mount_info)
             .transpose()?;
         let robot = RobotModel::build(assets, info, i, &grippers, base)?;
+        // robosuite names every mobile base's manipulator mount `manipulator_mount`, so a
+        // second one fails to compile there ("repeated name").
+        let mobile = |r: &RobotModel| {
+            r.mount
+                .as_ref()
+                .is_some_and(|m| m.info.kind == crate::models::bases::BaseKind::MobileBase)
+        };
+        if mobile(&robot) && robots.iter().any(mobile) {
+            return Err(Error::invalid_argument(
+                "robots",
+                format!(
+                    "{} is a second robot on a mobile base: robosuite 1.5.2 names each mobile \
+                     base's mount body `manipulator_mount` and cannot compile two (\"repeated \
+                     name\"); pair one mobile robot with fixed-base robots",
+                    info.name
+                ),
+            ));
+        }
         let (given, path) = config.controller_config(i);
         let parts = robot.body_parts();
         let resolved = match given {

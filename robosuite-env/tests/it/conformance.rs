@@ -121,11 +121,19 @@ fn every_task_on(robot: &str) {
             .unwrap()
             .robots()
             .num_robots();
+        // Two mobile robots cannot share a scene (robosuite fails on it): a mobile robot
+        // takes a Panda as its partner.
+        let mobile = robosuite_env::models::robots::robot_info(robot)
+            .unwrap()
+            .kind
+            .is_mobile();
+        let mut robots = vec![robot; count];
+        if mobile && count > 1 {
+            robots[1..].fill("Panda");
+        }
         let mut env = make_with(
             name,
-            EnvConfig::default()
-                .with_horizon(30)
-                .with_robots(vec![robot; count]),
+            EnvConfig::default().with_horizon(30).with_robots(robots),
         )
         .unwrap_or_else(|e| panic!("{name} on {robot} builds: {e}"));
         let what = format!("{name} on {robot}");

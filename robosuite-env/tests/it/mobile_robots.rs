@@ -156,3 +156,24 @@ fn a_snapshot_continues_a_mobile_episode_bit_identically() {
         |v: &Vec<Vec<f64>>| -> Vec<u64> { v.iter().flatten().map(|x| x.to_bits()).collect() };
     assert_eq!(bits(&first), bits(&second));
 }
+
+#[test]
+fn two_mobile_robots_are_refused_as_robosuite_cannot_compile_them() {
+    match make_with(
+        "TwoArmLift",
+        EnvConfig::default().with_robots(["PandaOmron", "PandaOmron"]),
+    ) {
+        Err(Error::InvalidArgument { name, reason }) => {
+            assert_eq!(name, "robots");
+            assert!(reason.contains("manipulator_mount"), "{reason}");
+        }
+        other => panic!("{:?}", other.map(|_| ())),
+    }
+    // One mobile robot beside a fixed-base one works.
+    let env = make_with(
+        "TwoArmLift",
+        EnvConfig::default().with_robots(["PandaOmron", "Panda"]),
+    )
+    .unwrap();
+    assert_eq!(env.action_dim(), 12 + 7);
+}
