@@ -134,7 +134,7 @@ fn a_snapshot_continues_a_mobile_episode_bit_identically() {
     env.reset(Some(3), None).unwrap();
     let action = |t: usize| {
         let mut a: Vec<f64> = (0..12).map(|i| ((t * 7 + i) as f64 * 0.37).sin()).collect();
-        a[11] = if t % 2 == 0 { 1.0 } else { -1.0 };
+        a[11] = if t.is_multiple_of(2) { 1.0 } else { -1.0 };
         act(a)
     };
     for t in 0..5 {
