@@ -17,7 +17,7 @@ from .models.robots import RobotModel, create_robot
 __all__ = ["Robot", "RobotModel", "GripperModel", "PartController", "CompositeController", "ROBOT_CLASS_MAPPING"]
 
 #: robosuite's robot classes by robot name (the robots this build provides).
-ROBOT_CLASS_MAPPING: dict[str, str] = {name: "FixedBaseRobot" for name in sorted(_native.robot_names())}
+ROBOT_CLASS_MAPPING: dict[str, str] = dict(sorted(_native.robot_classes()))
 
 # robosuite's part controller class names by type.
 _CONTROLLER_CLASSES = {
@@ -93,7 +93,8 @@ class PartController:
 
 class CompositeController:
     """robosuite's ``robot.composite_controller``: its parts in robosuite's action order
-    (each arm's controller, then each arm's gripper)."""
+    (the body parts in the config's order, then each arm's gripper; ``HYBRID_MOBILE_BASE``
+    adds the base mode as the last entry)."""
 
     def __init__(
         self,
@@ -155,19 +156,26 @@ class Robot:
         self.gripper: dict[str, GripperModel | None] = {}
         part_controllers: OrderedDict[str, Any] = OrderedDict()
         split: OrderedDict[str, tuple[int, int]] = OrderedDict()
-        at = 0
+        #: robosuite's robot class (``FixedBaseRobot``, ``WheeledRobot``, ``LeggedRobot``).
+        self.robot_class = info.get("robot_class", "FixedBaseRobot")
+        layout = {name: (start, end) for name, start, end in info.get("layout", [])}
         for a in info["arms"]:
             side = a["side"]
             cfg = parts_cfg.get(side, {}) if isinstance(parts_cfg, dict) else {}
             ref = model.site_id2name(a["eef_site"])
             part_controllers[side] = PartController(a["controller"], side, ref, a["controller_dim"], dict(cfg))
-            split[side] = (at, at + a["controller_dim"])
-            at += a["controller_dim"]
+        #: The body parts other than arms (torso, head, base, legs) and their joints.
+        self.body_parts: dict[str, list[str]] = {}
+        for b in info.get("body_parts", []):
+            cfg = parts_cfg.get(b["name"], {}) if isinstance(parts_cfg, dict) else {}
+            part_controllers[b["name"]] = PartController(b["controller"], b["name"], "", b["controller_dim"], dict(cfg))
+            self.body_parts[b["name"]] = list(b["joints"])
         for a in info["arms"]:
             side = a["side"]
             if a["gripper"] is None:
                 self.gripper[side] = None
                 continue
+            ref = model.site_id2name(a["eef_site"])
             g_joints = [model.joint_id2name(jnt_qposadr.index(q)) for q in a["gripper_qpos"]]
             g_acts = _names(model, "actuator", a["gripper_actuators"])
             prefix = g_acts[0].rsplit("_", 1)[0] + "_" if g_acts else f"gripper{index}_{side}_"
@@ -178,8 +186,10 @@ class Robot:
                 a["gripper"], prefix, g_joints, g_acts, a["gripper_dim"], sites, site_prefix
             )
             part_controllers[f"{side}_gripper"] = PartController("GRIP", f"{side}_gripper", ref, a["gripper_dim"], {})
-            split[f"{side}_gripper"] = (at, at + a["gripper_dim"])
-            at += a["gripper_dim"]
+        # robosuite's `_action_split_indexes`, in action order.
+        for name, (start, end) in sorted(layout.items(), key=lambda kv: kv[1]):
+            split[name] = (start, end)
+        part_controllers = OrderedDict((k, part_controllers[k]) for k in split if k in part_controllers)
         self.part_controllers = part_controllers
         self.composite_controller = CompositeController(
             (controller_config or {}).get("type", "BASIC"),
@@ -187,6 +197,11 @@ class Robot:
             split,
             (self._action_low, self._action_high),
         )
+
+    @property
+    def is_mobile(self) -> bool:
+        """Whether the robot has a mobile base (robosuite's ``is_mobile``)."""
+        return self.robot_class != "FixedBaseRobot"
 
     @property
     def dof(self) -> int:
@@ -222,7 +237,13 @@ class Robot:
         """
         out = np.zeros(self.action_dim)
         split = self.composite_controller._action_split_indexes
+        hybrid = self.composite_controller.name == "HYBRID_MOBILE_BASE"
+        if hybrid:
+            # robosuite's HYBRID_MOBILE_BASE: the last entry is the base mode (-1: arm mode).
+            out[-1] = float(action_dict.get("base_mode", -1.0))
         for part, value in action_dict.items():
+            if hybrid and part == "base_mode":
+                continue
             if part not in split:
                 raise ValueError(f"unknown part {part!r}; parts: {list(split)}")
             start, end = split[part]

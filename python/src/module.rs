@@ -371,6 +371,15 @@ fn robot_names() -> Vec<&'static str> {
     robosuite_env::models::robots::robot_names()
 }
 
+/// robosuite's robot class of each robot this build provides (`ROBOT_CLASS_MAPPING`).
+#[pyfunction]
+fn robot_classes() -> Vec<(&'static str, &'static str)> {
+    robosuite_env::models::robots::ROBOTS
+        .iter()
+        .map(|r| (r.name, r.kind.class_name()))
+        .collect()
+}
+
 /// robosuite's arm part controllers.
 #[pyfunction]
 fn part_controller_types() -> Vec<String> {
@@ -410,6 +419,7 @@ pub fn init(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(part_controller_types, m)?)?;
     m.add_function(wrap_pyfunction!(describe_robot, m)?)?;
     m.add_function(wrap_pyfunction!(robot_names, m)?)?;
+    m.add_function(wrap_pyfunction!(robot_classes, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -723,7 +723,8 @@ impl PyRobosuiteEnv {
     /// The robots as plain values: per robot its name, index, joint `qpos` / `qvel`
     /// addresses, `init_qpos`, action dimension and limits, and per arm its side,
     /// controller, actuators, end-effector site and body, and gripper (name, actuators,
-    /// joint addresses, action dimension).
+    /// joint addresses, action dimension); its robosuite class, composite controller,
+    /// action layout (`(part, start, end)`) and other body parts.
     fn robots_info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let env = self.env()?;
         let list = PyList::empty(py);
@@ -755,6 +756,25 @@ impl PyRobosuiteEnv {
                 arms.append(ad)?;
             }
             d.set_item("arms", arms)?;
+            d.set_item("robot_class", r.kind().class_name())?;
+            d.set_item("composite", r.composite_controller().name())?;
+            let layout = PyList::empty(py);
+            for slot in r.action_layout() {
+                layout.append((slot.name.as_str(), slot.range.start, slot.range.end))?;
+            }
+            d.set_item("layout", layout)?;
+            let parts = PyList::empty(py);
+            for b in r.body_parts() {
+                let bd = PyDict::new(py);
+                bd.set_item("name", b.name())?;
+                bd.set_item("controller", b.controller().name())?;
+                bd.set_item("controller_dim", b.controller().action_dim())?;
+                bd.set_item("joints", b.joint_names().to_vec())?;
+                bd.set_item("qpos", b.qpos().to_vec())?;
+                bd.set_item("actuators", b.actuators().to_vec())?;
+                parts.append(bd)?;
+            }
+            d.set_item("body_parts", parts)?;
             list.append(d)?;
         }
         Ok(list)

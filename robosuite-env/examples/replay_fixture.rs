@@ -25,9 +25,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     let fixture: Value = serde_json::from_str(&std::fs::read_to_string(&path)?)?;
     let rollout = &fixture["rollouts"][index];
-    let robot = fixture["robot"].as_str().unwrap_or("Panda");
-    let config = robosuite_env::EnvConfig::default().with_robots([robot]);
-    let mut env = robosuite_env::make_with(&task, config)?;
+    let robots: Vec<String> = match fixture["robots"].as_array() {
+        Some(list) => list
+            .iter()
+            .filter_map(|r| r.as_str().map(str::to_owned))
+            .collect(),
+        None => vec![fixture["robot"].as_str().unwrap_or("Panda").to_owned()],
+    };
+    let name = fixture["task"].as_str().unwrap_or(&task).to_owned();
+    let mut config = robosuite_env::EnvConfig::default().with_robots(robots);
+    if let Some(c) = fixture["kwargs"]["env_configuration"].as_str() {
+        config = config.with_env_configuration(robosuite_env::EnvConfiguration::parse(c)?);
+    }
+    let mut env = robosuite_env::make_with(&name, config)?;
     env.reset_to_state(
         &numbers(&rollout["task_state"]),
         &numbers(&rollout["init_state"]),

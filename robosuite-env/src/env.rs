@@ -266,12 +266,6 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
     let mut robots = Vec::with_capacity(infos.len());
     let mut controllers = Vec::with_capacity(infos.len());
     for (i, &info) in infos.iter().enumerate() {
-        let (given, path) = config.controller_config(i);
-        let resolved = match given {
-            Some(c) => c.for_robot(assets, info.name, info.arms, &path)?,
-            None => robot_default(assets, info.name)?.fit_to(info.name, info.arms, &path)?,
-        };
-        controllers.push((resolved, path));
         let grippers = (0..info.arms.len())
             .map(|arm| spec.gripper(i, arm, &config.gripper_choice(i, arm)))
             .collect::<Result<Vec<_>>>()?;
@@ -279,7 +273,35 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
             .base_type(i)
             .map(crate::models::bases::mount_info)
             .transpose()?;
-        robots.push(RobotModel::build(assets, info, i, &grippers, base)?);
+        let robot = RobotModel::build(assets, info, i, &grippers, base)?;
+        // robosuite names every mobile base's manipulator mount `manipulator_mount`, so a
+        // second one fails to compile there ("repeated name").
+        let mobile = |r: &RobotModel| {
+            r.mount
+                .as_ref()
+                .is_some_and(|m| m.info.kind == crate::models::bases::BaseKind::MobileBase)
+        };
+        if mobile(&robot) && robots.iter().any(mobile) {
+            return Err(Error::invalid_argument(
+                "robots",
+                format!(
+                    "{} is a second robot on a mobile base: robosuite 1.5.2 names each mobile \
+                     base's mount body `manipulator_mount` and cannot compile two (\"repeated \
+                     name\"); pair one mobile robot with fixed-base robots",
+                    info.name
+                ),
+            ));
+        }
+        let (given, path) = config.controller_config(i);
+        let parts = robot.body_parts();
+        let resolved = match given {
+            Some(c) => c.for_robot(assets, info.name, info.arms, &parts, &path)?,
+            None => {
+                robot_default(assets, info.name)?.fit_to(info.name, info.arms, &parts, &path)?
+            }
+        };
+        controllers.push((resolved, path));
+        robots.push(robot);
     }
     let task_scene = spec.build(assets, &mut robots)?;
     setup.place(&mut robots, configuration, &task_scene.arena);

@@ -3,7 +3,9 @@
 //! `OSC_POSITION` ([`Osc`]), `IK_POSE` ([`InverseKinematics`]), `JOINT_POSITION`
 //! ([`JointPosition`]), `JOINT_VELOCITY` ([`JointVelocity`]) and `JOINT_TORQUE`
 //! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), and robosuite's
-//! controller configurations ([`config`]). The arm controller types are the entries of
+//! controller configurations ([`config`]). The other body parts' controllers implement the
+//! same trait: torso, head and legs run `JOINT_POSITION` (or the types robosuite's part
+//! factories allow), the mobile base [`MobileBaseJointVelocity`]. The arm controller types are the entries of
 //! one table ([`table::ARM_CONTROLLERS`]), from which their list, config parsing and
 //! building derive.
 //!
@@ -19,6 +21,7 @@ mod interpolator;
 mod joint_position;
 mod joint_torque;
 mod joint_velocity;
+mod mobile_base;
 mod opspace;
 mod osc;
 mod state;
@@ -31,6 +34,7 @@ pub use interpolator::{InterpolationKind, LinearInterpolator};
 pub use joint_position::JointPosition;
 pub use joint_torque::JointTorque;
 pub use joint_velocity::JointVelocity;
+pub use mobile_base::MobileBaseJointVelocity;
 pub use osc::Osc;
 
 use crate::sim::Sim;
@@ -51,6 +55,11 @@ pub struct ArmBinding {
     pub nv: usize,
     /// The ctrlrange of each arm motor (robosuite's `actuator_range`).
     pub ctrlrange: Vec<[f64; 2]>,
+    /// Whether a new goal is read in the base frame of the last torque computation (or the
+    /// reset) rather than the current one: robosuite's `WheeledRobot` updates its arm
+    /// controllers' origin only when the composite controller runs them, after the goal
+    /// is set.
+    pub stale_goal_origin: bool,
 }
 
 /// The rates a controller runs at.
@@ -98,6 +107,13 @@ pub trait ArmController: Send + Sync + std::fmt::Debug {
     /// [`Error::InvalidArgument`] for a state of the wrong length or with a non-finite
     /// value; the controller is then unchanged.
     fn set_state(&mut self, state: &[f64]) -> Result<()>;
+
+    /// robosuite's `set_goal_update_mode`: with `desired`, the next deltas apply to the
+    /// last goal instead of the achieved pose (the `HYBRID_MOBILE_BASE` composite
+    /// controller's base mode). Controllers without the notion ignore it.
+    fn set_goal_update_mode(&mut self, desired: bool) {
+        let _ = desired;
+    }
 
     /// A boxed copy.
     fn clone_box(&self) -> Box<dyn ArmController>;

@@ -3,7 +3,7 @@
 //! `Robot.load_model` prepare and compose them.
 
 use super::ROBOT_COLLISION_COLOR;
-use super::bases::{MountInfo, MountModel, RETHINK_MOUNT};
+use super::bases::{BaseKind, MountInfo, MountModel, RETHINK_MOUNT};
 use super::grippers::{GripperInfo, GripperModel, NULL_GRIPPER, gripper_info};
 use crate::assets::Assets;
 use crate::math::euler_xyz_to_quat_wxyz;
@@ -41,6 +41,63 @@ impl BaseOffsets {
     }
 }
 
+/// robosuite's robot classes (`robots/__init__.py`'s `ROBOT_CLASS_MAPPING`): how a robot
+/// stands, which body parts it has and how its controls are applied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum RobotKind {
+    /// `FixedBaseRobot`: arms on a fixed mount; only the arms and grippers are controlled.
+    FixedBase,
+    /// `WheeledRobot`: a mobile base; arms, torso, head and base are controlled, and the
+    /// arms' base frame is read once per reset.
+    Wheeled,
+    /// `LeggedRobot`: legs or a floating base; arms, torso, head, base and legs are
+    /// controlled, and every part's controls are divided by its actuators' gear.
+    Legged,
+}
+
+impl RobotKind {
+    /// robosuite's class name.
+    pub fn class_name(self) -> &'static str {
+        match self {
+            Self::FixedBase => "FixedBaseRobot",
+            Self::Wheeled => "WheeledRobot",
+            Self::Legged => "LeggedRobot",
+        }
+    }
+
+    /// Whether the robot is mobile (robosuite's `is_mobile`; a `MobileRobot`).
+    pub fn is_mobile(self) -> bool {
+        self != Self::FixedBase
+    }
+
+    /// The body parts other than arms this class controls, in robosuite's order of
+    /// loading their controllers.
+    pub fn body_parts(self) -> &'static [&'static str] {
+        match self {
+            Self::FixedBase => &[],
+            Self::Wheeled => &["base", "head", "torso"],
+            Self::Legged => &["base", "legs", "head", "torso"],
+        }
+    }
+}
+
+/// robosuite's `update_joints` / `update_actuators`: the body part an element of a robot
+/// belongs to by its (prefixed) name: `torso`, `base` (`mobile`), `head`, `legs` (`leg`),
+/// else an arm.
+pub fn body_part_of(name: &str) -> Option<&'static str> {
+    if name.contains("torso") {
+        Some("torso")
+    } else if name.contains("mobile") {
+        Some("base")
+    } else if name.contains("head") {
+        Some("head")
+    } else if name.contains("leg") {
+        Some("legs")
+    } else {
+        None
+    }
+}
+
 /// A robot class of robosuite: the figures its Python class holds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RobotInfo {
@@ -66,6 +123,12 @@ pub struct RobotInfo {
     pub top_offset: [f64; 3],
     /// Its horizontal radius (the mount's is taken if larger).
     pub horizontal_radius: f64,
+    /// robosuite's robot class.
+    pub kind: RobotKind,
+    /// The torso joints' rest positions (robosuite's `init_torso_qpos`), if any.
+    pub init_torso_qpos: Option<&'static [f64]>,
+    /// The base joints' rest positions (robosuite's `init_base_qpos`), if any.
+    pub init_base_qpos: Option<&'static [f64]>,
 }
 
 /// The fields every single-arm robot of robosuite shares: one right arm with its gripper on
@@ -83,6 +146,9 @@ const SINGLE_ARM: RobotInfo = RobotInfo {
     base_offsets: BaseOffsets::SINGLE_ARM,
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
+    kind: RobotKind::FixedBase,
+    init_torso_qpos: None,
+    init_base_qpos: None,
 };
 
 /// robosuite's `Panda` (Franka Emika Panda, 7 joints).
@@ -181,10 +247,73 @@ pub const BAXTER: RobotInfo = RobotInfo {
     },
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
+    kind: RobotKind::FixedBase,
+    init_torso_qpos: None,
+    init_base_qpos: None,
+};
+
+/// robosuite's `PandaOmron`: a Panda on the Omron LD-60 mobile base (a `WheeledRobot`
+/// with a torso lift).
+pub const PANDA_OMRON: RobotInfo = RobotInfo {
+    name: "PandaOmron",
+    init_qpos: &[
+        0.0,
+        PI / 16.0 - 0.2,
+        0.00,
+        -PI / 2.0 - PI / 3.0,
+        0.00,
+        PI - 0.4,
+        PI / 4.0,
+    ],
+    default_mount: super::bases::OMRON_MOBILE_BASE,
+    base_offsets: BaseOffsets {
+        bins: [-0.6, -0.1, 0.0],
+        empty: [-0.6, 0.0, 0.0],
+        table_x: -0.16,
+    },
+    kind: RobotKind::Wheeled,
+    init_torso_qpos: Some(&[0.2]),
+    ..PANDA
+};
+
+/// robosuite's `Tiago` (PAL Robotics, bimanual: a torso lift, a two-joint head and two arms
+/// of 6 joints on a velocity-driven base, robosuite's `NullMobileBase`; a `WheeledRobot`).
+pub const TIAGO: RobotInfo = RobotInfo {
+    name: "Tiago",
+    file: "robots/tiago/robot.xml",
+    arms: &["right", "left"],
+    eef_bodies: &["right_hand", "left_hand"],
+    init_qpos: &[
+        0.1, 0.0, 0.0, 0.0, -0.9, 1.45, 1.7, -1.5, 0.5, 0.0, -0.9, 1.45, 1.7, -1.5, 0.5,
+    ],
+    damping: None,
+    default_mount: super::bases::NULL_MOBILE_BASE,
+    default_grippers: &["Robotiq85Gripper", "Robotiq85Gripper"],
+    base_offsets: BaseOffsets {
+        bins: [-0.5, -0.1, 0.0],
+        empty: [-0.29, 0.0, 0.0],
+        table_x: -0.20,
+    },
+    top_offset: [0.0, 0.0, 1.0],
+    horizontal_radius: 0.5,
+    kind: RobotKind::Wheeled,
+    init_torso_qpos: None,
+    init_base_qpos: None,
 };
 
 /// Every robot [`robot_info`] knows.
-pub const ROBOTS: &[RobotInfo] = &[PANDA, SAWYER, IIWA, JACO, KINOVA3, UR5E, XARM7, BAXTER];
+pub const ROBOTS: &[RobotInfo] = &[
+    PANDA,
+    SAWYER,
+    IIWA,
+    JACO,
+    KINOVA3,
+    UR5E,
+    XARM7,
+    BAXTER,
+    PANDA_OMRON,
+    TIAGO,
+];
 
 /// The names of [`ROBOTS`].
 pub fn robot_names() -> Vec<&'static str> {
@@ -328,8 +457,10 @@ impl RobotModel {
         Ok(model)
     }
 
-    /// robosuite's `add_mount`: the mount's root body goes to `base_offset - top_offset` and
-    /// its bodies into the robot's root body.
+    /// robosuite's `add_base`: the base's root body goes to `base_offset - top_offset`; a
+    /// mount's bodies go into the robot's root body (`add_mount`); a mobile base's too, and
+    /// the root body's former contents (but its inertial) move into a new
+    /// `manipulator_mount` body on the base's `support` body (`add_mobile_base`).
     fn add_mount(&mut self, mut mount: MountModel) -> Result<()> {
         let offset = sub(self.xml.base_offset, mount.info.top_offset);
         set_attr(
@@ -338,9 +469,34 @@ impl RobotModel {
             array_to_string(&offset),
         );
         let root = self.xml.root_body();
-        self.xml
-            .doc
-            .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+        match mount.info.kind {
+            BaseKind::Mount => {
+                self.xml
+                    .doc
+                    .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+            }
+            BaseKind::MobileBase => {
+                let old = tree::take_children(
+                    tree::body_mut(self.xml.doc.worldbody_mut(), &root)?,
+                    |_| true,
+                );
+                self.xml
+                    .doc
+                    .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+                let mut manipulator_mount =
+                    tree::element("body", &[("name", "manipulator_mount".to_owned())]);
+                for child in old {
+                    if child.name != "inertial" && child.name != "freejoint" {
+                        tree::append(&mut manipulator_mount, child);
+                    }
+                }
+                let support = mount.xml.name("support");
+                tree::append(
+                    tree::body_mut(self.xml.doc.worldbody_mut(), &support)?,
+                    manipulator_mount,
+                );
+            }
+        }
         self.mount = Some(mount);
         Ok(())
     }
@@ -384,6 +540,47 @@ impl RobotModel {
     /// The robot's actuators, prefixed.
     pub fn actuators(&self) -> Vec<String> {
         self.xml.names_of(&self.xml.names.actuators)
+    }
+
+    /// The robot's joints then its base's, prefixed (robosuite's `all_joints`).
+    pub fn all_joints(&self) -> Vec<String> {
+        let mut out = self.joints();
+        if let Some(m) = &self.mount {
+            out.extend(m.xml.names_of(&m.xml.names.joints));
+        }
+        out
+    }
+
+    /// The robot's actuators then its base's, prefixed (robosuite's `all_actuators`).
+    pub fn all_actuators(&self) -> Vec<String> {
+        let mut out = self.actuators();
+        if let Some(m) = &self.mount {
+            out.extend(m.xml.names_of(&m.xml.names.actuators));
+        }
+        out
+    }
+
+    /// The base's `center` site, prefixed (the frame of a mobile robot's base
+    /// observables and base controller), if the robot has a base.
+    pub fn base_center_site(&self) -> Option<String> {
+        self.mount.as_ref().map(|m| m.xml.name("center"))
+    }
+
+    /// The body parts other than arms this robot controls (robosuite's `has_part` with
+    /// actuators), in robosuite's order of loading their controllers.
+    pub fn body_parts(&self) -> Vec<&'static str> {
+        let joints = self.all_joints();
+        let actuators = self.all_actuators();
+        self.info
+            .kind
+            .body_parts()
+            .iter()
+            .copied()
+            .filter(|&p| {
+                joints.iter().any(|j| body_part_of(j) == Some(p))
+                    && actuators.iter().any(|a| body_part_of(a) == Some(p))
+            })
+            .collect()
     }
 
     /// The eef body of arm `i`, prefixed.

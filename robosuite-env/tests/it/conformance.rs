@@ -121,11 +121,19 @@ fn every_task_on(robot: &str) {
             .unwrap()
             .robots()
             .num_robots();
+        // Two mobile robots cannot share a scene (robosuite fails on it): a mobile robot
+        // takes a Panda as its partner.
+        let mobile = robosuite_env::models::robots::robot_info(robot)
+            .unwrap()
+            .kind
+            .is_mobile();
+        let mut robots = vec![robot; count];
+        if mobile && count > 1 {
+            robots[1..].fill("Panda");
+        }
         let mut env = make_with(
             name,
-            EnvConfig::default()
-                .with_horizon(30)
-                .with_robots(vec![robot; count]),
+            EnvConfig::default().with_horizon(30).with_robots(robots),
         )
         .unwrap_or_else(|e| panic!("{name} on {robot} builds: {e}"));
         let what = format!("{name} on {robot}");
@@ -169,4 +177,25 @@ robot_tests! {
     every_task_on_kinova3_passes_check_env => "Kinova3";
     every_task_on_ur5e_passes_check_env => "UR5e";
     every_task_on_xarm7_passes_check_env => "XArm7";
+    every_task_on_panda_omron_passes_check_env => "PandaOmron";
+}
+
+/// Tiago, a bimanual mobile robot, alone on a two-arm task (robosuite's single-robot
+/// set-up): check_env with its BASIC layout (arms, torso, head, base, grippers).
+#[test]
+fn tiago_on_two_arm_lift_passes_check_env() {
+    let mut env = make_with(
+        "TwoArmLift",
+        EnvConfig::default().with_horizon(30).with_robots(["Tiago"]),
+    )
+    .unwrap();
+    assert_eq!(env.action_dim(), 20);
+    let report = check_env(&mut env, &CheckOptions::default()).unwrap();
+    for check in [
+        conformance_tests::Check::ResetSeedDeterminism,
+        conformance_tests::Check::InvalidAction,
+        conformance_tests::Check::StepAfterEnd,
+    ] {
+        assert!(report.passed(check), "TwoArmLift on Tiago: {check:?}");
+    }
 }

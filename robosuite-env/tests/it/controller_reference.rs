@@ -180,6 +180,7 @@ fn binding(env: &RobosuiteEnv) -> (ArmBinding, Timing) {
             dofs: robot.joint_dofs()[arm.joints()].to_vec(),
             nv: model.ffi().nv as usize,
             ctrlrange: arm.ctrlrange().to_vec(),
+            stale_goal_origin: false,
         },
         Timing {
             timestep: 0.002,

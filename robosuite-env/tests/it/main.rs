@@ -14,6 +14,7 @@ mod controller_reference;
 mod controller_replay;
 mod door_env;
 mod lift_env;
+mod mobile_robots;
 mod nut_assembly_env;
 mod observation_layouts;
 mod osc_fixed_size;

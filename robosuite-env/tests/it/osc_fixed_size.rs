@@ -91,6 +91,7 @@ fn binding(env: &RobosuiteEnv, arm: usize) -> (ArmBinding, Vec<usize>) {
         dofs: robot.joint_dofs()[a.joints()].to_vec(),
         nv: model.ffi().nv as usize,
         ctrlrange: a.ctrlrange().to_vec(),
+        stale_goal_origin: false,
     };
     (bind, a.actuators().to_vec())
 }
@@ -234,7 +235,16 @@ fn every_case_on_the_six_joint_ur5e_is_bit_identical() {
 #[test]
 fn the_other_robots_and_both_baxter_arms_are_bit_identical() {
     let mut covered = vec!["Panda", "UR5e"];
-    for robot in ["Sawyer", "IIWA", "Jaco", "Kinova3", "XArm7", "Baxter"] {
+    for robot in [
+        "Sawyer",
+        "IIWA",
+        "Jaco",
+        "Kinova3",
+        "XArm7",
+        "Baxter",
+        "PandaOmron",
+        "Tiago",
+    ] {
         check_robot(robot, SOME);
         covered.push(robot);
     }
