@@ -2,7 +2,8 @@
 //! ([`ArmController`], for an arm of any number of joints) — `OSC_POSE` and
 //! `OSC_POSITION` ([`Osc`]), `IK_POSE` ([`InverseKinematics`]), `JOINT_POSITION`
 //! ([`JointPosition`]), `JOINT_VELOCITY` ([`JointVelocity`]) and `JOINT_TORQUE`
-//! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), and robosuite's
+//! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), robosuite's
+//! `WHOLE_BODY_IK` composite controller and its IK solver ([`whole_body_ik`]), and robosuite's
 //! controller configurations ([`config`]). The arm controller types are the entries of
 //! one table ([`table::ARM_CONTROLLERS`]), from which their list, config parsing and
 //! building derive.
@@ -23,6 +24,7 @@ mod opspace;
 mod osc;
 mod state;
 pub mod table;
+pub mod whole_body_ik;
 
 pub use config::{ArmControllerConfig, ArmPartConfig, CompositeControllerConfig, ControllerConfig};
 pub use gripper::GripController;
@@ -32,6 +34,7 @@ pub use joint_position::JointPosition;
 pub use joint_torque::JointTorque;
 pub use joint_velocity::JointVelocity;
 pub use osc::Osc;
+pub use whole_body_ik::{IkSolver, WholeBodyIk, WholeBodyIkConfig};
 
 use crate::sim::Sim;
 use gym_core::{Error, Result};

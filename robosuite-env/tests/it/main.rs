@@ -29,4 +29,5 @@ mod task_options;
 mod texture_free_scene;
 mod tool_hang_env;
 mod two_arm_env;
+mod whole_body_ik;
 mod wipe_env;
