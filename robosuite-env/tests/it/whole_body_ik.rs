@@ -387,3 +387,33 @@ fn ik_solver_refuses_joints_robosuite_would_index_wrongly() {
     .unwrap_err();
     assert!(matches!(err, Error::InvalidArgument { .. }), "{err}");
 }
+
+#[test]
+fn joints_that_do_not_move_the_sites_follow_the_nullspace_only() {
+    // Only the head actuated: J = 0 (JJᵀ singular, the pseudo-inverse's SVD path), so the
+    // step is the nullspace pull Kn∘(0 − q) toward the zero posture, as with robosuite's
+    // pinv(0) = 0.
+    let mut sim = sim();
+    let mut c = gr1_config();
+    c["actuation_part_names"] = serde_json::json!(["head"]);
+    c["nullspace_joint_weights"] = serde_json::json!({"robot0_head_pitch": 2.0});
+    let config = WholeBodyIkConfig::from_value(&c, "cfg").unwrap();
+    let mut wb = WholeBodyIk::new(sim.model(), &config, &gr1_parts()).unwrap();
+    let head_pitch = robosuite_env::sim::joint_id(sim.model(), "robot0_head_pitch").unwrap();
+    let mut qpos = sim.data().qpos().to_vec();
+    qpos[head_pitch] = 0.3;
+    qpos[head_pitch - 1] = 0.7; // the head's yaw, unlimited: robosuite clips it to [0, 0]
+    set_state(&mut sim, &qpos);
+    let action = vec![0.5; wb.action_dim()];
+    let mut out = vec![0.0; wb.part_actions_dim()];
+    wb.set_goal(&sim, &action, &mut out).unwrap();
+    let dq = wb.solver().dq();
+    assert!(
+        (dq[0] + 0.7).abs() < 1e-12 && (dq[1] + 0.6).abs() < 1e-12,
+        "{dq:?}"
+    );
+    assert_eq!(out[0], 0.0);
+    assert!((out[1] - 0.24).abs() < 1e-12, "{out:?}");
+    // The rest of the action goes to the other parts unchanged.
+    assert_eq!(&out[2..], &action[12..]);
+}
