@@ -264,12 +264,6 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
     let mut robots = Vec::with_capacity(infos.len());
     let mut controllers = Vec::with_capacity(infos.len());
     for (i, &info) in infos.iter().enumerate() {
-        let (given, path) = config.controller_config(i);
-        let resolved = match given {
-            Some(c) => c.for_robot(assets, info.name, info.arms, &path)?,
-            None => robot_default(assets, info.name)?.fit_to(info.name, info.arms, &path)?,
-        };
-        controllers.push((resolved, path));
         let grippers = (0..info.arms.len())
             .map(|arm| spec.gripper(i, arm, &config.gripper_choice(i, arm)))
             .collect::<Result<Vec<_>>>()?;
@@ -277,7 +271,17 @@ fn compose(spec: &dyn TaskSpec, config: &EnvConfig, assets: &Assets) -> Result<C
             .base_type(i)
             .map(crate::models::bases::mount_info)
             .transpose()?;
-        robots.push(RobotModel::build(assets, info, i, &grippers, base)?);
+        let robot = RobotModel::build(assets, info, i, &grippers, base)?;
+        let (given, path) = config.controller_config(i);
+        let parts = robot.body_parts();
+        let resolved = match given {
+            Some(c) => c.for_robot(assets, info.name, info.arms, &parts, &path)?,
+            None => {
+                robot_default(assets, info.name)?.fit_to(info.name, info.arms, &parts, &path)?
+            }
+        };
+        controllers.push((resolved, path));
+        robots.push(robot);
     }
     let task_scene = spec.build(assets, &mut robots)?;
     setup.place(&mut robots, configuration, &task_scene.arena);

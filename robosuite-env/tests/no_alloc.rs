@@ -326,6 +326,7 @@ fn osc_on_fixed_and_heap_sized_matrices_does_not_allocate() {
             dofs: r.joint_dofs()[arm.joints()].to_vec(),
             nv: model.ffi().nv as usize,
             ctrlrange: arm.ctrlrange().to_vec(),
+            origin_at_reset: false,
         };
         let actuators = arm.actuators().to_vec();
         for (use_ori, uncouple, dynamic) in (0..8).map(|i| (i & 1 == 0, i & 2 == 0, i & 4 == 0)) {

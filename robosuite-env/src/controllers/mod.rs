@@ -4,7 +4,9 @@
 //! ([`JointPosition`]), `JOINT_VELOCITY` ([`JointVelocity`]) and `JOINT_TORQUE`
 //! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), robosuite's
 //! `WHOLE_BODY_IK` composite controller and its IK solver ([`whole_body_ik`]), and robosuite's
-//! controller configurations ([`config`]). The arm controller types are the entries of
+//! controller configurations ([`config`]). The other body parts' controllers implement the
+//! same trait: torso, head and legs run `JOINT_POSITION` (or the types robosuite's part
+//! factories allow), the mobile base [`MobileBaseJointVelocity`]. The arm controller types are the entries of
 //! one table ([`table::ARM_CONTROLLERS`]), from which their list, config parsing and
 //! building derive.
 //!
@@ -20,6 +22,7 @@ mod interpolator;
 mod joint_position;
 mod joint_torque;
 mod joint_velocity;
+mod mobile_base;
 mod opspace;
 mod osc;
 mod state;
@@ -33,6 +36,7 @@ pub use interpolator::{InterpolationKind, LinearInterpolator};
 pub use joint_position::JointPosition;
 pub use joint_torque::JointTorque;
 pub use joint_velocity::JointVelocity;
+pub use mobile_base::MobileBaseJointVelocity;
 pub use osc::Osc;
 pub use whole_body_ik::{IkSolver, WholeBodyIk, WholeBodyIkConfig};
 
@@ -54,6 +58,9 @@ pub struct ArmBinding {
     pub nv: usize,
     /// The ctrlrange of each arm motor (robosuite's `actuator_range`).
     pub ctrlrange: Vec<[f64; 2]>,
+    /// Whether the base frame is read once per reset rather than live: robosuite's
+    /// `WheeledRobot` updates its arm controllers' origin only when it resets.
+    pub origin_at_reset: bool,
 }
 
 /// The rates a controller runs at.
@@ -101,6 +108,13 @@ pub trait ArmController: Send + Sync + std::fmt::Debug {
     /// [`Error::InvalidArgument`] for a state of the wrong length or with a non-finite
     /// value; the controller is then unchanged.
     fn set_state(&mut self, state: &[f64]) -> Result<()>;
+
+    /// robosuite's `set_goal_update_mode`: with `desired`, the next deltas apply to the
+    /// last goal instead of the achieved pose (the `HYBRID_MOBILE_BASE` composite
+    /// controller's base mode). Controllers without the notion ignore it.
+    fn set_goal_update_mode(&mut self, desired: bool) {
+        let _ = desired;
+    }
 
     /// A boxed copy.
     fn clone_box(&self) -> Box<dyn ArmController>;

@@ -68,6 +68,17 @@ pub struct Osc {
     goal_ori: Matrix3<f64>,
     initial_joint: DVector<f64>,
     algebra: Algebra,
+    /// robosuite's `goal_update_mode == "desired"`: deltas apply to the last goal.
+    update_desired: bool,
+    /// No goal was set since the reset (robosuite's reset goal is the world pose).
+    fresh: bool,
+    /// The grip site's world pose at the reset (robosuite's `reset_goal`).
+    reset_pos: Vector3<f64>,
+    reset_ori: Matrix3<f64>,
+    /// The base frame read at the reset, for robots whose origin robosuite updates only
+    /// then ([`ArmBinding::origin_at_reset`]).
+    origin_pos: Vector3<f64>,
+    origin_ori: Matrix3<f64>,
 }
 
 fn six(v: Vec<f64>) -> [f64; 6] {
@@ -191,6 +202,12 @@ impl Osc {
             goal_ori: Matrix3::identity(),
             initial_joint: DVector::zeros(n),
             algebra: Algebra::new(n, true),
+            update_desired: false,
+            fresh: true,
+            reset_pos: Vector3::zeros(),
+            reset_ori: Matrix3::identity(),
+            origin_pos: Vector3::zeros(),
+            origin_ori: Matrix3::identity(),
         })
     }
 
@@ -239,8 +256,16 @@ impl Osc {
         self.initial_joint.as_slice()
     }
 
-    /// The base-frame site's pose (robosuite's `origin_pos`, `origin_ori`), read live.
+    /// The base-frame site's pose (robosuite's `origin_pos`, `origin_ori`), read live, or
+    /// as read at the reset when [`ArmBinding::origin_at_reset`].
     fn origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
+        if self.arm.binding().origin_at_reset {
+            return (self.origin_pos, self.origin_ori);
+        }
+        self.live_origin(sim)
+    }
+
+    fn live_origin(&self, sim: &Sim) -> (Vector3<f64>, Matrix3<f64>) {
         let d = sim.data();
         let s = self.arm.binding().base_site;
         (
@@ -371,6 +396,11 @@ impl ArmController for Osc {
 
     fn reset(&mut self, sim: &Sim) {
         self.arm.restart(sim);
+        (self.origin_pos, self.origin_ori) = self.live_origin(sim);
+        self.update_desired = false;
+        self.fresh = true;
+        self.reset_pos = self.arm.pos;
+        self.reset_ori = self.arm.ori;
         self.initial_joint.copy_from(&self.arm.q);
         self.kp = self.config_kp;
         self.kd = self.config_kd;
@@ -414,7 +444,13 @@ impl ArmController for Osc {
         let input = &action[gains..];
         match self.input_type {
             InputType::Delta => {
-                let (pos, ori) = self.achieved(sim);
+                // robosuite's "desired" mode adds the delta to the last goal, which after a
+                // reset is the world pose (whatever the input frame).
+                let (pos, ori) = match (self.update_desired, self.fresh) {
+                    (false, _) => self.achieved(sim),
+                    (true, true) => (self.reset_pos, self.reset_ori),
+                    (true, false) => (self.goal_pos, self.goal_ori),
+                };
                 let d = |i: usize| self.scale.apply(i, input[i]);
                 self.goal_pos = pos + Vector3::new(d(0), d(1), d(2));
                 self.goal_ori = if self.use_ori {
@@ -432,6 +468,7 @@ impl ArmController for Osc {
                 };
             }
         }
+        self.fresh = false;
         self.clip_goal();
         if let Some(ip) = &mut self.interp_pos {
             ip.set_goal(self.goal_pos.as_slice());
@@ -505,7 +542,17 @@ impl ArmController for Osc {
             out.extend(i.state());
         }
         self.arm.state(&mut out);
+        out.push(f64::from(u8::from(self.update_desired)));
+        out.push(f64::from(u8::from(self.fresh)));
+        out.extend(self.reset_pos.iter());
+        out.extend(self.reset_ori.iter());
+        out.extend(self.origin_pos.iter());
+        out.extend(self.origin_ori.iter());
         out
+    }
+
+    fn set_goal_update_mode(&mut self, desired: bool) {
+        self.update_desired = desired;
     }
 
     fn set_state(&mut self, state: &[f64]) -> Result<()> {
@@ -523,7 +570,13 @@ impl ArmController for Osc {
             i.set_state(&rest[..k]);
             rest = &rest[k..];
         }
-        self.arm.set_state(rest);
+        let rest = self.arm.set_state(rest);
+        self.update_desired = rest[0] != 0.0;
+        self.fresh = rest[1] != 0.0;
+        self.reset_pos.copy_from_slice(&rest[2..5]);
+        self.reset_ori.copy_from_slice(&rest[5..14]);
+        self.origin_pos.copy_from_slice(&rest[14..17]);
+        self.origin_ori.copy_from_slice(&rest[17..26]);
         Ok(())
     }
 
@@ -542,5 +595,9 @@ impl Osc {
                 .map(LinearInterpolator::state_len)
                 .sum::<usize>()
             + self.arm.state_len()
+            + OSC_MODE_STATE
     }
 }
+
+/// The goal-update mode, the reset pose and the reset origin in [`Osc`]'s state.
+const OSC_MODE_STATE: usize = 2 + 12 + 12;

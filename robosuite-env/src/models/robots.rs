@@ -41,6 +41,63 @@ impl BaseOffsets {
     }
 }
 
+/// robosuite's robot classes (`robots/__init__.py`'s `ROBOT_CLASS_MAPPING`): how a robot
+/// stands, which body parts it has and how its controls are applied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum RobotKind {
+    /// `FixedBaseRobot`: arms on a fixed mount; only the arms and grippers are controlled.
+    FixedBase,
+    /// `WheeledRobot`: a mobile base; arms, torso, head and base are controlled, and the
+    /// arms' base frame is read once per reset.
+    Wheeled,
+    /// `LeggedRobot`: legs or a floating base; arms, torso, head, base and legs are
+    /// controlled, and every part's controls are divided by its actuators' gear.
+    Legged,
+}
+
+impl RobotKind {
+    /// robosuite's class name.
+    pub fn class_name(self) -> &'static str {
+        match self {
+            Self::FixedBase => "FixedBaseRobot",
+            Self::Wheeled => "WheeledRobot",
+            Self::Legged => "LeggedRobot",
+        }
+    }
+
+    /// Whether the robot is mobile (robosuite's `is_mobile`; a `MobileRobot`).
+    pub fn is_mobile(self) -> bool {
+        self != Self::FixedBase
+    }
+
+    /// The body parts other than arms this class controls, in robosuite's order of
+    /// loading their controllers.
+    pub fn body_parts(self) -> &'static [&'static str] {
+        match self {
+            Self::FixedBase => &[],
+            Self::Wheeled => &["base", "head", "torso"],
+            Self::Legged => &["base", "legs", "head", "torso"],
+        }
+    }
+}
+
+/// robosuite's `update_joints` / `update_actuators`: the body part an element of a robot
+/// belongs to by its (prefixed) name: `torso`, `base` (`mobile`), `head`, `legs` (`leg`),
+/// else an arm.
+pub fn body_part_of(name: &str) -> Option<&'static str> {
+    if name.contains("torso") {
+        Some("torso")
+    } else if name.contains("mobile") {
+        Some("base")
+    } else if name.contains("head") {
+        Some("head")
+    } else if name.contains("leg") {
+        Some("legs")
+    } else {
+        None
+    }
+}
+
 /// A robot class of robosuite: the figures its Python class holds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RobotInfo {
@@ -66,6 +123,12 @@ pub struct RobotInfo {
     pub top_offset: [f64; 3],
     /// Its horizontal radius (the mount's is taken if larger).
     pub horizontal_radius: f64,
+    /// robosuite's robot class.
+    pub kind: RobotKind,
+    /// The torso joints' rest positions (robosuite's `init_torso_qpos`), if any.
+    pub init_torso_qpos: Option<&'static [f64]>,
+    /// The base joints' rest positions (robosuite's `init_base_qpos`), if any.
+    pub init_base_qpos: Option<&'static [f64]>,
 }
 
 /// The fields every single-arm robot of robosuite shares: one right arm with its gripper on
@@ -83,6 +146,9 @@ const SINGLE_ARM: RobotInfo = RobotInfo {
     base_offsets: BaseOffsets::SINGLE_ARM,
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
+    kind: RobotKind::FixedBase,
+    init_torso_qpos: None,
+    init_base_qpos: None,
 };
 
 /// robosuite's `Panda` (Franka Emika Panda, 7 joints).
@@ -181,6 +247,9 @@ pub const BAXTER: RobotInfo = RobotInfo {
     },
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
+    kind: RobotKind::FixedBase,
+    init_torso_qpos: None,
+    init_base_qpos: None,
 };
 
 /// Every robot [`robot_info`] knows.
@@ -384,6 +453,47 @@ impl RobotModel {
     /// The robot's actuators, prefixed.
     pub fn actuators(&self) -> Vec<String> {
         self.xml.names_of(&self.xml.names.actuators)
+    }
+
+    /// The robot's joints then its base's, prefixed (robosuite's `all_joints`).
+    pub fn all_joints(&self) -> Vec<String> {
+        let mut out = self.joints();
+        if let Some(m) = &self.mount {
+            out.extend(m.xml.names_of(&m.xml.names.joints));
+        }
+        out
+    }
+
+    /// The robot's actuators then its base's, prefixed (robosuite's `all_actuators`).
+    pub fn all_actuators(&self) -> Vec<String> {
+        let mut out = self.actuators();
+        if let Some(m) = &self.mount {
+            out.extend(m.xml.names_of(&m.xml.names.actuators));
+        }
+        out
+    }
+
+    /// The base's `center` site, prefixed (the frame of a mobile robot's base
+    /// observables and base controller), if the robot has a base.
+    pub fn base_center_site(&self) -> Option<String> {
+        self.mount.as_ref().map(|m| m.xml.name("center"))
+    }
+
+    /// The body parts other than arms this robot controls (robosuite's `has_part` with
+    /// actuators), in robosuite's order of loading their controllers.
+    pub fn body_parts(&self) -> Vec<&'static str> {
+        let joints = self.all_joints();
+        let actuators = self.all_actuators();
+        self.info
+            .kind
+            .body_parts()
+            .iter()
+            .copied()
+            .filter(|&p| {
+                joints.iter().any(|j| body_part_of(j) == Some(p))
+                    && actuators.iter().any(|a| body_part_of(a) == Some(p))
+            })
+            .collect()
     }
 
     /// The eef body of arm `i`, prefixed.

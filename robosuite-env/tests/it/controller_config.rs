@@ -63,10 +63,19 @@ fn robosuites_own_files_parse_verbatim() {
         };
         let sides: Vec<&str> = c.arms.iter().map(|(s, _)| s.as_str()).collect();
         assert_eq!(sides, ["right", "left"]);
-        assert_eq!(c.other_parts, ["torso", "head", "base", "legs"]);
-        let fitted = c.fit_to(robot, &["right"], "controller_configs").unwrap();
+        let parts: Vec<&str> = c.parts.iter().map(|(s, _)| s.as_str()).collect();
+        assert_eq!(parts, ["torso", "head", "base", "legs"]);
+        assert_eq!(c.order, ["right", "left", "torso", "head", "base", "legs"]);
+        let fitted = c
+            .fit_to(robot, &["right"], &[], "controller_configs")
+            .unwrap();
         assert_eq!(fitted.arms.len(), 1);
-        assert!(fitted.other_parts.is_empty());
+        assert!(fitted.parts.is_empty());
+        assert_eq!(fitted.order, ["right"]);
+        assert_eq!(
+            c.dropped_parts(&["right"], &[]),
+            ["left", "torso", "head", "base", "legs"]
+        );
     }
     let basic = load_composite_controller_config(&a, Some("BASIC"), None).unwrap();
     assert!(parse(basic).is_ok());
@@ -78,10 +87,17 @@ fn robosuites_own_files_parse_verbatim() {
         };
         assert_eq!(part.controller_type(), *kind);
     }
-    // The composite configs of mobile and whole-body robots are refused as such.
-    for kind in ["WHOLE_BODY_IK", "HYBRID_MOBILE_BASE", "WHOLE_BODY_MINK_IK"] {
-        let value = load_composite_controller_config(&a, Some(kind), None).unwrap();
-        assert!(matches!(parse(value), Err(Error::Unsupported(_))), "{kind}");
+    // HYBRID_MOBILE_BASE parses; WHOLE_BODY_MINK_IK (robosuite's example on the `mink`
+    // library) is refused as not served.
+    let hybrid = load_composite_controller_config(&a, Some("HYBRID_MOBILE_BASE"), None).unwrap();
+    let ControllerConfig::Composite(c) = parse(hybrid).unwrap() else {
+        panic!("a composite config")
+    };
+    assert_eq!(c.kind, "HYBRID_MOBILE_BASE");
+    let mink = load_composite_controller_config(&a, Some("WHOLE_BODY_MINK_IK"), None).unwrap();
+    match parse(mink) {
+        Err(e @ Error::Unsupported(_)) => assert!(e.to_string().contains("mink"), "{e}"),
+        other => panic!("{other:?}"),
     }
     // A file robosuite does not have, and a controller it does not know.
     assert!(matches!(
@@ -266,9 +282,15 @@ fn bad_configs_are_typed_errors_naming_the_key() {
     ));
     assert_eq!(name, "controller_configs.body_parts.right.gripper.type");
     assert!(matches!(
-        parse(json!({"type": "WHOLE_BODY_IK", "body_parts": {}})),
+        parse(json!({"type": "WHOLE_BODY_MINK_IK", "body_parts": {}})),
         Err(Error::Unsupported(_))
     ));
+    // A part given a controller robosuite's factory refuses for it.
+    let (name, reason) = invalid_key(parse(
+        json!({"type": "BASIC", "body_parts": {"base": {"type": "JOINT_POSITION"}}}),
+    ));
+    assert_eq!(name, "controller_configs.body_parts.base.type");
+    assert!(reason.contains("JOINT_VELOCITY"), "{reason}");
 
     // Values out of range or not fitting the robot: errors when the env is made.
     let osc = |c: OscConfig| ControllerConfig::Part(ArmControllerConfig::OscPose(c));
@@ -330,13 +352,21 @@ fn bad_configs_are_typed_errors_naming_the_key() {
     ));
     assert_eq!(name, "controller_configs.body_parts.right.input_type");
     // A config that gives no controller to the robot's arm.
-    let left_only = ControllerConfig::Composite(CompositeControllerConfig {
-        arms: vec![("left".into(), ArmPartConfig::default())],
-        other_parts: Vec::new(),
-    });
+    let mut left_only = CompositeControllerConfig::default();
+    left_only.set_arm("left", ArmPartConfig::default());
+    let left_only = ControllerConfig::Composite(left_only);
     let (name, reason) = invalid_key(lift("Panda", left_only));
     assert_eq!(name, "controller_configs.body_parts");
     assert!(reason.contains("`right` arm"), "{reason}");
+    // A composite controller for mobile robots on a fixed-base arm.
+    let mut hybrid = CompositeControllerConfig::single_arm(ArmPartConfig::default());
+    hybrid.kind = "HYBRID_MOBILE_BASE".into();
+    let (name, reason) = invalid_key(lift("Panda", ControllerConfig::Composite(hybrid)));
+    assert_eq!(name, "controller_configs.type");
+    assert!(
+        reason.contains("FixedBaseRobot") && reason.contains("BASIC"),
+        "{reason}"
+    );
     // One config per robot, or one for all.
     let two = EnvConfig::default().with_controller_configs([
         ControllerConfig::Part(ArmControllerConfig::default()),

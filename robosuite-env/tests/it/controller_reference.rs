@@ -180,6 +180,7 @@ fn binding(env: &RobosuiteEnv) -> (ArmBinding, Timing) {
             dofs: robot.joint_dofs()[arm.joints()].to_vec(),
             nv: model.ffi().nv as usize,
             ctrlrange: arm.ctrlrange().to_vec(),
+            origin_at_reset: false,
         },
         Timing {
             timestep: 0.002,

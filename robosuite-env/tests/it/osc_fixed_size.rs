@@ -91,6 +91,7 @@ fn binding(env: &RobosuiteEnv, arm: usize) -> (ArmBinding, Vec<usize>) {
         dofs: robot.joint_dofs()[a.joints()].to_vec(),
         nv: model.ffi().nv as usize,
         ctrlrange: a.ctrlrange().to_vec(),
+        origin_at_reset: false,
     };
     (bind, a.actuators().to_vec())
 }

@@ -38,7 +38,7 @@ pub fn load_composite_controller_config(
             ));
         }
         (None, Some(robot)) => {
-            let own = dir.join(format!("robots/default_{}.json", robot.to_lowercase()));
+            let own = dir.join(format!("robots/default_{}.json", robot_config_name(robot)));
             if own.is_file() {
                 own
             } else {
@@ -83,6 +83,24 @@ pub fn load_composite_controller_config(
     }
     obj.insert("body_parts".to_owned(), Value::Object(flat));
     Ok(value)
+}
+
+/// robosuite's `_get_robot_name`: the name of a robot's default controller file
+/// (`default_{name}.json`).
+pub fn robot_config_name(robot: &str) -> String {
+    for (key, name) in [
+        ("GR1FloatingBody", "gr1_floating_body"),
+        ("GR1FixedLowerBody", "gr1_fixed_lower_body"),
+        ("GR1", "gr1"),
+        ("G1", "g1"),
+        ("H1", "h1"),
+        ("PandaDex", "panda_dex"),
+    ] {
+        if robot.contains(key) {
+            return name.to_owned();
+        }
+    }
+    robot.to_lowercase()
 }
 
 /// robosuite's `load_part_controller_config(default_controller=...)`: the part config file

@@ -16,7 +16,7 @@ mod values;
 pub use super::table::ARM_CONTROLLER_TYPES;
 pub use files::{
     COMPOSITE_CONTROLLER_TYPES, load_composite_controller_config, load_part_controller_config,
-    read_json,
+    read_json, robot_config_name,
 };
 pub use parts::{
     ArmControllerConfig, GRIPPER_CONTROLLER_TYPES, GripperConfig, IkConfig, JointPositionConfig,
@@ -30,10 +30,23 @@ use gym_core::{Error, Result};
 use serde::de::DeserializeOwned;
 use serde_json::{Map, Value};
 
-/// The body parts robosuite's composite configs name: the arms this crate controls, then
-/// the parts of mobile and humanoid robots, which no robot here has (robosuite drops the
-/// config of a part a robot does not have).
+/// The body parts robosuite's composite configs name: the arms, then the other parts of
+/// mobile and humanoid robots (robosuite drops the config of a part a robot does not have,
+/// with a warning).
 pub const BODY_PARTS: &[&str] = &["right", "left", "torso", "head", "base", "legs"];
+
+/// The controller types robosuite's part factories accept for a body part other than an
+/// arm (`torso_controller_factory`, `head_controller_factory`,
+/// `mobile_base_controller_factory`, `legs_controller_factory`); `None` for an arm or an
+/// unknown part.
+pub fn part_controller_types(part: &str) -> Option<&'static [&'static str]> {
+    match part {
+        "torso" | "head" => Some(&["JOINT_VELOCITY", "JOINT_POSITION"]),
+        "base" => Some(&["JOINT_VELOCITY"]),
+        "legs" => Some(&["JOINT_POSITION", "JOINT_TORQUE"]),
+        _ => None,
+    }
+}
 
 /// One arm's configuration: its controller and its gripper's.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -53,25 +66,44 @@ impl From<ArmControllerConfig> for ArmPartConfig {
     }
 }
 
-/// robosuite's composite `BASIC` controller configuration: one part config per arm, in the
-/// config's order (which is the order of the arms' slices of the action).
-#[derive(Debug, Clone, PartialEq, Default)]
+/// robosuite's composite controller configuration: its type, one part config per body
+/// part, in the config's order (the order of the parts' slices of the action), and the
+/// type's own settings.
+#[derive(Debug, Clone, PartialEq)]
 pub struct CompositeControllerConfig {
+    /// The composite controller type, one of [`COMPOSITE_CONTROLLER_TYPES`] that
+    /// robosuite-rs serves (`"BASIC"`, `"HYBRID_MOBILE_BASE"`, ...).
+    pub kind: String,
     /// The arm parts (`"right"`, `"left"`) in the config's order.
     pub arms: Vec<(String, ArmPartConfig)>,
-    /// The other parts the config names (`torso`, `head`, `base`, `legs`): no robot here
-    /// has them, so they are dropped when the controllers are built, as robosuite drops
-    /// them.
-    pub other_parts: Vec<String>,
+    /// The other body parts (`torso`, `head`, `base`, `legs`) in the config's order; the
+    /// `base` config describes robosuite's `MobileBaseJointVelocityController`.
+    pub parts: Vec<(String, ArmControllerConfig)>,
+    /// Every body part the config names, arms and others, in the config's order.
+    pub order: Vec<String>,
+    /// `composite_controller_specific_configs` as given: the composite type reads the
+    /// keys it uses (`BASIC` and `HYBRID_MOBILE_BASE` none but `body_part_ordering`).
+    pub specific: Map<String, Value>,
+}
+
+impl Default for CompositeControllerConfig {
+    fn default() -> Self {
+        Self {
+            kind: "BASIC".to_owned(),
+            arms: Vec::new(),
+            parts: Vec::new(),
+            order: Vec::new(),
+            specific: Map::new(),
+        }
+    }
 }
 
 impl CompositeControllerConfig {
-    /// A config with `part` on the right arm.
+    /// A `BASIC` config with `part` on the right arm.
     pub fn single_arm(part: impl Into<ArmPartConfig>) -> Self {
-        Self {
-            arms: vec![("right".to_owned(), part.into())],
-            other_parts: Vec::new(),
-        }
+        let mut out = Self::default();
+        out.set_arm("right", part.into());
+        out
     }
 
     /// The config of arm `side`, if the config has one.
@@ -79,12 +111,33 @@ impl CompositeControllerConfig {
         self.arms.iter().find(|(s, _)| s == side).map(|(_, p)| p)
     }
 
+    /// The config of body part `name` other than an arm (`torso`, `head`, `base`,
+    /// `legs`), if the config has one.
+    pub fn part(&self, name: &str) -> Option<&ArmControllerConfig> {
+        self.parts.iter().find(|(s, _)| s == name).map(|(_, p)| p)
+    }
+
     /// Sets the config of arm `side`, keeping its place (or appending it), as robosuite's
     /// `refactor_composite_controller_config` does.
     pub fn set_arm(&mut self, side: &str, part: ArmPartConfig) {
         match self.arms.iter_mut().find(|(s, _)| s == side) {
             Some((_, p)) => *p = part,
-            None => self.arms.push((side.to_owned(), part)),
+            None => {
+                self.arms.push((side.to_owned(), part));
+                self.order.push(side.to_owned());
+            }
+        }
+    }
+
+    /// Sets the config of body part `name` (not an arm), keeping its place (or appending
+    /// it).
+    pub fn set_part(&mut self, name: &str, part: ArmControllerConfig) {
+        match self.parts.iter_mut().find(|(s, _)| s == name) {
+            Some((_, p)) => *p = part,
+            None => {
+                self.parts.push((name.to_owned(), part));
+                self.order.push(name.to_owned());
+            }
         }
     }
 
@@ -93,42 +146,31 @@ impl CompositeControllerConfig {
     ///
     /// # Errors
     /// [`Error::UnknownKey`] for an unknown key or body part; [`Error::InvalidArgument`]
-    /// for a missing or ill-typed value or an unknown controller type;
-    /// [`Error::Unsupported`] for a composite type of mobile or whole-body robots.
+    /// for a missing or ill-typed value, an unknown controller type or one robosuite's
+    /// factory refuses for the part; [`Error::Unsupported`] for a composite type
+    /// robosuite-rs does not serve (see [`crate::robots::composite`]).
     pub fn from_value(value: &Value, path: &str) -> Result<Self> {
+        const KEYS: &[&str] = &[
+            "type",
+            "body_parts",
+            "composite_controller_specific_configs",
+        ];
         let obj = object(value, path)?;
-        for key in obj.keys() {
-            if ![
-                "type",
-                "body_parts",
-                "composite_controller_specific_configs",
-            ]
-            .contains(&key.as_str())
-            {
-                return Err(unknown_key(
-                    path,
-                    key,
-                    &[
-                        "type",
-                        "body_parts",
-                        "composite_controller_specific_configs",
-                    ],
-                ));
-            }
+        if let Some(key) = obj.keys().find(|k| !KEYS.contains(&k.as_str())) {
+            return Err(unknown_key(path, key, KEYS));
         }
         let kind = obj
             .get("type")
             .map_or(Ok("BASIC"), |t| string(t, &join(path, "type")))?;
-        check_composite_type(kind, &join(path, "type"))?;
+        let entry = crate::robots::composite::composite_entry(kind, &join(path, "type"))?;
+        let mut out = Self {
+            kind: entry.name.to_owned(),
+            ..Self::default()
+        };
         if let Some(specific) = obj.get("composite_controller_specific_configs") {
             let at = join(path, "composite_controller_specific_configs");
-            if !object(specific, &at)?.is_empty() {
-                return Err(Error::invalid_argument(
-                    at,
-                    "BASIC takes no composite-specific settings (robosuite's BASIC uses only \
-                     `body_part_ordering`, which robosuite-rs does not offer); give {} or leave it out",
-                ));
-            }
+            out.specific = object(specific, &at)?.clone();
+            (entry.check_specific)(&out.specific, &at)?;
         }
         let parts_path = join(path, "body_parts");
         let parts = object(
@@ -140,7 +182,6 @@ impl CompositeControllerConfig {
             })?,
             &parts_path,
         )?;
-        let mut out = Self::default();
         for (name, part) in parts {
             if name == "arms" {
                 let arms_path = join(&parts_path, "arms");
@@ -161,28 +202,44 @@ impl CompositeControllerConfig {
                 let part = parse_arm_part(value, &at)?;
                 self.set_arm(name, part);
             }
-            "torso" | "head" | "base" | "legs" => {
-                object(value, &at)?;
-                if !self.other_parts.iter().any(|p| p == name) {
-                    self.other_parts.push(name.to_owned());
+            _ => match part_controller_types(name) {
+                Some(types) => {
+                    let kind = object(value, &at)?
+                        .get("type")
+                        .and_then(Value::as_str)
+                        .unwrap_or("");
+                    if !types.contains(&kind) {
+                        return Err(Error::invalid_argument(
+                            join(&at, "type"),
+                            format!(
+                                "robosuite's `{name}` controllers are {}, got `{kind}`",
+                                types.join(", ")
+                            ),
+                        ));
+                    }
+                    let part = parse_arm_part(value, &at)?;
+                    self.set_part(name, part.controller);
                 }
-            }
-            _ => {
-                let mut valid = BODY_PARTS.to_vec();
-                valid.push("arms");
-                return Err(unknown_key(parent, name, &valid));
-            }
+                None => {
+                    let mut valid = BODY_PARTS.to_vec();
+                    valid.push("arms");
+                    return Err(unknown_key(parent, name, &valid));
+                }
+            },
         }
         Ok(())
     }
 
-    /// The config robosuite would run on a robot with arms `arms`: every arm must have a
-    /// part config; configs of parts the robot does not have are dropped. The arms keep the
-    /// config's order.
+    /// The config robosuite would run on a robot with arms `arms` and other body parts
+    /// `parts` (those with actuators: `torso`, `head`, `base`, `legs`): every arm and
+    /// every such part must have a config (robosuite fails on a missing one); configs of
+    /// parts the robot does not have are dropped, as robosuite drops them (with a
+    /// warning). The parts keep the config's order.
     ///
     /// # Errors
-    /// [`Error::InvalidArgument`] naming `path` when an arm of the robot has no config.
-    pub fn fit_to(&self, robot: &str, arms: &[&str], path: &str) -> Result<Self> {
+    /// [`Error::InvalidArgument`] naming `path` when an arm or a part of the robot has no
+    /// config.
+    pub fn fit_to(&self, robot: &str, arms: &[&str], parts: &[&str], path: &str) -> Result<Self> {
         for side in arms {
             if self.arm(side).is_none() {
                 return Err(Error::invalid_argument(
@@ -194,15 +251,44 @@ impl CompositeControllerConfig {
                 ));
             }
         }
+        for part in parts {
+            if self.part(part).is_none() {
+                return Err(Error::invalid_argument(
+                    join(path, "body_parts"),
+                    format!(
+                        "no controller for the `{part}` of {robot}; {robot}'s body parts: {}",
+                        arms.iter()
+                            .chain(parts)
+                            .copied()
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ));
+            }
+        }
+        let keep = |name: &str| arms.contains(&name) || parts.contains(&name);
         Ok(Self {
-            arms: self
-                .arms
+            kind: self.kind.clone(),
+            arms: self.arms.iter().filter(|(s, _)| keep(s)).cloned().collect(),
+            parts: self
+                .parts
                 .iter()
-                .filter(|(s, _)| arms.contains(&s.as_str()))
+                .filter(|(s, _)| keep(s))
                 .cloned()
                 .collect(),
-            other_parts: Vec::new(),
+            order: self.order.iter().filter(|s| keep(s)).cloned().collect(),
+            specific: self.specific.clone(),
         })
+    }
+
+    /// The body parts of this config a robot with arms `arms` and other parts `parts`
+    /// does not have: robosuite drops their configs with a warning.
+    pub fn dropped_parts(&self, arms: &[&str], parts: &[&str]) -> Vec<String> {
+        self.order
+            .iter()
+            .filter(|s| !arms.contains(&s.as_str()) && !parts.contains(&s.as_str()))
+            .cloned()
+            .collect()
     }
 }
 
@@ -273,10 +359,11 @@ impl ControllerConfig {
         Self::from_value(&value, path)
     }
 
-    /// The composite config for robot `robot` (arms `arms`): a composite config as is, a
-    /// part config on every arm of the robot's default config (robosuite's
-    /// `default_{robot}.json`, else `basic.json`), then fitted to the robot
-    /// ([`CompositeControllerConfig::fit_to`]).
+    /// The composite config for robot `robot` (arms `arms`, other body parts `parts`): a
+    /// composite config as is, a part config on every arm of the robot's default config
+    /// (robosuite's `refactor_composite_controller_config`: `default_{robot}.json` by the
+    /// robot's lower-cased name, else a `BASIC` config of the arms alone), then fitted to
+    /// the robot ([`CompositeControllerConfig::fit_to`]).
     ///
     /// # Errors
     /// [`Error::Model`] when robosuite's default config file cannot be read;
@@ -286,18 +373,33 @@ impl ControllerConfig {
         assets: &Assets,
         robot: &str,
         arms: &[&str],
+        parts: &[&str],
         path: &str,
     ) -> Result<CompositeControllerConfig> {
         match self {
-            Self::Composite(c) => c.fit_to(robot, arms, path),
+            Self::Composite(c) => c.fit_to(robot, arms, parts, path),
             Self::Part(part) => {
-                let mut base = robot_default(assets, robot)?;
+                let mut base = refactor_default(assets, robot)?;
                 for side in arms {
                     base.set_arm(side, ArmPartConfig::from(part.clone()));
                 }
-                base.fit_to(robot, arms, path)
+                base.fit_to(robot, arms, parts, path)
             }
         }
+    }
+}
+
+/// robosuite's `refactor_composite_controller_config` base for a part config given to
+/// `robot`: its `default_{robot}.json` (the robot's name lower-cased) if robosuite has one,
+/// else an empty `BASIC` config.
+fn refactor_default(assets: &Assets, robot: &str) -> Result<CompositeControllerConfig> {
+    let own = assets
+        .controller_config_dir()
+        .join(format!("robots/default_{}.json", robot.to_lowercase()));
+    if own.is_file() {
+        robot_default(assets, robot)
+    } else {
+        Ok(CompositeControllerConfig::default())
     }
 }
 
@@ -351,7 +453,9 @@ pub fn ignored_keys(value: &Value) -> Vec<String> {
                             arm(cfg, &join(&at, side), &mut out);
                         }
                     }
-                    ("right" | "left", _) => arm(part, &at, &mut out),
+                    ("right" | "left" | "torso" | "head" | "base" | "legs", _) => {
+                        arm(part, &at, &mut out);
+                    }
                     _ => {}
                 }
             }
@@ -436,23 +540,6 @@ pub(crate) fn typed<T: DeserializeOwned>(value: Value, path: &str) -> Result<T> 
         };
         Error::invalid_argument(at, e.into_inner().to_string())
     })
-}
-
-fn check_composite_type(kind: &str, path: &str) -> Result<()> {
-    match kind {
-        "BASIC" => Ok(()),
-        k if COMPOSITE_CONTROLLER_TYPES.contains(&k) => Err(Error::unsupported(format!(
-            "{path}: the composite controller `{k}` drives mobile or whole-body robots; \
-             robosuite-rs's robots are fixed-base arms, whose composite controller is BASIC"
-        ))),
-        k => Err(Error::invalid_argument(
-            path,
-            format!(
-                "unknown composite controller `{k}`; valid: BASIC (robosuite also has {} for mobile and whole-body robots)",
-                COMPOSITE_CONTROLLER_TYPES[1..].join(", ")
-            ),
-        )),
-    }
 }
 
 fn unknown_type(kind: &str, path: &str) -> Error {
