@@ -8,6 +8,12 @@ Run it with a Python that has robosuite 1.5.2 (and mujoco 3.3.7), for example
 
 It writes robosuite-env/tests/fixtures/whole_body_ik/whole_body_ik.json, figures only.
 
+Env rollouts (`env_cases`): robosuite's WHOLE_BODY_IK config (`whole_body_ik.json`, its
+world frame, and its base frame) driving a Panda on Lift, 60 steps of absolute grip-site
+targets in free motion (the recorder checks that the robot touches nothing), with the
+state after reset, the actions and after each step the joints, grip site and fingers, as
+scripts/record_controllers.py records the arm controllers.
+
 The model is robosuite-rs's own (robosuite-env/tests/fixtures/whole_body_ik/torso_two_arms.xml:
 a torso, a head and two 7-joint arms with grip sites named as robosuite names them), so the
 fixture pins the IK's math without robosuite's robots. robosuite's own `WholeBodyIK` runs on
@@ -230,11 +236,13 @@ def record_case(c, model):
         stubs[part_name] = StubController(part_name, controller_params)
         return stubs[part_name]
 
+    original = cc_module.controller_factory
     cc_module.controller_factory = factory
     sim = StubSim(model, data)
     cc = cc_module.WholeBodyIK(sim, StubRobotModel(arms), grippers)
     specific = copy.deepcopy(c["config"])
     cc.load_controller_config(part_config, specific)
+    cc_module.controller_factory = original
     ik = cc.joint_action_policy
     if c["input_action_repr"]:
         ik.input_action_repr = c["input_action_repr"]
@@ -347,6 +355,94 @@ def record_case(c, model):
     }
 
 
+ENV_STEPS = 60
+
+
+def short(x):
+    """A per-step figure to 10 significant digits (far below the 1e-5 tolerance)."""
+    return float(f"{x:.10g}")
+
+
+def robot_touches(env):
+    m, d = env.sim.model._model, env.sim.data._data
+    robot_geoms = set()
+    for r in env.robots:
+        for g in list(r.robot_model.contact_geoms) + [g for gr in r.gripper.values() for g in gr.contact_geoms]:
+            robot_geoms.add(mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, g))
+    for c in d.contact[: d.ncon]:
+        if (int(c.geom1) in robot_geoms) != (int(c.geom2) in robot_geoms):
+            return True
+    return False
+
+
+def env_case(robot, name, overrides, seed):
+    """A Lift rollout of `robot` under robosuite's WHOLE_BODY_IK (its
+    `default/composite/whole_body_ik.json` with `overrides` in its specific configs):
+    absolute grip-site targets circling the reset pose, the gripper opening and closing."""
+    from robosuite import load_composite_controller_config
+
+    cfg = load_composite_controller_config(controller="WHOLE_BODY_IK")
+    cfg["composite_controller_specific_configs"].update(overrides)
+    given = copy.deepcopy(cfg)
+    env = robosuite.make(
+        "Lift",
+        robots=robot,
+        controller_configs=cfg,
+        has_renderer=False,
+        has_offscreen_renderer=False,
+        use_camera_obs=False,
+        seed=seed,
+    )
+    obs = env.reset()
+    cc = env.robots[0].composite_controller
+    m, d = env.sim.model._model, env.sim.data._data
+    site = m.site("gripper0_right_grip_site").id
+    p0 = d.site_xpos[site].copy()
+    r0 = Rotation.from_matrix(d.site_xmat[site].reshape(3, 3))
+    frame = cc.joint_action_policy.input_ref_frame
+    low, high = env.action_spec
+    record = {
+        "name": name,
+        "config": given,
+        "action_low": limits_json(low),
+        "action_high": limits_json(high),
+        "task_state": [float(x) for x in env.cube.size],
+        "init_state": [float(x) for x in env.sim.get_state().flatten()],
+        "actions": [],
+        "steps": [],
+    }
+    for t in range(ENV_STEPS):
+        w = 2 * np.pi * t / 30.0
+        p = p0 + np.array([0.08 * np.sin(w), 0.06 * np.sin(2 * w), 0.05 * (1 - np.cos(w))])
+        r = Rotation.from_rotvec([0.15 * np.sin(w), 0.1 * np.sin(w), 0.2 * np.sin(w)]) * r0
+        if frame != "world":
+            body = "robot0_base" if frame == "base" else frame
+            fp, fq = m.body(body).pos, m.body(body).quat
+            fr = Rotation.from_quat(np.roll(fq, -1))
+            p, r = fr.inv().apply(p - fp), fr.inv() * r
+        grip = 1.0 if (t // 10) % 2 else -1.0
+        action = np.round(np.concatenate([p, r.as_rotvec(), [grip]]), 6)
+        record["actions"].append([float(x) for x in action])
+        obs, _, _, _ = env.step(action.copy())
+        if robot_touches(env):
+            sys.exit(f"record_whole_body_ik: {robot} {name} touched something at step {t}")
+        record["steps"].append(
+            {
+                "joint_pos": [short(x) for x in obs["robot0_joint_pos"]],
+                "eef_pos": [short(x) for x in obs["robot0_eef_pos"]],
+                "gripper_qpos": [short(x) for x in obs["robot0_gripper_qpos"]],
+            }
+        )
+    env.close()
+    return record
+
+
+ENV_CASES = [
+    ("WHOLE_BODY_IK", {}),
+    ("WHOLE_BODY_IK base frame", {"ik_input_ref_frame": "base"}),
+]
+
+
 def main():
     model = mujoco.MjModel.from_xml_path(MODEL)
     out = {
@@ -354,9 +450,11 @@ def main():
         "mujoco": mujoco.__version__,
         "model": os.path.basename(MODEL),
         "cases": [record_case(c, model) for c in CASES],
+        "env_robot": "Panda",
+        "env_cases": [env_case("Panda", name, o, 300 + i) for i, (name, o) in enumerate(ENV_CASES)],
     }
     fixture_json.dump(out, OUT)
-    print(f"wrote {OUT}: {len(out['cases'])} cases")
+    print(f"wrote {OUT}: {len(out['cases'])} cases, {len(out['env_cases'])} env rollouts")
 
 
 if __name__ == "__main__":

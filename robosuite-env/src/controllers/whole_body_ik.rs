@@ -39,6 +39,10 @@
 
 use super::config::{join, typed};
 use crate::math::{axisangle2quat, mat2quat, quat_multiply_f32, quat2mat_f32};
+use crate::robots::composite::{
+    ActionSlot, CompositeController, CompositeParts, PartRef, PartsMut, basic_set_goal,
+};
+use crate::robots::{Arm, BodyPart};
 use crate::sim::{Sim, mju};
 use gym_core::{Error, Result};
 use mujoco_rs::wrappers::mj_model::MjModel;
@@ -1132,6 +1136,36 @@ impl WholeBodyIk {
     }
 }
 
+impl WholeBodyIk {
+    /// The parts' actions that hold the IK joints where they are (their positions, clipped
+    /// to their ranges), the rest of `action` as [`WholeBodyIk::set_goal`] passes it on
+    /// (finite values only; others become 0).
+    ///
+    /// # Panics
+    /// When `part_actions` does not hold [`WholeBodyIk::part_actions_dim`] values.
+    pub fn hold(&self, sim: &Sim, action: &[f64], part_actions: &mut [f64]) {
+        assert_eq!(part_actions.len(), self.part_actions_dim());
+        let qpos = sim.data().qpos();
+        let n = self.ik_joints;
+        for (c, &j) in self.solver.joints.iter().enumerate() {
+            let [lo, hi] = self.solver.ranges[c];
+            part_actions[c] = qpos[j].max(lo).min(hi);
+        }
+        let start = if self.config.skip_wbc_action {
+            0
+        } else {
+            self.solver.control_dim()
+        };
+        let rest = if self.config.skip_wbc_action { 0 } else { n };
+        for (out, a) in part_actions[rest..]
+            .iter_mut()
+            .zip(action.iter().skip(start))
+        {
+            *out = if a.is_finite() { *a } else { 0.0 };
+        }
+    }
+}
+
 fn push_limits(p: &WholeBodyPart, low: &mut Vec<f64>, high: &mut Vec<f64>) {
     match p.kind {
         PartKind::Arm => {
@@ -1152,4 +1186,127 @@ fn grip_sites(model: &MjModel) -> Vec<String> {
         .filter(|n| n.ends_with("grip_site"))
         .map(str::to_owned)
         .collect()
+}
+
+/// robosuite's `WHOLE_BODY_IK` as a robot's composite controller (the table entry of
+/// [`COMPOSITE_CONTROLLERS`](crate::robots::composite::COMPOSITE_CONTROLLERS)): the robot's
+/// action is [`WholeBodyIk`]'s, its layout ([`CompositeController::layout`], robosuite's
+/// `_action_split_indexes`) the parts' actions. The parts are the config's body parts in
+/// its order, then the arms' grippers.
+///
+/// Should a target be so far (beyond about 1e307) that the IK step overflows, the IK
+/// joints hold their positions for that step.
+#[derive(Debug, Clone)]
+pub struct WholeBodyIkComposite {
+    config: WholeBodyIkConfig,
+    inner: Option<WholeBodyIk>,
+    part_actions: Vec<f64>,
+}
+
+impl WholeBodyIkComposite {
+    /// The controller for `config`, to be bound to a robot
+    /// ([`CompositeController::bind`]).
+    pub fn new(config: WholeBodyIkConfig) -> Self {
+        Self {
+            config,
+            inner: None,
+            part_actions: Vec::new(),
+        }
+    }
+
+    /// The bound controller (`None` before [`CompositeController::bind`]).
+    pub fn whole_body_ik(&self) -> Option<&WholeBodyIk> {
+        self.inner.as_ref()
+    }
+}
+
+impl CompositeController for WholeBodyIkComposite {
+    fn name(&self) -> &'static str {
+        "WHOLE_BODY_IK"
+    }
+
+    fn bind(&mut self, model: &MjModel, parts: &CompositeParts<'_>) -> Result<()> {
+        let mut list = Vec::new();
+        for name in parts.order {
+            if let Some(arm) = parts.arms.iter().find(|a| a.side() == name) {
+                let (low, high) = arm.controller().action_limits();
+                list.push(WholeBodyPart {
+                    name: name.clone(),
+                    joints: parts.joints[arm.joints()].to_vec(),
+                    action_dim: arm.controller().action_dim(),
+                    kind: PartKind::Arm,
+                    limits: (low, high),
+                });
+            } else if let Some(body) = parts.bodies.iter().find(|b| b.name() == name) {
+                let (low, high) = body.controller().action_limits();
+                list.push(WholeBodyPart {
+                    name: name.clone(),
+                    joints: body.joint_names().to_vec(),
+                    action_dim: body.controller().action_dim(),
+                    kind: PartKind::Other,
+                    limits: (low, high),
+                });
+            }
+        }
+        for arm in parts.arms.iter().filter(|a| a.gripper().has_gripper()) {
+            let n = arm.gripper().action_dim();
+            list.push(WholeBodyPart {
+                name: format!("{}_gripper", arm.side()),
+                joints: Vec::new(),
+                action_dim: n,
+                kind: PartKind::Gripper,
+                limits: (vec![-1.0; n], vec![1.0; n]),
+            });
+        }
+        let inner = WholeBodyIk::new(model, &self.config, &list)?;
+        self.part_actions = vec![0.0; inner.part_actions_dim()];
+        self.inner = Some(inner);
+        Ok(())
+    }
+
+    fn layout(&self, _order: &[String], arms: &[Arm], bodies: &[BodyPart]) -> Vec<ActionSlot> {
+        let Some(inner) = &self.inner else {
+            return Vec::new();
+        };
+        inner
+            .part_split()
+            .iter()
+            .filter_map(|(name, range)| {
+                let part = if let Some(i) = arms.iter().position(|a| a.side() == name) {
+                    PartRef::Arm(i)
+                } else if let Some(i) = bodies.iter().position(|b| b.name() == name) {
+                    PartRef::Body(i)
+                } else {
+                    let side = name.strip_suffix("_gripper")?;
+                    PartRef::Gripper(arms.iter().position(|a| a.side() == side)?)
+                };
+                Some(ActionSlot {
+                    name: name.clone(),
+                    part,
+                    range: range.clone(),
+                })
+            })
+            .collect()
+    }
+
+    fn action_limits(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        self.inner.as_ref().map(|w| {
+            let (low, high) = w.action_limits();
+            (low.to_vec(), high.to_vec())
+        })
+    }
+
+    fn set_goal(&mut self, sim: &Sim, parts: PartsMut<'_>, layout: &[ActionSlot], action: &[f64]) {
+        let Some(inner) = &mut self.inner else {
+            return;
+        };
+        if inner.set_goal(sim, action, &mut self.part_actions).is_err() {
+            inner.hold(sim, action, &mut self.part_actions);
+        }
+        basic_set_goal(sim, parts, layout, &self.part_actions);
+    }
+
+    fn clone_box(&self) -> Box<dyn CompositeController> {
+        Box::new(self.clone())
+    }
 }

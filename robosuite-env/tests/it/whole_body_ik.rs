@@ -28,6 +28,28 @@ fn dir() -> PathBuf {
 #[derive(Deserialize)]
 struct Fixture {
     cases: Vec<Case>,
+    env_robot: String,
+    env_cases: Vec<EnvCase>,
+}
+
+/// A recorded Lift rollout under WHOLE_BODY_IK.
+#[derive(Deserialize)]
+struct EnvCase {
+    name: String,
+    config: Value,
+    action_low: Vec<Option<f64>>,
+    action_high: Vec<Option<f64>>,
+    task_state: Vec<f64>,
+    init_state: Vec<f64>,
+    actions: Vec<Vec<f64>>,
+    steps: Vec<EnvStep>,
+}
+
+#[derive(Deserialize)]
+struct EnvStep {
+    joint_pos: Vec<f64>,
+    eef_pos: Vec<f64>,
+    gripper_qpos: Vec<f64>,
 }
 
 #[derive(Deserialize)]
@@ -416,4 +438,72 @@ fn joints_that_do_not_move_the_sites_follow_the_nullspace_only() {
     assert!((out[1] - 0.24).abs() < 1e-12, "{out:?}");
     // The rest of the action goes to the other parts unchanged.
     assert_eq!(&out[2..], &action[12..]);
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// WHOLE_BODY_IK as a robot's composite controller: robosuite's recorded Panda rollouts on
+/// Lift (its `whole_body_ik.json`, world and base frame), replayed from the recorded reset
+/// state; the joints, grip site and fingers within 1e-5 at each of the 60 steps (free
+/// motion, as the arm controllers' replays), the action bounds equal robosuite's.
+#[test]
+fn whole_body_ik_env_rollouts_replay_robosuite() {
+    use crate::common::fixtures::values;
+    use gym_core::Env;
+    use ndarray::{Array1, ArrayD};
+    use robosuite_env::controllers::ControllerConfig;
+    use robosuite_env::{EnvConfig, make_with};
+
+    let fx = fixture();
+    assert_eq!(fx.env_cases.len(), 2);
+    for case in &fx.env_cases {
+        let name = &case.name;
+        let config = ControllerConfig::from_value(&case.config, "controller_configs").unwrap();
+        let mut env = make_with(
+            "Lift",
+            EnvConfig::default()
+                .with_robots([fx.env_robot.as_str()])
+                .with_controller(config),
+        )
+        .unwrap();
+        let space = env.action_space();
+        let inf = |v: &[Option<f64>], s: f64| -> Vec<f64> {
+            v.iter().map(|x| x.unwrap_or(s * f64::INFINITY)).collect()
+        };
+        assert_eq!(
+            space.low().iter().copied().collect::<Vec<_>>(),
+            inf(&case.action_low, -1.0),
+            "{name}"
+        );
+        assert_eq!(
+            space.high().iter().copied().collect::<Vec<_>>(),
+            inf(&case.action_high, 1.0),
+            "{name}"
+        );
+        env.reset_to_state(&case.task_state, &case.init_state)
+            .unwrap();
+        let (mut joints, mut eef, mut grip) = (0.0f64, 0.0f64, 0.0f64);
+        for (a, want) in case.actions.iter().zip(&case.steps) {
+            let action: ArrayD<f64> = Array1::from(a.clone()).into_dyn();
+            let step = env.step(&action).unwrap();
+            let obs = &step.observation;
+            joints = joints.max(max_diff(&values(obs, "robot0_joint_pos"), &want.joint_pos));
+            eef = eef.max(max_diff(&values(obs, "robot0_eef_pos"), &want.eef_pos));
+            grip = grip.max(max_diff(
+                &values(obs, "robot0_gripper_qpos"),
+                &want.gripper_qpos,
+            ));
+        }
+        eprintln!("{name}: joints {joints:.2e} rad, grip site {eef:.2e} m, fingers {grip:.2e}");
+        assert!(
+            joints <= 1e-5 && eef <= 1e-5 && grip <= 1e-5,
+            "{name}: joints {joints:e}, grip site {eef:e}, fingers {grip:e}"
+        );
+    }
 }
