@@ -180,6 +180,9 @@ class Robot:
             part_controllers[f"{side}_gripper"] = PartController("GRIP", f"{side}_gripper", ref, a["gripper_dim"], {})
             split[f"{side}_gripper"] = (at, at + a["gripper_dim"])
             at += a["gripper_dim"]
+        if info.get("action_split") is not None:
+            # WHOLE_BODY_IK: the end-effector poses, then the parts outside the IK.
+            split = OrderedDict((name, (start, end)) for name, start, end in info["action_split"])
         self.part_controllers = part_controllers
         self.composite_controller = CompositeController(
             (controller_config or {}).get("type", "BASIC"),

@@ -707,7 +707,8 @@ impl PyRobosuiteEnv {
     /// The robots as plain values: per robot its name, index, joint `qpos` / `qvel`
     /// addresses, `init_qpos`, action dimension and limits, and per arm its side,
     /// controller, actuators, end-effector site and body, and gripper (name, actuators,
-    /// joint addresses, action dimension).
+    /// joint addresses, action dimension), and the action's slices by part name where the
+    /// composite controller's action is not its parts' (`WHOLE_BODY_IK`; else `None`).
     fn robots_info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let env = self.env()?;
         let list = PyList::empty(py);
@@ -739,6 +740,12 @@ impl PyRobosuiteEnv {
                 arms.append(ad)?;
             }
             d.set_item("arms", arms)?;
+            let split = r.action_split().map(|s| {
+                s.into_iter()
+                    .map(|(name, range)| (name, range.start, range.end))
+                    .collect::<Vec<_>>()
+            });
+            d.set_item("action_split", split)?;
             list.append(d)?;
         }
         Ok(list)

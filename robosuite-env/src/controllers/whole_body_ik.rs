@@ -1296,6 +1296,10 @@ impl CompositeController for WholeBodyIkComposite {
         })
     }
 
+    fn action_split(&self) -> Option<Vec<(String, Range<usize>)>> {
+        self.inner.as_ref().map(|w| w.action_split().to_vec())
+    }
+
     fn set_goal(&mut self, sim: &Sim, parts: PartsMut<'_>, layout: &[ActionSlot], action: &[f64]) {
         let Some(inner) = &mut self.inner else {
             return;

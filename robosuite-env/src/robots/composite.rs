@@ -101,6 +101,13 @@ pub trait CompositeController: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// The whole action's slices by part name when they differ from the layout's
+    /// (`WHOLE_BODY_IK`: robosuite's `_whole_body_controller_action_split_indexes`, which
+    /// its `create_action_vector` uses); `None` (the default) otherwise.
+    fn action_split(&self) -> Option<Vec<(String, Range<usize>)>> {
+        None
+    }
+
     /// Sets the parts' goals from the robot's action (first substep of an env step; the
     /// action has the layout's length plus the extra entries, all finite).
     fn set_goal(&mut self, sim: &Sim, parts: PartsMut<'_>, layout: &[ActionSlot], action: &[f64]) {

@@ -834,6 +834,13 @@ impl Robot {
         &self.layout
     }
 
+    /// The action's slices by part name where the composite controller's action is not
+    /// its layout's (`WHOLE_BODY_IK`: the end-effector poses as `"right"` / `"left"`, then
+    /// the parts outside the IK); `None` when the layout is the action's.
+    pub fn action_split(&self) -> Option<Vec<(String, Range<usize>)>> {
+        self.composite.action_split()
+    }
+
     /// The body parts the controller config named that the robot does not have: robosuite
     /// drops their configs with a warning.
     pub fn dropped_parts(&self) -> &[String] {
