@@ -695,6 +695,14 @@ for _task in ["TwoArmLift", "TwoArmPegInHole", "TwoArmHandover", "TwoArmTranspor
     POLICIES[f"{_task}-Baxter"] = POLICIES[_task]
 
 
+# Robots with a mobile base: their fixtures add a base-moving rollout.
+MOBILE_ROBOTS = ["PandaOmron", "Tiago"]
+# Tiago, one bimanual robot (robosuite's "single-robot" set-up).
+for _task in ["TwoArmLift"]:
+    SETUPS[f"{_task}-Tiago"] = (_task, ["Tiago"], {})
+    POLICIES[f"{_task}-Tiago"] = [POLICIES[_task][1]]
+
+
 def scripted_and_random(scripted, steps, seed):
     """A task's rollouts: the scripted policy for `steps` steps, then 60 random actions."""
     return [("scripted", scripted, steps), ("random", lambda env: random_policy(seed, env.action_dim), 60)]
@@ -710,6 +718,38 @@ for _task, _nut in [("NutAssembly", "RoundNut"), ("NutAssemblySquare", "SquareNu
 POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, env.nuts[env.nut_id].name), 200, 13)
 
 
+def for_robot(env, policy):
+    """A single-arm policy's [arm (6), gripper (1)] actions in the layout of the robot's
+    composite controller (robosuite's `create_action_vector`; other parts at rest, a
+    HYBRID_MOBILE_BASE robot in arm mode), for robots whose action is not that layout."""
+    robot = env.robots[0]
+    if env.action_dim == 7 or len(robot.arms) != 1:
+        return policy
+
+    def act(obs):
+        a = np.asarray(policy(obs), dtype=np.float64)
+        return robot.create_action_vector({"right": a[:6], "right_gripper": a[6:7]})
+
+    return act
+
+
+def base_policy(env, steps=60):
+    """A mobile robot's base rollout: the base drives forward, sideways and turns while the
+    torso rises, first in arm mode, then in base mode (HYBRID_MOBILE_BASE's last entry), and
+    the arms hold still."""
+    robot = env.robots[0]
+    state = {"t": 0}
+
+    def act(obs):
+        state["t"] += 1
+        t = state["t"]
+        parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]), "torso": np.array([0.5])}
+        parts["base_mode"] = 1.0 if t > steps // 2 else -1.0
+        return robot.create_action_vector(parts)
+
+    return act
+
+
 def rollout(task, robot, seed, make_policy, steps, kwargs):
     env = make(task, seed, robots=robot, **kwargs)
     obs = env.reset()
@@ -720,7 +760,7 @@ def rollout(task, robot, seed, make_policy, steps, kwargs):
         "steps": [],
     }
     keys = obs_keys(task, obs)
-    policy = make_policy(env)
+    policy = for_robot(env, make_policy(env))
     for _ in range(steps):
         action = np.asarray(policy(obs), dtype=np.float64)
         obs, reward, done, _ = env.step(action)
@@ -783,7 +823,10 @@ def record(fixture, robot, out, resets):
         "rollouts": [],
         "placement": placement(task, robot, resets, kwargs),
     }
-    for i, (kind, make_policy, steps) in enumerate(POLICIES[fixture]):
+    policies = list(POLICIES[fixture])
+    if (robot if isinstance(robot, str) else robot[0]) in MOBILE_ROBOTS:
+        policies.append(("base", base_policy, 60))
+    for i, (kind, make_policy, steps) in enumerate(policies):
         r = rollout(task, robot, 100 + i, make_policy, steps, kwargs)
         r["kind"] = kind
         data["rollouts"].append(r)

@@ -3,7 +3,7 @@
 //! `Robot.load_model` prepare and compose them.
 
 use super::ROBOT_COLLISION_COLOR;
-use super::bases::{MountInfo, MountModel, RETHINK_MOUNT};
+use super::bases::{BaseKind, MountInfo, MountModel, RETHINK_MOUNT};
 use super::grippers::{GripperInfo, GripperModel, NULL_GRIPPER, gripper_info};
 use crate::assets::Assets;
 use crate::math::euler_xyz_to_quat_wxyz;
@@ -252,8 +252,68 @@ pub const BAXTER: RobotInfo = RobotInfo {
     init_base_qpos: None,
 };
 
+/// robosuite's `PandaOmron`: a Panda on the Omron LD-60 mobile base (a `WheeledRobot`
+/// with a torso lift).
+pub const PANDA_OMRON: RobotInfo = RobotInfo {
+    name: "PandaOmron",
+    init_qpos: &[
+        0.0,
+        PI / 16.0 - 0.2,
+        0.00,
+        -PI / 2.0 - PI / 3.0,
+        0.00,
+        PI - 0.4,
+        PI / 4.0,
+    ],
+    default_mount: super::bases::OMRON_MOBILE_BASE,
+    base_offsets: BaseOffsets {
+        bins: [-0.6, -0.1, 0.0],
+        empty: [-0.6, 0.0, 0.0],
+        table_x: -0.16,
+    },
+    kind: RobotKind::Wheeled,
+    init_torso_qpos: Some(&[0.2]),
+    ..PANDA
+};
+
+/// robosuite's `Tiago` (PAL Robotics, bimanual: a torso lift, a two-joint head and two arms
+/// of 6 joints on a velocity-driven base, robosuite's `NullMobileBase`; a `WheeledRobot`).
+pub const TIAGO: RobotInfo = RobotInfo {
+    name: "Tiago",
+    file: "robots/tiago/robot.xml",
+    arms: &["right", "left"],
+    eef_bodies: &["right_hand", "left_hand"],
+    init_qpos: &[
+        0.1, 0.0, 0.0, 0.0, -0.9, 1.45, 1.7, -1.5, 0.5, 0.0, -0.9, 1.45, 1.7, -1.5, 0.5,
+    ],
+    damping: None,
+    default_mount: super::bases::NULL_MOBILE_BASE,
+    default_grippers: &["Robotiq85Gripper", "Robotiq85Gripper"],
+    base_offsets: BaseOffsets {
+        bins: [-0.5, -0.1, 0.0],
+        empty: [-0.29, 0.0, 0.0],
+        table_x: -0.20,
+    },
+    top_offset: [0.0, 0.0, 1.0],
+    horizontal_radius: 0.5,
+    kind: RobotKind::Wheeled,
+    init_torso_qpos: None,
+    init_base_qpos: None,
+};
+
 /// Every robot [`robot_info`] knows.
-pub const ROBOTS: &[RobotInfo] = &[PANDA, SAWYER, IIWA, JACO, KINOVA3, UR5E, XARM7, BAXTER];
+pub const ROBOTS: &[RobotInfo] = &[
+    PANDA,
+    SAWYER,
+    IIWA,
+    JACO,
+    KINOVA3,
+    UR5E,
+    XARM7,
+    BAXTER,
+    PANDA_OMRON,
+    TIAGO,
+];
 
 /// The names of [`ROBOTS`].
 pub fn robot_names() -> Vec<&'static str> {
@@ -397,8 +457,10 @@ impl RobotModel {
         Ok(model)
     }
 
-    /// robosuite's `add_mount`: the mount's root body goes to `base_offset - top_offset` and
-    /// its bodies into the robot's root body.
+    /// robosuite's `add_base`: the base's root body goes to `base_offset - top_offset`; a
+    /// mount's bodies go into the robot's root body (`add_mount`); a mobile base's too, and
+    /// the root body's former contents (but its inertial) move into a new
+    /// `manipulator_mount` body on the base's `support` body (`add_mobile_base`).
     fn add_mount(&mut self, mut mount: MountModel) -> Result<()> {
         let offset = sub(self.xml.base_offset, mount.info.top_offset);
         set_attr(
@@ -407,9 +469,34 @@ impl RobotModel {
             array_to_string(&offset),
         );
         let root = self.xml.root_body();
-        self.xml
-            .doc
-            .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+        match mount.info.kind {
+            BaseKind::Mount => {
+                self.xml
+                    .doc
+                    .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+            }
+            BaseKind::MobileBase => {
+                let old = tree::take_children(
+                    tree::body_mut(self.xml.doc.worldbody_mut(), &root)?,
+                    |_| true,
+                );
+                self.xml
+                    .doc
+                    .merge(mount.xml.doc.clone(), MergeBody::Body(&root))?;
+                let mut manipulator_mount =
+                    tree::element("body", &[("name", "manipulator_mount".to_owned())]);
+                for child in old {
+                    if child.name != "inertial" && child.name != "freejoint" {
+                        tree::append(&mut manipulator_mount, child);
+                    }
+                }
+                let support = mount.xml.name("support");
+                tree::append(
+                    tree::body_mut(self.xml.doc.worldbody_mut(), &support)?,
+                    manipulator_mount,
+                );
+            }
+        }
         self.mount = Some(mount);
         Ok(())
     }
