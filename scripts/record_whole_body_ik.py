@@ -8,10 +8,12 @@ Run it with a Python that has robosuite 1.5.2 (and mujoco 3.3.7), for example
 
 It writes robosuite-env/tests/fixtures/whole_body_ik/whole_body_ik.json, figures only.
 
-Env rollouts (`env_cases`): robosuite's WHOLE_BODY_IK config (`whole_body_ik.json`, its
-world frame, and its base frame) driving a Panda on Lift, 60 steps of absolute grip-site
-targets in free motion (the recorder checks that the robot touches nothing), with the
-state after reset, the actions and after each step the joints, grip site and fingers, as
+Env rollouts (`env_cases`): robosuite's WHOLE_BODY_IK configs on Lift (`whole_body_ik.json`
+driving a Panda, in its world frame and in the base frame; `default_tiago_whole_body_ik.json`
+on Tiago, on TwoArmLift; `default_pandaomron_whole_body_ik.json` on PandaOmron, whose frame is its mobile
+base), 60 steps of absolute grip-site targets in free motion (the recorder checks that the robot touches nothing), with the
+state after reset, the actions and after each step the joints, grip sites and fingers (the
+observation keys named by `eef_keys` and `gripper_keys`, in that order), as
 scripts/record_controllers.py records the arm controllers.
 
 The model is robosuite-rs's own (robosuite-env/tests/fixtures/whole_body_ik/torso_two_arms.xml:
@@ -369,23 +371,30 @@ def robot_touches(env):
     for r in env.robots:
         for g in list(r.robot_model.contact_geoms) + [g for gr in r.gripper.values() for g in gr.contact_geoms]:
             robot_geoms.add(mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, g))
+    # A mobile base stands on the floor.
+    floor = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "floor")
     for c in d.contact[: d.ncon]:
+        if floor in (int(c.geom1), int(c.geom2)):
+            continue
         if (int(c.geom1) in robot_geoms) != (int(c.geom2) in robot_geoms):
             return True
     return False
 
 
-def env_case(robot, name, overrides, seed):
-    """A Lift rollout of `robot` under robosuite's WHOLE_BODY_IK (its
-    `default/composite/whole_body_ik.json` with `overrides` in its specific configs):
-    absolute grip-site targets circling the reset pose, the gripper opening and closing."""
+def env_case(robot, task, name, config_file, overrides, seed, toggle=True):
+    """A rollout of `robot` on `task` under robosuite's WHOLE_BODY_IK (the config file
+    `config_file` of robosuite's `controllers/config/`, with `overrides` in its specific
+    configs): absolute grip-site targets circling each site's reset pose, the grippers
+    opening and closing (held open unless `toggle`), zero for the other parts (a mobile
+    base's velocity)."""
     from robosuite import load_composite_controller_config
 
-    cfg = load_composite_controller_config(controller="WHOLE_BODY_IK")
+    path = os.path.join(os.path.dirname(robosuite.__file__), "controllers", "config", config_file)
+    cfg = load_composite_controller_config(controller=path, robot=robot)
     cfg["composite_controller_specific_configs"].update(overrides)
     given = copy.deepcopy(cfg)
     env = robosuite.make(
-        "Lift",
+        task,
         robots=robot,
         controller_configs=cfg,
         has_renderer=False,
@@ -395,42 +404,57 @@ def env_case(robot, name, overrides, seed):
     )
     obs = env.reset()
     cc = env.robots[0].composite_controller
+    ik = cc.joint_action_policy
     m, d = env.sim.model._model, env.sim.data._data
-    site = m.site("gripper0_right_grip_site").id
-    p0 = d.site_xpos[site].copy()
-    r0 = Rotation.from_matrix(d.site_xmat[site].reshape(3, 3))
-    frame = cc.joint_action_policy.input_ref_frame
+    start = {}
+    for site in ik.site_names:
+        sid = m.site(site).id
+        start[site] = (d.site_xpos[sid].copy(), Rotation.from_matrix(d.site_xmat[sid].reshape(3, 3)))
+    frame = ik.input_ref_frame
+    ik_split = ik.action_split_indexes()
     low, high = env.action_spec
     record = {
         "name": name,
+        "robot": robot,
+        "task": task,
         "config": given,
         "action_low": limits_json(low),
         "action_high": limits_json(high),
-        "task_state": [float(x) for x in env.cube.size],
+        "task_state": [float(x) for x in env.cube.size] if task == "Lift" else [],
         "init_state": [float(x) for x in env.sim.get_state().flatten()],
         "actions": [],
         "steps": [],
     }
     for t in range(ENV_STEPS):
         w = 2 * np.pi * t / 30.0
-        p = p0 + np.array([0.08 * np.sin(w), 0.06 * np.sin(2 * w), 0.05 * (1 - np.cos(w))])
-        r = Rotation.from_rotvec([0.15 * np.sin(w), 0.1 * np.sin(w), 0.2 * np.sin(w)]) * r0
-        if frame != "world":
-            body = "robot0_base" if frame == "base" else frame
-            fp, fq = m.body(body).pos, m.body(body).quat
-            fr = Rotation.from_quat(np.roll(fq, -1))
-            p, r = fr.inv().apply(p - fp), fr.inv() * r
-        grip = 1.0 if (t // 10) % 2 else -1.0
-        action = np.round(np.concatenate([p, r.as_rotvec(), [grip]]), 6)
+        action = np.zeros(env.action_dim)
+        for i, site in enumerate(ik.site_names):
+            p0, r0 = start[site]
+            sign = 1.0 if i == 0 else -1.0
+            p = p0 + np.array([0.08 * np.sin(w), sign * 0.06 * np.sin(2 * w), 0.05 * (1 - np.cos(w))])
+            r = Rotation.from_rotvec([0.15 * np.sin(w), sign * 0.1 * np.sin(w), 0.2 * np.sin(w)]) * r0
+            if frame != "world":
+                body = "robot0_base" if frame == "base" else frame
+                fp, fq = m.body(body).pos, m.body(body).quat
+                fr = Rotation.from_quat(np.roll(fq, -1))
+                p, r = fr.inv().apply(p - fp), fr.inv() * r
+            k = 6 * i
+            action[k : k + 6] = np.concatenate([p, r.as_rotvec()])
+        for part, (a, b) in cc._whole_body_controller_action_split_indexes.items():
+            if part.endswith("_gripper"):
+                action[a:b] = 1.0 if toggle and (t // 10) % 2 else -1.0
+        action = np.round(action, 6)
         record["actions"].append([float(x) for x in action])
         obs, _, _, _ = env.step(action.copy())
         if robot_touches(env):
             sys.exit(f"record_whole_body_ik: {robot} {name} touched something at step {t}")
+        record["eef_keys"] = sorted(k for k in obs if k.endswith("eef_pos") and "base_to" not in k)
+        record["gripper_keys"] = sorted(k for k in obs if k.endswith("gripper_qpos"))
         record["steps"].append(
             {
                 "joint_pos": [short(x) for x in obs["robot0_joint_pos"]],
-                "eef_pos": [short(x) for x in obs["robot0_eef_pos"]],
-                "gripper_qpos": [short(x) for x in obs["robot0_gripper_qpos"]],
+                "eef_pos": [short(x) for k in record["eef_keys"] for x in obs[k]],
+                "gripper_qpos": [short(x) for k in record["gripper_keys"] for x in obs[k]],
             }
         )
     env.close()
@@ -438,8 +462,12 @@ def env_case(robot, name, overrides, seed):
 
 
 ENV_CASES = [
-    ("WHOLE_BODY_IK", {}),
-    ("WHOLE_BODY_IK base frame", {"ik_input_ref_frame": "base"}),
+    ("Panda", "Lift", "WHOLE_BODY_IK", "default/composite/whole_body_ik.json", {}),
+    ("Panda", "Lift", "WHOLE_BODY_IK base frame", "default/composite/whole_body_ik.json", {"ik_input_ref_frame": "base"}),
+    # Tiago's Robotiq85 fingers (a closed linkage) differ between MuJoCo 3.3.7 and 3.17 by
+    # up to 0.1 when they reverse (as the UR5e's in record_controllers.py): held open here.
+    ("Tiago", "TwoArmLift", "Tiago WHOLE_BODY_IK", "robots/default_tiago_whole_body_ik.json", {"toggle": False}),
+    ("PandaOmron", "Lift", "PandaOmron WHOLE_BODY_IK", "robots/default_pandaomron_whole_body_ik.json", {}),
 ]
 
 
@@ -450,8 +478,10 @@ def main():
         "mujoco": mujoco.__version__,
         "model": os.path.basename(MODEL),
         "cases": [record_case(c, model) for c in CASES],
-        "env_robot": "Panda",
-        "env_cases": [env_case("Panda", name, o, 300 + i) for i, (name, o) in enumerate(ENV_CASES)],
+        "env_cases": [
+            env_case(r, t, name, f, {k: v for k, v in o.items() if k != "toggle"}, 300 + i, o.get("toggle", True))
+            for i, (r, t, name, f, o) in enumerate(ENV_CASES)
+        ],
     }
     fixture_json.dump(out, OUT)
     print(f"wrote {OUT}: {len(out['cases'])} cases, {len(out['env_cases'])} env rollouts")

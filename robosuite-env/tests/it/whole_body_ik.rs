@@ -28,7 +28,6 @@ fn dir() -> PathBuf {
 #[derive(Deserialize)]
 struct Fixture {
     cases: Vec<Case>,
-    env_robot: String,
     env_cases: Vec<EnvCase>,
 }
 
@@ -36,7 +35,11 @@ struct Fixture {
 #[derive(Deserialize)]
 struct EnvCase {
     name: String,
+    robot: String,
+    task: String,
     config: Value,
+    eef_keys: Vec<String>,
+    gripper_keys: Vec<String>,
     action_low: Vec<Option<f64>>,
     action_high: Vec<Option<f64>>,
     task_state: Vec<f64>,
@@ -448,10 +451,11 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// WHOLE_BODY_IK as a robot's composite controller: robosuite's recorded Panda rollouts on
-/// Lift (its `whole_body_ik.json`, world and base frame), replayed from the recorded reset
-/// state; the joints, grip site and fingers within 1e-5 at each of the 60 steps (free
-/// motion, as the arm controllers' replays), the action bounds equal robosuite's.
+/// WHOLE_BODY_IK as a robot's composite controller: robosuite's recorded rollouts (its
+/// `whole_body_ik.json` on a Panda on Lift, world and base frame; its Tiago config on
+/// TwoArmLift and its PandaOmron config on Lift), replayed from the recorded reset state; the joints, grip sites
+/// and fingers within 1e-5 at each of the 60 steps (free motion, as the arm controllers'
+/// replays), the action bounds equal robosuite's.
 #[test]
 fn whole_body_ik_env_rollouts_replay_robosuite() {
     use crate::common::fixtures::values;
@@ -461,14 +465,14 @@ fn whole_body_ik_env_rollouts_replay_robosuite() {
     use robosuite_env::{EnvConfig, make_with};
 
     let fx = fixture();
-    assert_eq!(fx.env_cases.len(), 2);
+    assert_eq!(fx.env_cases.len(), 4);
     for case in &fx.env_cases {
         let name = &case.name;
         let config = ControllerConfig::from_value(&case.config, "controller_configs").unwrap();
         let mut env = make_with(
-            "Lift",
+            &case.task,
             EnvConfig::default()
-                .with_robots([fx.env_robot.as_str()])
+                .with_robots([case.robot.as_str()])
                 .with_controller(config),
         )
         .unwrap();
@@ -493,12 +497,12 @@ fn whole_body_ik_env_rollouts_replay_robosuite() {
             let action: ArrayD<f64> = Array1::from(a.clone()).into_dyn();
             let step = env.step(&action).unwrap();
             let obs = &step.observation;
+            let concat = |keys: &[String]| -> Vec<f64> {
+                keys.iter().flat_map(|k| values(obs, k)).collect()
+            };
             joints = joints.max(max_diff(&values(obs, "robot0_joint_pos"), &want.joint_pos));
-            eef = eef.max(max_diff(&values(obs, "robot0_eef_pos"), &want.eef_pos));
-            grip = grip.max(max_diff(
-                &values(obs, "robot0_gripper_qpos"),
-                &want.gripper_qpos,
-            ));
+            eef = eef.max(max_diff(&concat(&case.eef_keys), &want.eef_pos));
+            grip = grip.max(max_diff(&concat(&case.gripper_keys), &want.gripper_qpos));
         }
         eprintln!("{name}: joints {joints:.2e} rad, grip site {eef:.2e} m, fingers {grip:.2e}");
         assert!(
