@@ -280,12 +280,28 @@ fn whole_body_ik_refuses_non_finite_actions_and_keeps_its_state() {
     // A target far beyond reach: a finite best effort within the joint ranges.
     action[..3].copy_from_slice(&[1e12, -1e12, 1e12]);
     wb.set_goal(&sim, &action, &mut out).unwrap();
-    let q = wb.solver().q_des();
+    let q = wb.solver().q_des().to_vec();
     assert!(q.iter().all(|v| v.is_finite()));
     let peak = wb.solver().dq().iter().fold(0.0f64, |a, v| a.max(v.abs()));
     assert!((peak - 4.0).abs() < 1e-12, "{peak}");
+    // A target so far that the step overflows: refused; `hold` keeps the IK joints where
+    // they are (what the robot's composite controller then commands).
+    let mut overflow = action.clone();
+    overflow[0] = 1e308;
+    let before = out.clone();
+    let err = wb.set_goal(&sim, &overflow, &mut out).unwrap_err();
+    assert!(matches!(err, Error::InvalidAction(_)), "{err}");
+    assert_eq!(out, before);
+    wb.hold(&sim, &overflow, &mut out);
+    let qpos = sim.data().qpos();
+    for (c, name) in wb.solver().joint_names().iter().enumerate() {
+        let id = robosuite_env::sim::joint_id(sim.model(), name).unwrap();
+        let [lo, hi] = sim.model().jnt_range()[id];
+        assert_eq!(out[c], qpos[id].clamp(lo, hi), "{name}");
+    }
+    assert_eq!(&out[19..], &overflow[12..]);
     let model = sim.model();
-    for (name, v) in wb.solver().joint_names().iter().zip(q) {
+    for (name, v) in wb.solver().joint_names().iter().zip(&q) {
         let id = robosuite_env::sim::joint_id(model, name).unwrap();
         let [lo, hi] = model.jnt_range()[id];
         assert!(*v >= lo && *v <= hi, "{name}: {v} outside [{lo}, {hi}]");
