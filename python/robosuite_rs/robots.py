@@ -190,6 +190,9 @@ class Robot:
         for name, (start, end) in sorted(layout.items(), key=lambda kv: kv[1]):
             split[name] = (start, end)
         part_controllers = OrderedDict((k, part_controllers[k]) for k in split if k in part_controllers)
+        if info.get("action_split") is not None:
+            # WHOLE_BODY_IK: the end-effector poses, then the parts outside the IK.
+            split = OrderedDict((name, (start, end)) for name, start, end in info["action_split"])
         self.part_controllers = part_controllers
         self.composite_controller = CompositeController(
             (controller_config or {}).get("type", "BASIC"),

@@ -724,7 +724,9 @@ impl PyRobosuiteEnv {
     /// addresses, `init_qpos`, action dimension and limits, and per arm its side,
     /// controller, actuators, end-effector site and body, and gripper (name, actuators,
     /// joint addresses, action dimension); its robosuite class, composite controller,
-    /// action layout (`(part, start, end)`) and other body parts.
+    /// action layout (`(part, start, end)`) and other body parts; and the action's slices by
+    /// part name where the composite controller's action is not its parts' (`WHOLE_BODY_IK`;
+    /// else `None`).
     fn robots_info<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let env = self.env()?;
         let list = PyList::empty(py);
@@ -775,6 +777,12 @@ impl PyRobosuiteEnv {
                 parts.append(bd)?;
             }
             d.set_item("body_parts", parts)?;
+            let split = r.action_split().map(|s| {
+                s.into_iter()
+                    .map(|(name, range)| (name, range.start, range.end))
+                    .collect::<Vec<_>>()
+            });
+            d.set_item("action_split", split)?;
             list.append(d)?;
         }
         Ok(list)

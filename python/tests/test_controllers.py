@@ -70,8 +70,8 @@ def test_bad_configs_raise_naming_the_key() -> None:
     with pytest.raises(ValueError, match="list of 6"):
         jp = suite.load_part_controller_config(default_controller="JOINT_POSITION")
         suite.make("Lift", robots="UR5e", controller_configs=dict(jp, kp=[50] * 7), **QUIET)
-    with pytest.raises(NotImplementedError, match="WHOLE_BODY_IK"):
-        suite.make("Lift", controller_configs=suite.load_composite_controller_config(controller="WHOLE_BODY_IK"), **QUIET)
+    with pytest.raises(NotImplementedError, match="mink"):
+        suite.make("Lift", controller_configs=suite.load_composite_controller_config(controller="WHOLE_BODY_MINK_IK"), **QUIET)
     with pytest.raises(ValueError, match="default_controller"):
         suite.load_part_controller_config(default_controller="OSC")
 
@@ -92,3 +92,31 @@ def test_gymnasium_check_env_with_joint_velocity() -> None:
         check_env(env, skip_render_check=True)
     assert unexpected(caught) == []
     env.close()
+
+
+def test_whole_body_ik_on_a_panda() -> None:
+    # robosuite's whole_body_ik.json on a one-armed robot: the parts and the left site it
+    # lacks are dropped (as robosuite drops them); the action is the grip site's absolute
+    # pose (unbounded), then the gripper.
+    cfg = suite.load_composite_controller_config(controller="WHOLE_BODY_IK")
+    env = suite.make("Lift", controller_configs=cfg, **QUIET)
+    low, high = env.action_spec
+    assert low.shape == (7,)
+    assert np.all(np.isneginf(low[:6])) and np.all(np.isposinf(high[:6]))
+    obs = env.reset()
+    target = obs["robot0_eef_pos"] + np.array([0.0, 0.0, 0.05])
+    quat = obs["robot0_eef_quat_site"]
+    angle = 2 * np.arccos(np.clip(quat[3], -1, 1))
+    axis = quat[:3] / max(np.linalg.norm(quat[:3]), 1e-12)
+    action = np.concatenate([target, axis * angle, [-1.0]])
+    for _ in range(30):
+        obs, _, _, _ = env.step(action)
+    assert np.linalg.norm(obs["robot0_eef_pos"] - target) < 0.01
+    robot = env.robots[0]
+    assert list(robot.composite_controller._action_split_indexes.items()) == [
+        ("right", (0, 6)),
+        ("right_gripper", (6, 7)),
+    ]
+    np.testing.assert_array_equal(robot.create_action_vector({"right": action[:6], "right_gripper": [-1.0]}), action)
+    with pytest.raises(ValueError):
+        env.step(np.concatenate([[np.nan], action[1:]]))

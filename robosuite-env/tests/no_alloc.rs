@@ -365,3 +365,69 @@ fn osc_on_fixed_and_heap_sized_matrices_does_not_allocate() {
         }
     }
 }
+
+#[test]
+fn whole_body_ik_set_goal_does_not_allocate() {
+    use robosuite_env::controllers::whole_body_ik::{
+        PartKind, WholeBodyIk, WholeBodyIkConfig, WholeBodyPart,
+    };
+    let dir =
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/whole_body_ik");
+    let model =
+        mujoco_rs::wrappers::mj_model::MjModel::from_xml(dir.join("torso_two_arms.xml")).unwrap();
+    let mut sim = Sim::new(model).unwrap();
+    sim.forward().unwrap();
+    let arm = |side: &str, s: &str| WholeBodyPart {
+        name: side.to_owned(),
+        joints: [
+            "shoulder_pitch",
+            "shoulder_roll",
+            "shoulder_yaw",
+            "elbow_pitch",
+            "wrist_yaw",
+            "wrist_roll",
+            "wrist_pitch",
+        ]
+        .iter()
+        .map(|j| format!("robot0_{s}_{j}"))
+        .collect(),
+        action_dim: 7,
+        kind: PartKind::Arm,
+        limits: (vec![-1.0; 7], vec![1.0; 7]),
+    };
+    let parts = vec![
+        arm("right", "r"),
+        arm("left", "l"),
+        WholeBodyPart {
+            name: "head".to_owned(),
+            joints: vec!["robot0_head_yaw".to_owned(), "robot0_head_pitch".to_owned()],
+            action_dim: 2,
+            kind: PartKind::Other,
+            limits: (vec![-1.0; 2], vec![1.0; 2]),
+        },
+    ];
+    // The arms (a well-conditioned JJᵀ) and the head alone (JJᵀ = 0: the SVD path).
+    for actuated in [vec!["right", "left"], vec!["head"]] {
+        let config = WholeBodyIkConfig::from_value(
+            &serde_json::json!({
+                "ref_name": ["gripper0_right_grip_site", "gripper0_left_grip_site"],
+                "actuation_part_names": actuated,
+                "nullspace_joint_weights": {},
+                "ik_input_ref_frame": "base",
+            }),
+            "cfg",
+        )
+        .unwrap();
+        let mut wb = WholeBodyIk::new(sim.model(), &config, &parts).unwrap();
+        let mut action = vec![0.2; wb.action_dim()];
+        let mut out = vec![0.0; wb.part_actions_dim()];
+        wb.set_goal(&sim, &action, &mut out).unwrap();
+        let n = allocations(|| {
+            for i in 0..20 {
+                action[i % 12] += 0.01;
+                wb.set_goal(&sim, &action, &mut out).unwrap();
+            }
+        });
+        assert_eq!(n, 0, "{actuated:?}: {n} allocations in 20 IK steps");
+    }
+}

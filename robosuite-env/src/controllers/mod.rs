@@ -2,7 +2,8 @@
 //! ([`ArmController`], for an arm of any number of joints) — `OSC_POSE` and
 //! `OSC_POSITION` ([`Osc`]), `IK_POSE` ([`InverseKinematics`]), `JOINT_POSITION`
 //! ([`JointPosition`]), `JOINT_VELOCITY` ([`JointVelocity`]) and `JOINT_TORQUE`
-//! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), and robosuite's
+//! ([`JointTorque`]) — the `GRIP` gripper controller ([`GripController`]), robosuite's
+//! `WHOLE_BODY_IK` composite controller and its IK solver ([`whole_body_ik`]), and robosuite's
 //! controller configurations ([`config`]). The other body parts' controllers implement the
 //! same trait: torso, head and legs run `JOINT_POSITION` (or the types robosuite's part
 //! factories allow), the mobile base [`MobileBaseJointVelocity`]. The arm controller types are the entries of
@@ -26,6 +27,7 @@ mod opspace;
 mod osc;
 mod state;
 pub mod table;
+pub mod whole_body_ik;
 
 pub use config::{ArmControllerConfig, ArmPartConfig, CompositeControllerConfig, ControllerConfig};
 pub use gripper::GripController;
@@ -36,6 +38,7 @@ pub use joint_torque::JointTorque;
 pub use joint_velocity::JointVelocity;
 pub use mobile_base::MobileBaseJointVelocity;
 pub use osc::Osc;
+pub use whole_body_ik::{IkSolver, WholeBodyIk, WholeBodyIkConfig};
 
 use crate::sim::Sim;
 use gym_core::{Error, Result};

@@ -11,9 +11,11 @@
 
 use super::robot::{Arm, BodyPart};
 use crate::controllers::config::CompositeControllerConfig;
+use crate::controllers::whole_body_ik::{WholeBodyIkComposite, WholeBodyIkConfig};
 use crate::models::robots::RobotKind;
 use crate::sim::Sim;
 use gym_core::{Error, Result};
+use mujoco_rs::wrappers::mj_model::MjModel;
 use serde_json::{Map, Value};
 use std::ops::Range;
 
@@ -37,6 +39,20 @@ pub struct ActionSlot {
     pub part: PartRef,
     /// Its indices in the robot's action.
     pub range: Range<usize>,
+}
+
+/// A robot's parts as [`CompositeController::bind`] sees them.
+#[derive(Debug, Clone, Copy)]
+pub struct CompositeParts<'a> {
+    /// The body parts in the config's order (arm sides and other part names).
+    pub order: &'a [String],
+    /// The arms, with their controllers and grippers.
+    pub arms: &'a [Arm],
+    /// The other body parts.
+    pub bodies: &'a [BodyPart],
+    /// The robot's joints (robosuite's `robot_model.joints`), which [`Arm::joints`]
+    /// indexes.
+    pub joints: &'a [String],
 }
 
 /// The parts a composite controller drives.
@@ -64,6 +80,32 @@ pub trait CompositeController: Send + Sync + std::fmt::Debug {
     /// Bounds of the entries after the parts' slices (none by default).
     fn extra_limits(&self) -> (Vec<f64>, Vec<f64>) {
         (Vec::new(), Vec::new())
+    }
+
+    /// Binds the controller to the compiled model and the robot's parts, before the
+    /// layout is asked for (`WHOLE_BODY_IK` builds its IK solver here). The default does
+    /// nothing.
+    ///
+    /// # Errors
+    /// [`Error::Model`] or [`Error::InvalidArgument`] when the config does not fit the
+    /// robot or the model.
+    fn bind(&mut self, model: &MjModel, parts: &CompositeParts<'_>) -> Result<()> {
+        let _ = (model, parts);
+        Ok(())
+    }
+
+    /// The bounds of the whole action, for a controller whose action is not the parts'
+    /// slices (`WHOLE_BODY_IK`: end-effector poses first); `None` (the default) for the
+    /// layout's bounds followed by [`CompositeController::extra_limits`].
+    fn action_limits(&self) -> Option<(Vec<f64>, Vec<f64>)> {
+        None
+    }
+
+    /// The whole action's slices by part name when they differ from the layout's
+    /// (`WHOLE_BODY_IK`: robosuite's `_whole_body_controller_action_split_indexes`, which
+    /// its `create_action_vector` uses); `None` (the default) otherwise.
+    fn action_split(&self) -> Option<Vec<(String, Range<usize>)>> {
+        None
     }
 
     /// Sets the parts' goals from the robot's action (first substep of an env step; the
@@ -218,6 +260,11 @@ fn basic_specific(specific: &Map<String, Value>, path: &str) -> Result<()> {
     Ok(())
 }
 
+/// `WHOLE_BODY_IK` reads its IK settings ([`WholeBodyIkConfig`]).
+fn whole_body_ik_specific(specific: &Map<String, Value>, path: &str) -> Result<()> {
+    WholeBodyIkConfig::from_value(&Value::Object(specific.clone()), path).map(|_| ())
+}
+
 fn no_specific(_: &Map<String, Value>, _: &str) -> Result<()> {
     Ok(())
 }
@@ -241,9 +288,15 @@ pub const COMPOSITE_CONTROLLERS: &[CompositeEntry] = &[
     CompositeEntry {
         name: "WHOLE_BODY_IK",
         robot_kinds: ALL_KINDS,
-        check_specific: no_specific,
-        build: None,
-        unserved: "robosuite's whole-body IK is not served yet",
+        check_specific: whole_body_ik_specific,
+        build: Some(|config, path| {
+            let at =
+                crate::controllers::config::join(path, "composite_controller_specific_configs");
+            let specific =
+                WholeBodyIkConfig::from_value(&Value::Object(config.specific.clone()), &at)?;
+            Ok(Box::new(WholeBodyIkComposite::new(specific)))
+        }),
+        unserved: "",
     },
     CompositeEntry {
         name: "WHOLE_BODY_MINK_IK",

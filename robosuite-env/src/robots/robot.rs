@@ -3,7 +3,9 @@
 //! splits the action among them, reset noise and proprioceptive observables (robosuite's
 //! `Robot`, `FixedBaseRobot`, `WheeledRobot`, `LeggedRobot`).
 
-use super::composite::{ActionSlot, CompositeController, PartRef, PartsMut, build_composite};
+use super::composite::{
+    ActionSlot, CompositeController, CompositeParts, PartRef, PartsMut, build_composite,
+};
 use super::noise::InitNoise;
 use crate::controllers::config::ArmControllerConfig;
 use crate::controllers::config::join;
@@ -544,7 +546,7 @@ impl Robot {
                 torques: vec![0.0; n],
             });
         }
-        let composite = build_composite(controllers, kind, robot.info.name, path)?;
+        let mut composite = build_composite(controllers, kind, robot.info.name, path)?;
         // The config's order; parts a hand-built config left out of it come after.
         let mut order = controllers.order.clone();
         for name in controllers
@@ -557,9 +559,20 @@ impl Robot {
                 order.push(name.clone());
             }
         }
+        composite.bind(
+            model,
+            &CompositeParts {
+                order: &order,
+                arms: &arms,
+                bodies: &bodies,
+                joints: &joints,
+            },
+        )?;
         let layout = composite.layout(&order, &arms, &bodies);
-        let action_dim =
-            layout.last().map_or(0, |s| s.range.end) + composite.extra_limits().0.len();
+        let action_dim = match composite.action_limits() {
+            Some((low, _)) => low.len(),
+            None => layout.last().map_or(0, |s| s.range.end) + composite.extra_limits().0.len(),
+        };
         let arm_names: Vec<&str> = arms.iter().map(|a| a.side).collect();
         let body_names: Vec<&str> = bodies.iter().map(|b| b.name).collect();
         let dropped_parts = controllers.dropped_parts(&arm_names, &body_names);
@@ -821,6 +834,13 @@ impl Robot {
         &self.layout
     }
 
+    /// The action's slices by part name where the composite controller's action is not
+    /// its layout's (`WHOLE_BODY_IK`: the end-effector poses as `"right"` / `"left"`, then
+    /// the parts outside the IK); `None` when the layout is the action's.
+    pub fn action_split(&self) -> Option<Vec<(String, Range<usize>)>> {
+        self.composite.action_split()
+    }
+
     /// The body parts the controller config named that the robot does not have: robosuite
     /// drops their configs with a warning.
     pub fn dropped_parts(&self) -> &[String] {
@@ -867,6 +887,9 @@ impl Robot {
     /// layout, an arm controller's own bounds, `[-1, 1]` for a gripper or another body
     /// part; then the composite controller's extra entries.
     pub fn action_limits(&self) -> (Vec<f64>, Vec<f64>) {
+        if let Some(limits) = self.composite.action_limits() {
+            return limits;
+        }
         let (mut lo, mut hi) = (Vec::new(), Vec::new());
         for slot in &self.layout {
             match slot.part {

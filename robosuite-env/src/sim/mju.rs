@@ -20,3 +20,19 @@ pub fn quat2vel(quat: &[f64; 4], dt: f64) -> [f64; 3] {
     unsafe { mju_quat2Vel(&mut vel, quat, dt) };
     vel
 }
+
+/// The conjugate of a quaternion (`w, x, y, z`; `mju_negQuat`).
+pub fn neg_quat(quat: &[f64; 4]) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    // SAFETY: `mju_negQuat` reads 4 values from `quat` and writes 4 to `out`.
+    unsafe { mujoco_rs::mujoco_c::mju_negQuat(&mut out, quat) };
+    out
+}
+
+/// The quaternion product `a·b` (`w, x, y, z`; `mju_mulQuat`).
+pub fn mul_quat(a: &[f64; 4], b: &[f64; 4]) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    // SAFETY: `mju_mulQuat` reads 4 values from each input and writes 4 to `out`.
+    unsafe { mujoco_rs::mujoco_c::mju_mulQuat(&mut out, a, b) };
+    out
+}

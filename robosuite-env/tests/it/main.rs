@@ -31,4 +31,5 @@ mod texture_free_scene;
 mod tool_hang_env;
 mod two_arm_env;
 mod visual_wrappers;
+mod whole_body_ik;
 mod wipe_env;
