@@ -1044,38 +1044,28 @@ impl Robot {
     /// clipped to its actuator's ctrlrange as robosuite clips them (a legged robot's
     /// divided by the actuator's gear first, as robosuite's `LeggedRobot` does).
     pub fn apply_control(&mut self, sim: &mut Sim) {
+        let divide = self.divide_by_gear;
         for (arm, gears) in self.arms.iter_mut().zip(&self.arm_gears) {
-            arm.controller.compute(sim, &mut arm.torques);
-            if self.divide_by_gear {
-                for (t, g) in arm.torques.iter_mut().zip(gears) {
-                    *t /= g;
-                }
-            }
-            for (t, [lo, hi]) in arm.torques.iter_mut().zip(&arm.ctrlrange) {
-                *t = t.clamp(*lo, *hi);
-            }
+            let part = PartDrive {
+                torques: &mut arm.torques,
+                gear: divide.then_some(gears.as_slice()),
+                ctrlrange: &arm.ctrlrange,
+                actuators: &arm.actuators,
+            };
+            part.drive(arm.controller.as_mut(), sim);
             let ctrl = sim.data_mut().ctrl_mut();
-            for (&a, &t) in arm.actuators.iter().zip(&arm.torques) {
-                ctrl[a] = t;
-            }
             for (i, &a) in arm.gripper.actuators.iter().enumerate() {
                 ctrl[a] = arm.gripper.controller.ctrl(i);
             }
         }
         for body in &mut self.bodies {
-            body.controller.compute(sim, &mut body.torques);
-            if self.divide_by_gear {
-                for (t, g) in body.torques.iter_mut().zip(&body.gear) {
-                    *t /= g;
-                }
-            }
-            for (t, [lo, hi]) in body.torques.iter_mut().zip(&body.ctrlrange) {
-                *t = t.clamp(*lo, *hi);
-            }
-            let ctrl = sim.data_mut().ctrl_mut();
-            for (&a, &t) in body.actuators.iter().zip(&body.torques) {
-                ctrl[a] = t;
-            }
+            let part = PartDrive {
+                torques: &mut body.torques,
+                gear: divide.then_some(body.gear.as_slice()),
+                ctrlrange: &body.ctrlrange,
+                actuators: &body.actuators,
+            };
+            part.drive(body.controller.as_mut(), sim);
         }
     }
 
@@ -1125,5 +1115,33 @@ impl Robot {
             body.controller = c;
         }
         Ok(())
+    }
+}
+
+/// One part's control path: its controller's torques, divided by the actuators' gear where
+/// the robot divides (robosuite's `LeggedRobot`), clipped to the ctrlrange, written to the
+/// actuators' controls.
+struct PartDrive<'a> {
+    torques: &'a mut [f64],
+    gear: Option<&'a [f64]>,
+    ctrlrange: &'a [[f64; 2]],
+    actuators: &'a [usize],
+}
+
+impl PartDrive<'_> {
+    fn drive(self, controller: &mut dyn ArmController, sim: &mut Sim) {
+        controller.compute(sim, self.torques);
+        if let Some(gear) = self.gear {
+            for (t, g) in self.torques.iter_mut().zip(gear) {
+                *t /= g;
+            }
+        }
+        for (t, [lo, hi]) in self.torques.iter_mut().zip(self.ctrlrange) {
+            *t = t.clamp(*lo, *hi);
+        }
+        let ctrl = sim.data_mut().ctrl_mut();
+        for (&a, &t) in self.actuators.iter().zip(self.torques.iter()) {
+            ctrl[a] = t;
+        }
     }
 }
