@@ -164,6 +164,26 @@ fn every_controller_steps_without_allocating() {
 }
 
 #[test]
+fn mobile_robots_step_without_allocating() {
+    // PandaOmron: HYBRID_MOBILE_BASE (arm OSC, torso, base); Tiago: BASIC with two arms,
+    // torso, head and base; each with its default composite controller.
+    for (task, robot) in [("Lift", "PandaOmron"), ("TwoArmLift", "Tiago")] {
+        let mut env = make_with(task, EnvConfig::default().with_robots([robot])).unwrap();
+        let (mut obs, mut info) = env.reset(Some(2), None).unwrap();
+        let mut rng = rng_from_seed(4);
+        let actions: Vec<ArrayD<f64>> = (0..10)
+            .map(|_| env.action_space().sample(&mut rng))
+            .collect();
+        for (i, action) in actions.iter().enumerate() {
+            let n = allocations(|| {
+                let _ = env.step_into(action, &mut obs, &mut info).unwrap();
+            });
+            assert_eq!(n, 0, "{task} {robot}: step {i} allocated {n} times");
+        }
+    }
+}
+
+#[test]
 fn step_into_replaces_buffers_of_another_layout() {
     let mut env = make_with("Lift", EnvConfig::default()).unwrap();
     env.reset(Some(1), None).unwrap();
