@@ -740,16 +740,28 @@ pub struct DomainRandomizationWrapper {
 }
 
 impl DomainRandomizationWrapper {
-    /// Wraps `env`, making (and checking) every enabled modder on its model.
+    /// Wraps `env`, making (and checking) every enabled modder on its model. With colour
+    /// randomisation, an env built without texture images loads them first
+    /// ([`RobosuiteEnv::load_textures`]).
     ///
     /// # Errors
     /// [`Refused`] (with the env unchanged) holding [`Error::InvalidArgument`] for any
     /// modder argument its `new` refuses (unknown names, negative or non-finite
-    /// perturbations, ...).
+    /// perturbations, ...), or the error of [`RobosuiteEnv::load_textures`].
     pub fn new(
-        env: RobosuiteEnv,
+        mut env: RobosuiteEnv,
         args: DomainRandomizationArgs,
     ) -> std::result::Result<Self, Refused> {
+        // Colour randomisation rewrites texture images: an env built without them
+        // (see `RobosuiteEnv::textures_loaded`) loads them first.
+        if args.randomize_color
+            && let Err(error) = env.load_textures()
+        {
+            return Err(Refused {
+                error,
+                env: Box::new(env),
+            });
+        }
         let model = env.sim().model();
         let made = (|| -> Result<_> {
             Ok((
