@@ -2,9 +2,12 @@
 (PSS) of this process after one env of a task and after N more, made by one
 ``gymnasium.make_vec`` (Rust threads) or one by one with ``robosuite_rs.make``.
 
-    python scripts/memory.py [--task Lift] [--envs 128] [--one-by-one]
+    python scripts/memory.py [--task Lift] [--envs 128] [--one-by-one] [--textures]
 
-Envs have no cameras. Prints the first env's RSS and the RSS / PSS per further env in MiB.
+Envs have no cameras; the first env and those made one by one have no offscreen renderer,
+so their scene is compiled without texture images, unless ``--textures`` gives them
+``has_offscreen_renderer=True`` (the images kept). ``make_vec``'s envs keep the Python
+default (``has_offscreen_renderer=True``). Prints the first env's RSS and make time and the RSS / PSS per further env in MiB.
 Linux only (reads /proc/self).
 """
 
@@ -12,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import gc
+import time
 
 import gymnasium as gym
 import numpy as np
@@ -36,12 +40,15 @@ def main() -> None:
     p.add_argument("--task", default="Lift")
     p.add_argument("--envs", type=int, default=128)
     p.add_argument("--one-by-one", action="store_true")
+    p.add_argument("--textures", action="store_true")
     args = p.parse_args()
     robots = ["Panda", "Panda"] if args.task.startswith("TwoArm") else "Panda"
-    kwargs = dict(robots=robots, has_renderer=False, has_offscreen_renderer=False,
+    kwargs = dict(robots=robots, has_renderer=False, has_offscreen_renderer=args.textures,
                   use_camera_obs=False)
     start = memory()
+    made = time.perf_counter()
     first = suite.make(args.task, **kwargs)
+    made = time.perf_counter() - made
     first.reset(seed=0)
     first.step(np.zeros(first.action_dim))
     one = memory()
@@ -60,7 +67,7 @@ def main() -> None:
     last = memory()
     how = "one by one" if args.one_by_one else "one make_vec"
     print(f"{args.task}: {args.envs} further envs ({how})")
-    print(f"  first env RSS      {one[0] - start[0]:8.1f} MiB")
+    print(f"  first env RSS      {one[0] - start[0]:8.1f} MiB   made in {made * 1e3:.0f} ms")
     print(f"  per further env    RSS {(last[0] - one[0]) / args.envs:6.2f} MiB"
           f"   PSS {(last[1] - one[1]) / args.envs:6.2f} MiB")
 

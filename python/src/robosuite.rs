@@ -385,7 +385,7 @@ impl PyRobosuiteEnv {
     /// `(mujoco.MjModel, mujoco.MjData)` sharing this env's model and data (no copy): on
     /// first use the model's memory is handed to a `mujoco.MjModel` (a model shared with
     /// other envs of the same scene is first copied, so the Python object is this env's
-    /// alone) and the data moved into
+    /// alone; an env built without texture images loads them first) and the data moved into
     /// a `mujoco.MjData` made for it (state copied whole, so stepping continues
     /// bit-identically); both then belong to Python, so a view kept after `close()` or a
     /// model replacement stays valid. The same objects are returned until the model is
@@ -415,6 +415,9 @@ impl PyRobosuiteEnv {
         let model = match shared.as_ref() {
             Some(s) if s.model_addr == m => s.model.clone_ref(py),
             _ => {
+                // Python code may read or write texture images (`tex_data`, modders): an env
+                // built without them loads them first.
+                env.load_textures().map_err(to_pyerr)?;
                 let mut made: Option<Py<PyAny>> = None;
                 // SAFETY: `_from_model_ptr` wraps the pointer in a `mujoco.MjModel` that owns
                 // it (mj_deleteModel when collected); the wrapper is kept by the Data until

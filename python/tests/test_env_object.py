@@ -58,6 +58,26 @@ def test_a_sim_model_write_is_seen_by_no_other_env():
         env.step(actions(1)[0])
 
 
+def test_an_env_that_never_renders_steps_draws_and_reads_textures_as_a_textured_one():
+    # has_offscreen_renderer=False: the scene is simulated without texture images; the
+    # frames, env.sim.model's tex_* arrays and the trajectory are the textured env's.
+    bare, full = lift(has_offscreen_renderer=False), lift(has_offscreen_renderer=True)
+    obs = [env.reset(seed=4) for env in (bare, full)]
+    for a in actions(6):
+        obs = [env.step(a)[0] for env in (bare, full)]
+        assert obs[0].keys() == obs[1].keys()
+        for k in obs[0]:
+            np.testing.assert_array_equal(obs[0][k], obs[1][k], err_msg=k)
+    np.testing.assert_array_equal(
+        bare.sim.render(64, 64, camera_name="agentview"), full.sim.render(64, 64, camera_name="agentview")
+    )
+    for field in ("tex_width", "tex_height", "tex_adr", "tex_data"):
+        np.testing.assert_array_equal(getattr(bare.sim.model, field), getattr(full.sim.model, field), err_msg=field)
+    assert bare.sim.model.tex_data.size > 1_000_000
+    a = actions(1, seed=5)[0]
+    np.testing.assert_array_equal(bare.step(a)[0]["cube_pos"], full.step(a)[0]["cube_pos"])
+
+
 def test_data_arrays_are_what_the_env_steps():
     env = lift()
     env.reset()

@@ -104,8 +104,12 @@ pub struct RobosuiteEnv {
     timestep: u64,
     phase: Phase,
     cameras: Option<CameraRig>,
-    /// The MJCF text the model was compiled from (shared by envs of one scene).
+    /// The MJCF text the model was compiled from (shared by envs of one scene); for a model
+    /// without texture images, the text with them.
     source_xml: Arc<str>,
+    /// Whether the model holds the scene's texture images (see
+    /// [`RobosuiteEnv::textures_loaded`]).
+    textures_loaded: bool,
     /// The task's constructor arguments it was built with.
     task_options: TaskOptions,
     /// The task's objects (robosuite's `env.model.mujoco_objects`).
@@ -329,15 +333,25 @@ impl RobosuiteEnv {
         let spec = configured(spec, &config)?;
         let assets = Assets::locate()?;
         let composed = compose(spec.as_ref(), &config, &assets)?;
-        let (model, source) = composed.scene.compile_shared(spec.memory())?;
-        Self::from_model(
+        // An env that never renders on its own simulates the scene without texture images.
+        let textures = config.cameras.may_render();
+        let (model, source) = if textures {
+            composed.scene.compile_shared(spec.memory())?
+        } else {
+            composed
+                .scene
+                .compile_shared_without_textures(spec.memory())?
+        };
+        let mut env = Self::from_model(
             spec.as_ref(),
             composed,
             model,
             source,
             config,
             ModelSource::Composed,
-        )
+        )?;
+        env.textures_loaded = textures;
+        Ok(env)
     }
 
     /// Builds the task `spec` on a caller-supplied scene MJCF that follows robosuite's names
@@ -520,6 +534,7 @@ impl RobosuiteEnv {
             phase: Phase::NeedsReset,
             cameras,
             source_xml,
+            textures_loaded: true,
             task_options,
             objects,
             obs_specs,
@@ -1172,7 +1187,57 @@ impl RobosuiteEnv {
     /// # Errors
     /// [`Error::Model`] when MuJoCo cannot parse, compile or save the scene.
     pub fn scene_xml(&self) -> Result<String> {
-        crate::sim::scene_xml(&self.source_xml, self.sim.model())
+        let model = self.model_with_textures()?;
+        crate::sim::scene_xml(&self.source_xml, model.as_ref())
+    }
+
+    /// Whether the env's model holds the scene's texture images (`tex_data`,
+    /// `tex_width`, ...). An env whose configuration never renders on its own (see
+    /// [`crate::cameras::CameraConfig::may_render`]: no offscreen renderer, no camera
+    /// observations, no render mode) is built on its scene without them: the same physics,
+    /// names and counts, each texture a 1×1 placeholder. Its frames
+    /// ([`RobosuiteEnv::render_camera`]) are still drawn with the images (the render
+    /// context is made from the scene compiled with them, once per process), and
+    /// [`RobosuiteEnv::load_textures`] gives its model the images.
+    pub fn textures_loaded(&self) -> bool {
+        self.textures_loaded
+    }
+
+    /// Gives the env's model its scene's texture images (see
+    /// [`RobosuiteEnv::textures_loaded`]), keeping every other value of the model and the
+    /// simulation state: for code that reads or writes `tex_data` (texture randomisation).
+    /// The model is then the env's own (not shared with other envs). Does nothing when the
+    /// images are loaded.
+    ///
+    /// # Errors
+    /// [`Error::Model`] when the scene cannot be compiled; [`Error::Closed`] after
+    /// `close`. The env is then unchanged.
+    pub fn load_textures(&mut self) -> Result<()> {
+        if self.phase == Phase::Closed {
+            return Err(Error::Closed);
+        }
+        if self.textures_loaded {
+            return Ok(());
+        }
+        let textured = self.textured_scene_model()?;
+        self.sim.replace_with_textured(textured)?;
+        self.textures_loaded = true;
+        Ok(())
+    }
+
+    /// A copy of the scene compiled with its texture images (cached per process).
+    fn textured_scene_model(&self) -> Result<MjModel> {
+        let (compiled, _) = compile_shared_with_source(&self.source_xml)?;
+        Ok(compiled.into_model())
+    }
+
+    /// The env's model, or, without texture images, a copy of it with them.
+    fn model_with_textures(&self) -> Result<std::borrow::Cow<'_, MjModel>> {
+        if self.textures_loaded {
+            return Ok(std::borrow::Cow::Borrowed(self.sim.model()));
+        }
+        let textured = self.textured_scene_model()?;
+        Ok(std::borrow::Cow::Owned(self.sim.with_textures_of(textured)?))
     }
 
     /// Whether observable `spec` exists in this env: robosuite creates the object
@@ -1261,6 +1326,8 @@ impl RobosuiteEnv {
     ///
     /// # Errors
     /// [`Error::InvalidArgument`] for a texture id out of range (nothing is uploaded);
+    /// [`Error::Unsupported`] when the model holds no texture images (see
+    /// [`RobosuiteEnv::load_textures`]);
     /// [`Error::Render`] when a rendering context cannot be made current; [`Error::Closed`]
     /// after `close`.
     #[cfg(feature = "render")]
@@ -1273,6 +1340,12 @@ impl RobosuiteEnv {
             return Err(Error::invalid_argument(
                 "texture",
                 format!("texture id {texture} out of range (the model has {ntex} textures)"),
+            ));
+        }
+        if !self.textures_loaded {
+            return Err(Error::unsupported(
+                "the env's model holds no texture images (its configuration never renders): \
+                 call load_textures() before changing textures",
             ));
         }
         if let Some(rig) = &mut self.cameras {
@@ -1326,12 +1399,18 @@ impl RobosuiteEnv {
                 .viewer_renderer
                 .as_ref()
                 .map_or((0, 0), OffscreenRenderer::max_size);
-            let renderer = OffscreenRenderer::on_device(
+            // Without texture images in the env's model, the render context is made from
+            // a copy with them (frames as a textured env's).
+            let context_model = self.model_with_textures()?;
+            let renderer = OffscreenRenderer::with_context_model(
                 self.sim.model(),
+                context_model.as_ref(),
                 width.max(w0),
                 height.max(h0),
+                crate::render::Supersampling::NONE,
                 self.config.cameras.render_gpu_device_id,
             )?;
+            drop(context_model);
             self.viewer_renderer = Some(renderer);
         }
         let n = width * height;

@@ -534,7 +534,9 @@ struct ColorGeom {
 /// specular; each other geom a random colour; and the skybox a random texture. It returns
 /// the textures it changed, which must be uploaded to the render contexts
 /// (`RobosuiteEnv::upload_texture`, feature `render`) for frames to
-/// show them (the wrapper does).
+/// show them (the wrapper does). An env that never renders on its own is built without
+/// texture images (`RobosuiteEnv::textures_loaded`): call `RobosuiteEnv::load_textures`
+/// before making a modder of its model (the wrapper does), else it sees 1×1 placeholders.
 #[derive(Debug, Clone)]
 pub struct TextureModder {
     args: ColorArgs,

@@ -739,34 +739,40 @@ pub struct DomainRandomizationWrapper {
     step_counter: u64,
 }
 
+/// The texture, camera, lighting and dynamics modders of a [`DomainRandomizationWrapper`].
+type Modders = (
+    Option<TextureModder>,
+    Option<CameraModder>,
+    Option<LightingModder>,
+    Option<DynamicsModder>,
+);
+
 impl DomainRandomizationWrapper {
-    /// Wraps `env`, making (and checking) every enabled modder on its model.
+    /// Wraps `env`, making (and checking) every enabled modder on its model. With colour
+    /// randomisation, an env built without texture images loads them once the arguments
+    /// are checked ([`RobosuiteEnv::load_textures`]).
     ///
     /// # Errors
     /// [`Refused`] (with the env unchanged) holding [`Error::InvalidArgument`] for any
     /// modder argument its `new` refuses (unknown names, negative or non-finite
-    /// perturbations, ...).
+    /// perturbations, ...), or the error of [`RobosuiteEnv::load_textures`].
     pub fn new(
-        env: RobosuiteEnv,
+        mut env: RobosuiteEnv,
         args: DomainRandomizationArgs,
     ) -> std::result::Result<Self, Refused> {
-        let model = env.sim().model();
-        let made = (|| -> Result<_> {
-            Ok((
-                args.randomize_color
-                    .then(|| TextureModder::new(model, args.color_randomization_args.clone()))
-                    .transpose()?,
-                args.randomize_camera
-                    .then(|| CameraModder::new(model, args.camera_randomization_args.clone()))
-                    .transpose()?,
-                args.randomize_lighting
-                    .then(|| LightingModder::new(model, args.lighting_randomization_args.clone()))
-                    .transpose()?,
-                args.randomize_dynamics
-                    .then(|| DynamicsModder::new(model, args.dynamics_randomization_args.clone()))
-                    .transpose()?,
-            ))
-        })();
+        let made = Self::modders(&env, &args);
+        // Colour randomisation rewrites texture images: an env built without them (see
+        // `RobosuiteEnv::textures_loaded`) loads them once every argument is checked, and
+        // its texture modder is made on the model with them.
+        let made = match made {
+            Ok(m) if args.randomize_color && !env.textures_loaded() => env
+                .load_textures()
+                .and_then(|()| {
+                    TextureModder::new(env.sim().model(), args.color_randomization_args.clone())
+                })
+                .map(|texture| (Some(texture), m.1, m.2, m.3)),
+            other => other,
+        };
         let (texture, camera, lighting, dynamics) = match made {
             Ok(m) => m,
             Err(error) => {
@@ -790,6 +796,25 @@ impl DomainRandomizationWrapper {
             dynamics,
             step_counter: 0,
         })
+    }
+
+    /// The modders `args` enables, made on `env`'s model.
+    fn modders(env: &RobosuiteEnv, args: &DomainRandomizationArgs) -> Result<Modders> {
+        let model = env.sim().model();
+        Ok((
+            args.randomize_color
+                .then(|| TextureModder::new(model, args.color_randomization_args.clone()))
+                .transpose()?,
+            args.randomize_camera
+                .then(|| CameraModder::new(model, args.camera_randomization_args.clone()))
+                .transpose()?,
+            args.randomize_lighting
+                .then(|| LightingModder::new(model, args.lighting_randomization_args.clone()))
+                .transpose()?,
+            args.randomize_dynamics
+                .then(|| DynamicsModder::new(model, args.dynamics_randomization_args.clone()))
+                .transpose()?,
+        ))
     }
 
     /// A stream drawn from the env's RNG without advancing it.

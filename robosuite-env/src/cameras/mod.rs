@@ -221,6 +221,14 @@ impl CameraConfig {
         self.use_camera_obs || self.render_mode.is_some()
     }
 
+    /// Whether an env of this configuration may render on its own: with an offscreen
+    /// renderer (robosuite's `has_offscreen_renderer`), camera observations or a render
+    /// mode. An env that may not is built on its scene without texture images (it can
+    /// still draw frames when asked, see `RobosuiteEnv::textures_loaded`).
+    pub fn may_render(&self) -> bool {
+        self.has_offscreen_renderer || self.needs_renderer()
+    }
+
     /// The observed cameras, each list broadcast or matched to the camera names.
     pub fn cameras(&self) -> Vec<CameraObs> {
         if !self.use_camera_obs {

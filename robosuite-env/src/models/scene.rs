@@ -159,6 +159,37 @@ impl Scene {
     pub fn compile_shared(&self, memory: usize) -> Result<(Compiled, Arc<str>)> {
         compile_shared_with_source(&self.to_mujoco_xml(memory))
     }
+
+    /// As [`Scene::compile_shared`] on [`Scene::without_texture_images`], for environments
+    /// that never render: the compiled model has every name, count and physical value of
+    /// this scene's, with 1×1 textures. Also returns this scene's own MJCF text (with its
+    /// textures), from which the textured model is compiled when it is needed after all.
+    ///
+    /// # Errors
+    /// As [`Scene::compile`].
+    pub fn compile_shared_without_textures(&self, memory: usize) -> Result<(Compiled, Arc<str>)> {
+        let textured = self.to_mujoco_xml(memory);
+        let lock = || cache().lock().unwrap_or_else(PoisonError::into_inner);
+        let known = lock()
+            .bare
+            .get_key_value(textured.as_str())
+            .map(|(k, v)| (Arc::clone(k), Arc::clone(v)));
+        let (source, bare) = match known {
+            Some(pair) => pair,
+            None => {
+                let bare: Arc<str> = Arc::from(self.without_texture_images().to_mujoco_xml(memory));
+                let source: Arc<str> = Arc::from(textured);
+                let mut cache = lock();
+                if cache.bare.len() >= CACHE_CAPACITY {
+                    cache.bare.clear();
+                }
+                cache.bare.insert(Arc::clone(&source), Arc::clone(&bare));
+                (source, bare)
+            }
+        };
+        let (compiled, _) = compile_shared_with_source(&bare)?;
+        Ok((compiled, source))
+    }
 }
 
 /// A compiled scene: the cache's shared model, or a model of its own (a scene made by
@@ -217,6 +248,7 @@ pub fn set_scene_patching(enabled: bool) {
     let mut cache = cache().lock().unwrap_or_else(PoisonError::into_inner);
     cache.exact.clear();
     cache.near.clear();
+    cache.bare.clear();
 }
 
 /// How many scenes [`compile_cached`] made by patching a cached model (see
@@ -233,6 +265,8 @@ type NearEntry = (Arc<str>, Arc<patch::Skeleton>, Arc<SharedModel>);
 struct Cache {
     exact: HashMap<Arc<str>, Arc<SharedModel>>,
     near: HashMap<String, NearEntry>,
+    /// A scene's text with textures → its text without texture images.
+    bare: HashMap<Arc<str>, Arc<str>>,
 }
 
 fn cache() -> &'static Mutex<Cache> {

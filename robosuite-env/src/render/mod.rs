@@ -186,6 +186,39 @@ impl OffscreenRenderer {
         supersampling: Supersampling,
         device: Option<usize>,
     ) -> Result<Self> {
+        Self::with_context_model(model, model, width, height, supersampling, device)
+    }
+
+    /// [`OffscreenRenderer::with_options`] drawing `model`'s scenes with a render context
+    /// (meshes, textures, materials, visual settings) made from `context_model`: a model of
+    /// the same scene that may differ from `model` only in its textures' images, such as
+    /// the scene compiled with its images for a model compiled without them. MuJoCo's
+    /// scene update (`mjv_updateScene`) reads no texture image, so the frames are those of
+    /// `context_model`.
+    ///
+    /// # Errors
+    /// As [`OffscreenRenderer::with_options`]; [`Error::InvalidArgument`] when the two
+    /// models differ in their numbers of geoms, meshes, materials, textures, skins or
+    /// height fields.
+    pub fn with_context_model(
+        model: &MjModel,
+        context_model: &MjModel,
+        width: usize,
+        height: usize,
+        supersampling: Supersampling,
+        device: Option<usize>,
+    ) -> Result<Self> {
+        let counts = |m: &MjModel| {
+            let m = m.ffi();
+            [m.ngeom, m.nmesh, m.nmat, m.ntex, m.nskin, m.nhfield]
+        };
+        if counts(model) != counts(context_model) {
+            return Err(Error::invalid_argument(
+                "context_model",
+                "must be a model of the same scene (its numbers of geoms, meshes, materials, \
+                 textures, skins and height fields differ)",
+            ));
+        }
         check_size("width", width)?;
         check_size("height", height)?;
         let factor = supersampling.factor;
@@ -211,7 +244,7 @@ impl OffscreenRenderer {
             buffer(width, supersampling) as u32,
             buffer(height, supersampling) as u32,
         );
-        let key = reuse::Key::of(model, device);
+        let key = reuse::Key::of(context_model, device);
         let kept = reuse::take(&key).and_then(|(mut gl, mut context)| {
             match gl.make_current() {
                 Ok(_current) => {
@@ -234,7 +267,7 @@ impl OffscreenRenderer {
                     let _current = gl.make_current()?;
                     // SAFETY: the GL context is current on this thread; the MjrContext is
                     // only used (and dropped) while it is current again (see `Send` above).
-                    let mut context = unsafe { MjrContext::new(model) };
+                    let mut context = unsafe { MjrContext::new(context_model) };
                     context.change_font(MjtFontScale::mjFONTSCALE_150);
                     context.resize_offscreen(buffer_w, buffer_h);
                     context.offscreen();
@@ -250,7 +283,8 @@ impl OffscreenRenderer {
         option.geomgroup[1] = 1;
         Ok(Self {
             context: Some(context),
-            scene: MjvScene::new(model, MAX_GEOM),
+            // Made for the context's model: the scene and the context describe one model.
+            scene: MjvScene::new(context_model, MAX_GEOM),
             option,
             perturb: MjvPerturb::default(),
             seg_rgb: Vec::new(),

@@ -175,6 +175,33 @@ impl Data {
         self.view = None;
     }
 
+    /// Replaces the model with `textured`, a compilation of the same scene with its texture
+    /// images, after copying every other value of the current model into it (see
+    /// `copy_all_but_textures`); the data is kept, so stepping continues bit-identically.
+    ///
+    /// # Errors
+    /// A message, with nothing changed, when the model was handed over to another owner
+    /// or the two models differ in more than their textures.
+    pub(crate) fn replace_with_textured(&mut self, mut textured: MjModel) -> Result<(), String> {
+        if self.model_owner.is_some() {
+            return Err("the model was handed over to another owner".into());
+        }
+        // SAFETY: `textured` is a model of this crate's own, changed only in values of
+        // arrays of equal lengths.
+        super::textures::copy_all_but_textures(self.model.ffi(), unsafe {
+            textured.ffi_mut()
+        })?;
+        let old = std::mem::replace(&mut self.model, ManuallyDrop::new(Box::new(textured)));
+        if self.view.is_some() {
+            // SAFETY: the view's header (its buffer is the mapping), freed before the mapping.
+            unsafe { View::free_header(*ManuallyDrop::into_inner(old)) };
+            self.view = None;
+        } else {
+            drop(ManuallyDrop::into_inner(old));
+        }
+        Ok(())
+    }
+
     /// The raw `mjData`.
     pub fn ffi(&self) -> &mjData {
         // SAFETY: a live mjData for as long as `self`.

@@ -9,6 +9,7 @@ pub mod mju;
 mod names;
 mod resize;
 mod shared;
+mod textures;
 mod version;
 mod xml;
 
@@ -166,6 +167,23 @@ impl Sim {
     /// model of its own; see [`Sim`]).
     pub fn shared_model(&self) -> Option<&Arc<SharedModel>> {
         self.data.shared_model()
+    }
+
+    /// Replaces the model with `textured` (see [`Data`]'s `replace_with_textured`).
+    pub(crate) fn replace_with_textured(&mut self, textured: MjModel) -> Result<()> {
+        self.data
+            .replace_with_textured(textured)
+            .map_err(|e| Error::model(format!("cannot load the scene's textures: {e}")))
+    }
+
+    /// A copy of `textured` holding every value of this model except its textures (see
+    /// [`Data`]'s `replace_with_textured`).
+    pub(crate) fn with_textures_of(&self, mut textured: MjModel) -> Result<MjModel> {
+        // SAFETY: a model of the caller's own, changed only in values of arrays of equal
+        // lengths.
+        textures::copy_all_but_textures(self.model().ffi(), unsafe { textured.ffi_mut() })
+            .map_err(|e| Error::model(format!("cannot load the scene's textures: {e}")))?;
+        Ok(textured)
     }
 
     /// The data.

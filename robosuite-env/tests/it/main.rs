@@ -27,6 +27,7 @@ mod sensor_skip;
 mod shared_model;
 mod stack_env;
 mod task_options;
+mod texture_free_env;
 mod texture_free_scene;
 mod tool_hang_env;
 mod two_arm_env;
