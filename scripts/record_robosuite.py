@@ -13,6 +13,9 @@ JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
   12 significant digits), the reward, success and whether the robot touched anything;
 * placement: over many resets, the smallest and largest initial position of every object.
 
+Mobile robots (PandaOmron, Tiago) add a rollout that moves the base and torso; legged
+robots (SpotWithArm, SpotWithArmFloating) one that moves the legs or the floating base.
+
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
 """
