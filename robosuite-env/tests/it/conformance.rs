@@ -123,7 +123,9 @@ fn every_task_on(robot: &str) {
             .num_robots();
         // Two wheeled robots cannot share a scene (robosuite fails on it): a wheeled robot
         // takes a Panda as its partner. Two legged robots share one, as in robosuite.
-        let mobile = robosuite_env::models::robots::robot_info(robot).unwrap().kind
+        let mobile = robosuite_env::models::robots::robot_info(robot)
+            .unwrap()
+            .kind
             == robosuite_env::models::robots::RobotKind::Wheeled;
         let mut robots = vec![robot; count];
         if mobile && count > 1 {
