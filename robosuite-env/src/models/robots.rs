@@ -534,7 +534,7 @@ impl RobotModel {
                     manipulator_mount,
                 );
             }
-            BaseKind::LegBase { .. } => self.add_leg_base(&mut mount)?,
+            BaseKind::LegBase { .. } => self.add_leg_base(&mount)?,
         }
         self.mount = Some(mount);
         Ok(())
@@ -544,7 +544,7 @@ impl RobotModel {
     /// base's free joint (if any) moves onto the root body, and the robot's arm (the first
     /// body under the root body) moves onto the base's `support` body; the base's assets,
     /// actuators, sensors, tendons, equalities and contacts are merged.
-    fn add_leg_base(&mut self, mount: &mut MountModel) -> Result<()> {
+    fn add_leg_base(&mut self, mount: &MountModel) -> Result<()> {
         let mut doc = mount.xml.doc.clone();
         let bodies = std::mem::take(&mut doc.worldbody_mut().children);
         let root_name = self.xml.root_body();
@@ -569,9 +569,8 @@ impl RobotModel {
                 free = taken.into_iter().next();
             }
         });
-        let arm = match root.children.remove(arm_path) {
-            xmltree::XMLNode::Element(e) => e,
-            _ => unreachable!("the arm's position holds an element"),
+        let xmltree::XMLNode::Element(arm) = root.children.remove(arm_path) else {
+            return Err(Error::model("the arm's position holds no element"));
         };
         if let Some(free) = free {
             tree::append(root, free);
