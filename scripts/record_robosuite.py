@@ -13,6 +13,9 @@ JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
   12 significant digits), the reward, success and whether the robot touched anything;
 * placement: over many resets, the smallest and largest initial position of every object.
 
+Mobile robots (PandaOmron, Tiago) add a rollout that moves the base and torso; legged
+robots (SpotWithArm, SpotWithArmFloating) one that moves the legs or the floating base.
+
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
 """
@@ -750,6 +753,29 @@ def base_policy(env, steps=60):
     return act
 
 
+# Legged robots: their fixtures add a rollout that moves the legs or the floating base.
+LEGGED_ROBOTS = ["SpotWithArm", "SpotWithArmFloating"]
+
+
+def legs_policy(env):
+    """A legged robot's legs rollout: the leg joints sway about their rest positions
+    (SpotWithArm's JOINT_POSITION legs), or the floating base drives forward, sideways and
+    turns (SpotWithArmFloating's base); the arm holds still."""
+    robot = env.robots[0]
+    state = {"t": 0}
+
+    def act(obs):
+        state["t"] += 1
+        t = state["t"]
+        parts = {
+            "legs": 0.2 * np.sin(t / 6.0 + np.arange(12)),
+            "base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]),
+        }
+        return robot.create_action_vector(parts)
+
+    return act
+
+
 def rollout(task, robot, seed, make_policy, steps, kwargs, kind=""):
     env = make(task, seed, robots=robot, **kwargs)
     obs = env.reset()
@@ -830,6 +856,8 @@ def record(fixture, robot, out, resets):
     policies = list(POLICIES[fixture])
     if (robot if isinstance(robot, str) else robot[0]) in MOBILE_ROBOTS:
         policies.append(("base", base_policy, 60))
+    if (robot if isinstance(robot, str) else robot[0]) in LEGGED_ROBOTS:
+        policies.append(("legs", legs_policy, 60))
     for i, (kind, make_policy, steps) in enumerate(policies):
         r = rollout(task, robot, 100 + i, make_policy, steps, kwargs, kind)
         r["kind"] = kind

@@ -9,6 +9,7 @@
 # MuJoCo 3.17.0, where three of robosuite's calls are adapted to MuJoCo's renamed Python
 # API: joint types compared as integers, and mj_fullM's new argument order). Usage:
 #   scripts/record_robosuite.sh [--resets N] [--robot NAME] [TASK ...]
+#   (e.g. --robot SpotWithArm Lift writes Lift-SpotWithArm.json with its floors)
 #   scripts/record_robosuite.sh --controllers [ROBOT ...]
 # The second form records the controller fixtures (scripts/record_controllers.py, default
 # robots Panda, Sawyer and UR5e) and their floors.

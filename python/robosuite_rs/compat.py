@@ -40,6 +40,7 @@ ALL_GRIPPERS: tuple[str, ...] = (
     "RobotiqThreeFingerDexterousGripper",
     "XArm7Gripper",
     "WipingGripper",
+    "BDGripper",
 )
 
 

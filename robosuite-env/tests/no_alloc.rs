@@ -166,8 +166,15 @@ fn every_controller_steps_without_allocating() {
 #[test]
 fn mobile_robots_step_without_allocating() {
     // PandaOmron: HYBRID_MOBILE_BASE (arm OSC, torso, base); Tiago: BASIC with two arms,
-    // torso, head and base; each with its default composite controller.
-    for (task, robot) in [("Lift", "PandaOmron"), ("TwoArmLift", "Tiago")] {
+    // torso, head and base; SpotWithArm: BASIC with its legs (a legged robot, controls
+    // divided by gear); SpotWithArmFloating: BASIC with its floating base; each with its
+    // default composite controller.
+    for (task, robot) in [
+        ("Lift", "PandaOmron"),
+        ("TwoArmLift", "Tiago"),
+        ("Lift", "SpotWithArm"),
+        ("Lift", "SpotWithArmFloating"),
+    ] {
         let mut env = make_with(task, EnvConfig::default().with_robots([robot])).unwrap();
         let (mut obs, mut info) = env.reset(Some(2), None).unwrap();
         let mut rng = rng_from_seed(4);

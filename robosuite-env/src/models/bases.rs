@@ -1,9 +1,11 @@
 //! robosuite's robot bases (`robosuite/models/bases/`): the fixed mounts a fixed-base robot
-//! stands on and the mobile bases of wheeled robots, one table ([`MOUNTS`]).
+//! stands on, the mobile bases of wheeled robots and the leg bases of legged robots, one
+//! table ([`MOUNTS`]).
 
 use super::MOUNT_COLLISION_COLOR;
 use crate::assets::Assets;
 use crate::mjcf::XmlModel;
+use crate::mjcf::tree::{self, attr};
 use gym_core::{Error, Result};
 
 /// The kind of a robosuite base (its model class), which sets its name prefix and how
@@ -15,6 +17,15 @@ pub enum BaseKind {
     /// `MobileBaseModel` (prefix `mobilebase{i}_`): merged into the robot's root body, whose
     /// former contents move to a `manipulator_mount` body on the base's `support` body.
     MobileBase,
+    /// `LegBaseModel` (prefix `leg{i}_`): its bodies go into the robot's root body, its free
+    /// joint (if any) onto the root body, and the robot's arm onto the base's `support`
+    /// body. A floating leg base (robosuite's `SpotFloating`) has its leg joints, leg
+    /// motors and free joint removed and forward, side and yaw joints with velocity
+    /// actuators added to its root body.
+    LegBase {
+        /// Whether the base floats on added mobile joints instead of standing on its legs.
+        floating: bool,
+    },
 }
 
 impl BaseKind {
@@ -23,6 +34,7 @@ impl BaseKind {
         match self {
             Self::Mount => format!("fixed_mount{robot}_"),
             Self::MobileBase => format!("mobilebase{robot}_"),
+            Self::LegBase { .. } => format!("leg{robot}_"),
         }
     }
 }
@@ -89,6 +101,43 @@ pub const NULL_MOBILE_BASE: MountInfo = MountInfo {
     horizontal_radius: 0.0,
 };
 
+/// robosuite's `Spot` (Boston Dynamics Spot's body on four legs of three joints each,
+/// driven by motors; `SpotWithArm`'s base).
+pub const SPOT: MountInfo = MountInfo {
+    name: "Spot",
+    kind: BaseKind::LegBase { floating: false },
+    file: "robots/spot/robot.xml",
+    top_offset: [0.0, 0.0, 0.0],
+    horizontal_radius: 0.1,
+};
+
+/// robosuite's `SpotFloating` (Spot's body without leg actuation, moved by forward, side
+/// and yaw velocity actuators; `SpotWithArmFloating`'s base).
+pub const SPOT_FLOATING: MountInfo = MountInfo {
+    name: "SpotFloating",
+    kind: BaseKind::LegBase { floating: true },
+    file: "robots/spot/robot.xml",
+    top_offset: [0.0, 0.0, 0.0],
+    horizontal_radius: 0.1,
+};
+
+/// The leg joints' rest positions of robosuite's `Spot` (its `init_qpos`: hip x, hip y,
+/// knee per leg, front right, front left, rear right, rear left).
+pub const SPOT_LEGS_INIT_QPOS: [f64; 12] = [
+    0.0, 0.9, -1.8, 0.0, 0.9, -1.8, 0.0, 0.9, -1.8, 0.0, 0.9, -1.8,
+];
+
+impl MountInfo {
+    /// The leg joints' rest positions a legged robot's reset writes (robosuite's leg base
+    /// `init_qpos`); empty for every other base.
+    pub fn legs_init_qpos(&self) -> &'static [f64] {
+        match self.kind {
+            BaseKind::LegBase { floating: false } => &SPOT_LEGS_INIT_QPOS,
+            _ => &[],
+        }
+    }
+}
+
 /// Every base [`mount_info`] knows.
 pub const MOUNTS: &[MountInfo] = &[
     RETHINK_MOUNT,
@@ -96,6 +145,8 @@ pub const MOUNTS: &[MountInfo] = &[
     NULL_MOUNT,
     OMRON_MOBILE_BASE,
     NULL_MOBILE_BASE,
+    SPOT,
+    SPOT_FLOATING,
 ];
 
 /// The mount robosuite names `name`.
@@ -133,11 +184,18 @@ impl MountModel {
     /// # Errors
     /// [`Error::Model`] when its file is missing or malformed.
     pub fn load(assets: &Assets, info: MountInfo, robot: usize) -> Result<Self> {
-        let xml = XmlModel::load(
+        let mut xml = XmlModel::load(
             &assets.file(info.file)?,
             &info.kind.prefix(robot),
             MOUNT_COLLISION_COLOR,
         )?;
+        if info.kind == (BaseKind::LegBase { floating: true }) {
+            remove_joint_actuation(&mut xml, "leg");
+            tree::visit_mut(xml.doc.worldbody_mut(), &mut |e| {
+                tree::take_children(e, |c| c.name == "freejoint");
+            });
+            add_mobile_joints(&mut xml);
+        }
         Ok(Self { xml, info })
     }
 
@@ -145,5 +203,99 @@ impl MountModel {
     /// in the file).
     pub fn bottom_offset(&self) -> [f64; 3] {
         self.xml.base_offset
+    }
+}
+
+/// robosuite's `LegBaseModel._remove_joint_actuation(part)`: removes every joint and motor
+/// whose (prefixed) name contains `part`, and the joint sensors on those joints.
+fn remove_joint_actuation(xml: &mut XmlModel, part: &str) {
+    let prefix = xml.prefix.clone();
+    let hit = |e: &xmltree::Element, key: &str| attr(e, key).is_some_and(|n| n.contains(part));
+    tree::visit_mut(xml.doc.worldbody_mut(), &mut |e| {
+        tree::take_children(e, |c| c.name == "joint" && hit(c, "name"));
+    });
+    tree::take_children(xml.doc.section_mut("actuator"), |c| {
+        c.name == "motor" && hit(c, "name")
+    });
+    tree::take_children(xml.doc.section_mut("sensor"), |c| {
+        matches!(
+            c.name.as_str(),
+            "jointpos" | "jointvel" | "jointactuatorfrc"
+        ) && hit(c, "joint")
+    });
+    let keep = |n: &String| !format!("{prefix}{n}").contains(part);
+    xml.names.joints.retain(keep);
+    xml.names.actuators.retain(keep);
+}
+
+/// robosuite's `LegBaseModel._add_mobile_joint`: forward (y), side (x) slide and yaw hinge
+/// joints on the root body, each with a velocity actuator.
+fn add_mobile_joints(xml: &mut XmlModel) {
+    let p = xml.prefix.clone();
+    let joint = |name: &str, axis: &str, kind: &str| {
+        tree::element(
+            "joint",
+            &[
+                ("name", format!("{p}{name}")),
+                ("pos", "0 0 0".to_owned()),
+                ("axis", axis.to_owned()),
+                ("type", kind.to_owned()),
+                ("limited", "false".to_owned()),
+                ("damping", "0".to_owned()),
+                ("armature", "0.0".to_owned()),
+                ("frictionloss", "250".to_owned()),
+            ],
+        )
+    };
+    let actuator = |joint: &str, name: &str, range: &str, kv: &str| {
+        tree::element(
+            "velocity",
+            &[
+                ("ctrllimited", "true".to_owned()),
+                ("ctrlrange", range.to_owned()),
+                ("joint", format!("{p}{joint}")),
+                ("kv", kv.to_owned()),
+                ("name", format!("{p}{name}")),
+                ("forcelimited", "true".to_owned()),
+                ("forcerange", "-600 600".to_owned()),
+            ],
+        )
+    };
+    let joints = [
+        joint("joint_mobile_forward", "0 1 0", "slide"),
+        joint("joint_mobile_side", "1 0 0", "slide"),
+        joint("joint_mobile_yaw", "0 0 1", "hinge"),
+    ];
+    let actuators = [
+        actuator(
+            "joint_mobile_forward",
+            "actuator_mobile_forward",
+            "-1.00 1.00",
+            "1000",
+        ),
+        actuator(
+            "joint_mobile_side",
+            "actuator_mobile_side",
+            "-1.00 1.00",
+            "1000",
+        ),
+        actuator(
+            "joint_mobile_yaw",
+            "actuator_mobile_yaw",
+            "-1.50 1.50",
+            "1500",
+        ),
+    ];
+    for j in joints {
+        xml.names
+            .joints
+            .push(attr(&j, "name").unwrap_or_default()[p.len()..].to_owned());
+        tree::append(xml.root_body_element_mut(), j);
+    }
+    for a in actuators {
+        xml.names
+            .actuators
+            .push(attr(&a, "name").unwrap_or_default()[p.len()..].to_owned());
+        tree::append(xml.doc.section_mut("actuator"), a);
     }
 }

@@ -316,6 +316,26 @@ pub const XARM7_GRIPPER: GripperInfo = GripperInfo {
     corners: &[],
 };
 
+/// robosuite's `BDGripper` (the Spot arm's one-jaw gripper, one position actuator).
+/// robosuite names its finger pads `left_finger_coll` / `right_finger_coll`, mesh names,
+/// not geoms of its model file (whose geoms are unnamed); its name-based contact check
+/// therefore never reports a grasp with this gripper. The pad groups are empty here, which
+/// reproduces that.
+pub const BD_GRIPPER: GripperInfo = GripperInfo {
+    name: "BDGripper",
+    file: "grippers/bd_gripper.xml",
+    init_qpos: Some(&[-1.57]),
+    action: GripAction::SignIntegrator {
+        signs: &[1.0],
+        speed: 0.2,
+    },
+    left_fingerpad: &[],
+    right_fingerpad: &[],
+    left_finger: &[],
+    right_finger: &[],
+    corners: &[],
+};
+
 /// Every gripper [`gripper_info`] knows, by robosuite's class name (with `None`, robosuite
 /// attaches [`NULL_GRIPPER`]).
 pub const GRIPPERS: &[GripperInfo] = &[
@@ -329,6 +349,7 @@ pub const GRIPPERS: &[GripperInfo] = &[
     ROBOTIQ_THREE_FINGER_DEXTEROUS_GRIPPER,
     XARM7_GRIPPER,
     WIPING_GRIPPER,
+    BD_GRIPPER,
 ];
 
 /// The gripper robosuite names `name`.

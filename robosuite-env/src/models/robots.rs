@@ -19,7 +19,8 @@ pub struct BaseOffsets {
     pub bins: [f64; 3],
     /// In the empty arena.
     pub empty: [f64; 3],
-    /// At a table of length `l`: `(table_x - l / 2, 0, 0)`.
+    /// At a table of length `l`: `(table_x - l / 2, 0, z)`, where `z` is the empty arena's
+    /// height offset (equal for every robosuite robot: 0, or Spot's -0.22).
     pub table_x: f64,
 }
 
@@ -34,7 +35,9 @@ impl BaseOffsets {
     /// The offset in an arena.
     pub fn for_arena(&self, kind: super::arenas::ArenaKind) -> [f64; 3] {
         match kind {
-            super::arenas::ArenaKind::Table { length } => [self.table_x - length / 2.0, 0.0, 0.0],
+            super::arenas::ArenaKind::Table { length } => {
+                [self.table_x - length / 2.0, 0.0, self.empty[2]]
+            }
             super::arenas::ArenaKind::Bins => self.bins,
             super::arenas::ArenaKind::Empty => self.empty,
         }
@@ -301,6 +304,39 @@ pub const TIAGO: RobotInfo = RobotInfo {
     init_base_qpos: None,
 };
 
+/// robosuite's `SpotWithArm` (Boston Dynamics Spot: the 6-joint Spot arm with the
+/// `BDGripper` on robosuite's `Spot` leg base, twelve motor-driven leg joints on a free
+/// body; a `LeggedRobot`).
+pub const SPOT_WITH_ARM: RobotInfo = RobotInfo {
+    name: "SpotWithArm",
+    file: "robots/spot_arm/robot.xml",
+    init_qpos: &[0.0, -2.0, 1.26, -0.335, 0.862, 0.0],
+    damping: Some(&[0.1, 0.1, 0.1, 0.1, 0.1, 0.01]),
+    default_mount: super::bases::SPOT,
+    default_grippers: &["BDGripper"],
+    base_offsets: BaseOffsets {
+        bins: [-1.05, -0.1, -0.22],
+        empty: [-1.1, 0.0, -0.22],
+        table_x: -0.5,
+    },
+    kind: RobotKind::Legged,
+    ..SINGLE_ARM
+};
+
+/// robosuite's `SpotWithArmFloating`: the Spot arm on robosuite's `SpotFloating` (Spot's
+/// body moved by forward, side and yaw velocity actuators instead of legs; a
+/// `LeggedRobot`).
+pub const SPOT_WITH_ARM_FLOATING: RobotInfo = RobotInfo {
+    name: "SpotWithArmFloating",
+    default_mount: super::bases::SPOT_FLOATING,
+    base_offsets: BaseOffsets {
+        bins: [-0.7, -0.1, 0.0],
+        empty: [-0.6, 0.0, 0.0],
+        table_x: -0.5,
+    },
+    ..SPOT_WITH_ARM
+};
+
 /// Every robot [`robot_info`] knows.
 pub const ROBOTS: &[RobotInfo] = &[
     PANDA,
@@ -313,6 +349,8 @@ pub const ROBOTS: &[RobotInfo] = &[
     BAXTER,
     PANDA_OMRON,
     TIAGO,
+    SPOT_WITH_ARM,
+    SPOT_WITH_ARM_FLOATING,
 ];
 
 /// The names of [`ROBOTS`].
@@ -496,8 +534,50 @@ impl RobotModel {
                     manipulator_mount,
                 );
             }
+            BaseKind::LegBase { .. } => self.add_leg_base(&mount)?,
         }
         self.mount = Some(mount);
+        Ok(())
+    }
+
+    /// robosuite's `add_leg_base`: the base's bodies go into the robot's root body, the
+    /// base's free joint (if any) moves onto the root body, and the robot's arm (the first
+    /// body under the root body) moves onto the base's `support` body; the base's assets,
+    /// actuators, sensors, tendons, equalities and contacts are merged.
+    fn add_leg_base(&mut self, mount: &MountModel) -> Result<()> {
+        let mut doc = mount.xml.doc.clone();
+        let bodies = std::mem::take(&mut doc.worldbody_mut().children);
+        let root_name = self.xml.root_body();
+        let root = tree::body_mut(self.xml.doc.worldbody_mut(), &root_name)?;
+        // robosuite's `find_elements(worldbody, "body")[1]`: the first body under the root
+        // body in document order, found before the base's bodies are appended.
+        let arm_path = root
+            .children
+            .iter()
+            .position(|n| matches!(n, xmltree::XMLNode::Element(e) if e.name == "body"))
+            .ok_or_else(|| {
+                Error::model(format!(
+                    "{}: the root body holds no arm body",
+                    self.info.name
+                ))
+            })?;
+        root.children.extend(bodies);
+        let mut free = None;
+        tree::visit_mut(root, &mut |e| {
+            if free.is_none() && e.name == "body" {
+                let taken = tree::take_children(e, |c| c.name == "freejoint");
+                free = taken.into_iter().next();
+            }
+        });
+        let xmltree::XMLNode::Element(arm) = root.children.remove(arm_path) else {
+            return Err(Error::model("the arm's position holds no element"));
+        };
+        if let Some(free) = free {
+            tree::append(root, free);
+        }
+        let support = mount.xml.name("support");
+        tree::append(tree::body_mut(root, &support)?, arm);
+        self.xml.doc.merge(doc, MergeBody::None)?;
         Ok(())
     }
 

@@ -259,6 +259,8 @@ pub struct Robot {
     init_qpos: Vec<f64>,
     init_torso_qpos: Option<Vec<f64>>,
     init_base_qpos: Option<Vec<f64>>,
+    /// The leg joints' rest positions (robosuite's leg base `init_qpos`; empty without legs).
+    init_legs_qpos: Vec<f64>,
     noise: InitNoise,
     base_body: usize,
     base_site: Option<usize>,
@@ -584,6 +586,11 @@ impl Robot {
             init_qpos: robot.info.init_qpos.to_vec(),
             init_torso_qpos: robot.info.init_torso_qpos.map(<[f64]>::to_vec),
             init_base_qpos: robot.info.init_base_qpos.map(<[f64]>::to_vec),
+            init_legs_qpos: robot
+                .mount
+                .as_ref()
+                .map_or(&[][..], |m| m.info.legs_init_qpos())
+                .to_vec(),
             qpos_buf: vec![0.0; joint_qpos.len()],
             joint_qpos,
             joint_dofs,
@@ -977,8 +984,8 @@ impl Robot {
 
     /// Writes `qpos_buf` as the robot's joint positions (then robosuite's
     /// `init_base_qpos` and `init_torso_qpos` over the base's and torso's joints),
-    /// forwards, and lets the controllers reset (robosuite's controller construction
-    /// during a reset).
+    /// forwards, lets the controllers reset (robosuite's controller construction during a
+    /// reset), then writes a legged robot's leg rest positions.
     fn start_at_posture(&mut self, sim: &mut Sim) -> gym_core::Result<()> {
         let qpos = sim.data_mut().qpos_mut();
         for (&a, &v) in self.joint_qpos.iter().zip(&self.qpos_buf) {
@@ -1002,6 +1009,14 @@ impl Robot {
         for body in &mut self.bodies {
             body.controller.reset(sim);
             body.torques.iter_mut().for_each(|t| *t = 0.0);
+        }
+        // robosuite's `LeggedRobot.reset`: the legs take their rest positions after the
+        // controllers are built.
+        if let Some(legs) = self.bodies.iter().find(|b| b.name == "legs") {
+            let qpos = sim.data_mut().qpos_mut();
+            for (&a, &v) in legs.qpos.iter().zip(&self.init_legs_qpos) {
+                qpos[a] = v;
+            }
         }
         Ok(())
     }

@@ -121,12 +121,12 @@ fn every_task_on(robot: &str) {
             .unwrap()
             .robots()
             .num_robots();
-        // Two mobile robots cannot share a scene (robosuite fails on it): a mobile robot
-        // takes a Panda as its partner.
+        // Two wheeled robots cannot share a scene (robosuite fails on it): a wheeled robot
+        // takes a Panda as its partner. Two legged robots share one, as in robosuite.
         let mobile = robosuite_env::models::robots::robot_info(robot)
             .unwrap()
             .kind
-            .is_mobile();
+            == robosuite_env::models::robots::RobotKind::Wheeled;
         let mut robots = vec![robot; count];
         if mobile && count > 1 {
             robots[1..].fill("Panda");
@@ -178,6 +178,8 @@ robot_tests! {
     every_task_on_ur5e_passes_check_env => "UR5e";
     every_task_on_xarm7_passes_check_env => "XArm7";
     every_task_on_panda_omron_passes_check_env => "PandaOmron";
+    every_task_on_spot_with_arm_passes_check_env => "SpotWithArm";
+    every_task_on_spot_with_arm_floating_passes_check_env => "SpotWithArmFloating";
 }
 
 /// Tiago, a bimanual mobile robot, alone on a two-arm task (robosuite's single-robot

@@ -154,6 +154,15 @@ fn every_controller_runs_on_every_robot_with_robosuites_layout() {
     for robot in single_arm_robot_names() {
         for kind in ARM_CONTROLLER_TYPES {
             let part = load_part_controller_config(&a, kind).unwrap();
+            if robot == "SpotWithArmFloating" {
+                // robosuite has no default_spotwitharmfloating.json: a part config becomes a
+                // BASIC config of the arm alone, which robosuite fails to build; a typed
+                // error naming the floating base here.
+                let (name, reason) = invalid_key(lift(robot, parse(part).unwrap()));
+                assert_eq!(name, "controller_configs.body_parts");
+                assert!(reason.contains("`base`"), "{reason}");
+                continue;
+            }
             let mut env =
                 lift(robot, parse(part).unwrap()).unwrap_or_else(|e| panic!("{robot} {kind}: {e}"));
             let arm = env.robots()[0].arm();

@@ -244,6 +244,8 @@ fn the_other_robots_and_both_baxter_arms_are_bit_identical() {
         "Baxter",
         "PandaOmron",
         "Tiago",
+        "SpotWithArm",
+        "SpotWithArmFloating",
     ] {
         check_robot(robot, SOME);
         covered.push(robot);
