@@ -1237,7 +1237,9 @@ impl RobosuiteEnv {
             return Ok(std::borrow::Cow::Borrowed(self.sim.model()));
         }
         let textured = self.textured_scene_model()?;
-        Ok(std::borrow::Cow::Owned(self.sim.with_textures_of(textured)?))
+        Ok(std::borrow::Cow::Owned(
+            self.sim.with_textures_of(textured)?,
+        ))
     }
 
     /// Whether observable `spec` exists in this env: robosuite creates the object

@@ -188,9 +188,7 @@ impl Data {
         }
         // SAFETY: `textured` is a model of this crate's own, changed only in values of
         // arrays of equal lengths.
-        super::textures::copy_all_but_textures(self.model.ffi(), unsafe {
-            textured.ffi_mut()
-        })?;
+        super::textures::copy_all_but_textures(self.model.ffi(), unsafe { textured.ffi_mut() })?;
         let old = std::mem::replace(&mut self.model, ManuallyDrop::new(Box::new(textured)));
         if self.view.is_some() {
             // SAFETY: the view's header (its buffer is the mapping), freed before the mapping.

@@ -21,7 +21,10 @@ fn make(task: &str, offscreen: bool) -> RobosuiteEnv {
     make_with(task, config).unwrap()
 }
 
-fn bits(obs: &DictValue) -> Vec<(String, Vec<u64>)> {
+/// An observation's values as bits, per key.
+type ObsBits = Vec<(String, Vec<u64>)>;
+
+fn bits(obs: &DictValue) -> ObsBits {
     obs.iter()
         .map(|(k, v)| {
             let values = v.as_array().map(|a| a.to_f64_vec()).unwrap_or_default();
@@ -32,7 +35,11 @@ fn bits(obs: &DictValue) -> Vec<(String, Vec<u64>)> {
 
 fn state_bits(env: &RobosuiteEnv) -> Vec<u64> {
     let d = env.sim().data();
-    d.qpos().iter().chain(d.qvel()).map(|x| x.to_bits()).collect()
+    d.qpos()
+        .iter()
+        .chain(d.qvel())
+        .map(|x| x.to_bits())
+        .collect()
 }
 
 fn model_bytes(env: &RobosuiteEnv) -> Vec<u8> {
@@ -50,7 +57,7 @@ fn act(env: &RobosuiteEnv, t: usize) -> ArrayD<f64> {
 }
 
 /// Observations, qpos and qvel bits over a reset and 12 steps.
-fn rollout(env: &mut RobosuiteEnv) -> Vec<(Vec<(String, Vec<u64>)>, Vec<u64>)> {
+fn rollout(env: &mut RobosuiteEnv) -> Vec<(ObsBits, Vec<u64>)> {
     let (obs, _) = env.reset(Some(7), None).unwrap();
     let mut out = vec![(bits(&obs), state_bits(env))];
     for t in 0..12 {
@@ -69,7 +76,11 @@ fn never_rendering_envs_simulate_bit_for_bit_without_texture_images() {
         assert!(!bare.textures_loaded(), "{task}");
         assert!(full.textures_loaded(), "{task}");
         let (b, f) = (bare.sim().model().ffi(), full.sim().model().ffi());
-        assert_eq!((b.ntex, b.nmat, b.ngeom), (f.ntex, f.nmat, f.ngeom), "{task}");
+        assert_eq!(
+            (b.ntex, b.nmat, b.ngeom),
+            (f.ntex, f.nmat, f.ngeom),
+            "{task}"
+        );
         assert!(
             b.ntexdata * 100 < f.ntexdata,
             "{task}: {} vs {} texture bytes",
@@ -162,8 +173,8 @@ fn uploading_a_texture_needs_the_images() {
 #[cfg(feature = "render")]
 #[test]
 fn frames_of_a_never_rendering_env_equal_the_textured_envs() {
-    use robosuite_env::render::OffscreenRenderer;
     use mujoco_rs::wrappers::mj_model::MjtObjBase;
+    use robosuite_env::render::OffscreenRenderer;
     let mut bare = make("Lift", false);
     let mut full = make("Lift", true);
     bare.reset(Some(9), None).unwrap();
