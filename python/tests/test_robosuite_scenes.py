@@ -29,7 +29,7 @@ CASES = sorted(p.stem for p in FIXTURES.glob("*.json"))
 
 
 def test_every_recorded_case_is_here():
-    assert len(CASES) == 25
+    assert len(CASES) == 26
 
 
 @pytest.fixture(scope="module", params=CASES)
@@ -90,7 +90,7 @@ def test_states_give_robosuites_observations(case):
             assert env._check_success() == f["successes"][step]
 
 
-@pytest.mark.parametrize("robot", ["Panda", "Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"])
+@pytest.mark.parametrize("robot", ["Panda", "Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7", "PandaDexRH"])
 def test_robot_models_are_robosuites(robot, tmp_path):
     # robosuite.models.robots.<Robot>(): the robot's own names and its prepared joints equal
     # those of the scene robosuite 1.5.2 saved (its robot0_ elements and their joint
