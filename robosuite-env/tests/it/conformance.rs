@@ -220,6 +220,9 @@ fn panda_dex_pair_on_two_arm_lift_passes_check_env() {
         conformance_tests::Check::InvalidAction,
         conformance_tests::Check::StepAfterEnd,
     ] {
-        assert!(report.passed(check), "TwoArmLift on PandaDexRH and PandaDexLH: {check:?}");
+        assert!(
+            report.passed(check),
+            "TwoArmLift on PandaDexRH and PandaDexLH: {check:?}"
+        );
     }
 }

@@ -75,7 +75,9 @@ fn the_hands_actions_drive_its_twelve_actuators_directly() {
     // GRIP without action scaling clips each to its ctrlrange.
     assert_eq!(
         ctrl,
-        [0.5, 0.5, 0.0, 0.0, 1.2, 1.2, 0.9, 0.9, 0.77, 0.68, 0.68, 0.4]
+        [
+            0.5, 0.5, 0.0, 0.0, 1.2, 1.2, 0.9, 0.9, 0.77, 0.68, 0.68, 0.4
+        ]
     );
     // No integration: the same action gives the same targets again.
     let _ = env.step(&act(a)).unwrap();
@@ -156,10 +158,7 @@ fn bad_input_gives_typed_errors() {
     }
     let mut a = vec![0.0; 12];
     a[9] = f64::INFINITY;
-    assert!(matches!(
-        env.step(&act(a)),
-        Err(Error::InvalidAction(_))
-    ));
+    assert!(matches!(env.step(&act(a)), Err(Error::InvalidAction(_))));
     assert_eq!(env.get_state(), before);
     // An unknown hand lists the Inspire hands among the valid grippers.
     let bad = EnvConfig::default()
@@ -183,7 +182,11 @@ fn a_snapshot_continues_a_hand_episode_bit_identically() {
     env.reset(Some(3), None).unwrap();
     // Hand actions beyond [-1, 1] included (robosuite passes them on, clipped to the
     // actuators' ctrlranges).
-    let action = |t: usize| act((0..12).map(|i| 1.6 * ((t * 5 + i) as f64 * 0.41).sin()).collect());
+    let action = |t: usize| {
+        act((0..12)
+            .map(|i| 1.6 * ((t * 5 + i) as f64 * 0.41).sin())
+            .collect())
+    };
     for t in 0..4 {
         let _ = env.step(&action(t)).unwrap();
     }
