@@ -78,6 +78,8 @@ def test_states_give_robosuites_observations(case):
             atol = 1e-3 if key.endswith("joint_acc") else 1e-6
             if f["case"] == "Lift-IIWA" and key.endswith("joint_acc"):
                 atol = 0.3
+            if f["case"] == "Lift-PandaDexRH" and key.endswith("joint_acc"):
+                atol = 1.1  # robosuite's own reload of this XML differs by 1.07 (README)
             np.testing.assert_allclose(
                 np.asarray(got[key], dtype=np.float64).ravel(),
                 np.asarray(value, dtype=np.float64).ravel(),
