@@ -705,6 +705,10 @@ for _task in ["TwoArmLift"]:
     SETUPS[f"{_task}-Tiago"] = (_task, ["Tiago"], {})
     POLICIES[f"{_task}-Tiago"] = [POLICIES[_task][1]]
 
+# The Panda with Inspire hands: a right-hand and a left-hand Panda facing each other.
+SETUPS["TwoArmLift-PandaDex"] = ("TwoArmLift", ["PandaDexRH", "PandaDexLH"], {"env_configuration": "opposed"})
+POLICIES["TwoArmLift-PandaDex"] = [POLICIES["TwoArmLift"][1]]
+
 
 def scripted_and_random(scripted, steps, seed):
     """A task's rollouts: the scripted policy for `steps` steps, then 60 random actions."""
@@ -724,14 +728,18 @@ POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, 
 def for_robot(env, policy):
     """A single-arm policy's [arm (6), gripper (1)] actions in the layout of the robot's
     composite controller (robosuite's `create_action_vector`; other parts at rest, a
-    HYBRID_MOBILE_BASE robot in arm mode), for robots whose action is not that layout."""
+    HYBRID_MOBILE_BASE robot in arm mode, the grip command on every action of a dexterous
+    hand), for robots whose action is not that layout."""
     robot = env.robots[0]
     if env.action_dim == 7 or len(robot.arms) != 1:
         return policy
 
+    # A hand of several actions (the Inspire hands) gets the grip command on each.
+    grip_dim = robot.gripper["right"].dof
+
     def act(obs):
         a = np.asarray(policy(obs), dtype=np.float64)
-        return robot.create_action_vector({"right": a[:6], "right_gripper": a[6:7]})
+        return robot.create_action_vector({"right": a[:6], "right_gripper": np.repeat(a[6:7], grip_dim)})
 
     return act
 

@@ -7,7 +7,7 @@ replay calls `env.reset_from_xml_string(xml)` and `env.sim.set_state_from_flatte
 This script records such scenes from robosuite itself so that robosuite-rs's tests can load
 them and compare observations. Per case (each of robosuite's 19 tasks with the Panda, two
 Pandas in the default, i.e. opposed, configuration for the two-arm tasks, and Lift with each
-of Sawyer, IIWA, Jaco, Kinova3, UR5e and XArm7) it:
+of Sawyer, IIWA, Jaco, Kinova3, UR5e, XArm7 and PandaDexRH) it:
 
 * seeds `np.random.seed(k)` and robosuite's own generator (`seed=k`; robosuite 1.5.2 draws
   placements and model parameters from `env.rng`, so without it no recording repeats), makes
@@ -38,7 +38,7 @@ It runs robosuite (and MuJoCo 3.3.7) from a scratch virtualenv and is not part o
     .bench-venv/robosuite/bin/pip install robosuite==1.5.2 mujoco==3.3.7 h5py
     .bench-venv/robosuite/bin/python scripts/record_scenes.py [--out DIR] [--no-check] [CASE ...]
 
-CASE is a file stem such as Lift-Panda or TwoArmLift-Panda (default: all 25). Reruns write
+CASE is a file stem such as Lift-Panda or TwoArmLift-Panda (default: all 26). Reruns write
 byte-identical files (the XML holds the virtualenv's absolute asset paths, so use the same
 virtualenv path).
 """
@@ -72,7 +72,7 @@ SINGLE_ARM = [
     "PickPlaceCan", "Door", "Wipe", "ToolHang",
 ]
 TWO_ARM = ["TwoArmLift", "TwoArmPegInHole", "TwoArmHandover", "TwoArmTransport"]
-OTHER_ROBOTS = ["Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"]
+OTHER_ROBOTS = ["Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7", "PandaDexRH"]
 
 # (task, robot, seed): the seed is fixed per case (not its position in a run).
 CASES = (

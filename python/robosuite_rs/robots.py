@@ -154,6 +154,8 @@ class Robot:
         self.arms = [a["side"] for a in info["arms"]]
         parts_cfg = (controller_config or {}).get("body_parts", {})
         self.gripper: dict[str, GripperModel | None] = {}
+        #: robosuite's ``gripper_joints``: per arm with a gripper, its joint names.
+        self.gripper_joints: dict[str, list[str]] = {}
         part_controllers: OrderedDict[str, Any] = OrderedDict()
         split: OrderedDict[str, tuple[int, int]] = OrderedDict()
         #: robosuite's robot class (``FixedBaseRobot``, ``WheeledRobot``, ``LeggedRobot``).
@@ -178,13 +180,14 @@ class Robot:
             ref = model.site_id2name(a["eef_site"])
             g_joints = [model.joint_id2name(jnt_qposadr.index(q)) for q in a["gripper_qpos"]]
             g_acts = _names(model, "actuator", a["gripper_actuators"])
-            prefix = g_acts[0].rsplit("_", 1)[0] + "_" if g_acts else f"gripper{index}_{side}_"
             # robosuite names a gripper's elements `gripper{robot}_{arm}_...`.
             site_prefix = f"gripper{index}_{side}_"
+            prefix = site_prefix
             sites = [n for n in model.site_names if isinstance(n, str) and n.startswith(site_prefix)]
             self.gripper[side] = GripperModel(
                 a["gripper"], prefix, g_joints, g_acts, a["gripper_dim"], sites, site_prefix
             )
+            self.gripper_joints[side] = list(g_joints)
             part_controllers[f"{side}_gripper"] = PartController("GRIP", f"{side}_gripper", ref, a["gripper_dim"], {})
         # robosuite's `_action_split_indexes`, in action order.
         for name, (start, end) in sorted(layout.items(), key=lambda kv: kv[1]):
@@ -208,8 +211,10 @@ class Robot:
 
     @property
     def dof(self) -> int:
-        """Degrees of freedom of the robot's joints (arms and grippers)."""
-        return len(self._joint_dofs) + sum(len(g.joints) for g in self.gripper.values() if g is not None)
+        """robosuite's ``dof``: the number of the robot model's own joints (``robot{i}_``;
+        not its gripper's or its base's)."""
+        prefix = f"robot{self.idn}_"
+        return sum(1 for j in self.robot_model.joints if j.startswith(prefix))
 
     @property
     def _joint_positions(self) -> np.ndarray:

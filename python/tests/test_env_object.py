@@ -358,7 +358,7 @@ def test_robots():
     (robot,) = env.robots
     assert robot.name == "Panda" and robot.robot_model.naming_prefix == "robot0_"
     assert robot.robot_model.joints == [f"robot0_joint{i}" for i in range(1, 8)]
-    assert robot.action_dim == 7 and robot.dof == 9
+    assert robot.action_dim == 7 and robot.dof == 7  # robosuite: the robot model's joints, not the gripper's
     low, high = robot.action_limits
     np.testing.assert_array_equal(low, -np.ones(7))
     right = robot.part_controllers["right"]

@@ -29,7 +29,7 @@ CASES = sorted(p.stem for p in FIXTURES.glob("*.json"))
 
 
 def test_every_recorded_case_is_here():
-    assert len(CASES) == 25
+    assert len(CASES) == 26
 
 
 @pytest.fixture(scope="module", params=CASES)
@@ -78,6 +78,8 @@ def test_states_give_robosuites_observations(case):
             atol = 1e-3 if key.endswith("joint_acc") else 1e-6
             if f["case"] == "Lift-IIWA" and key.endswith("joint_acc"):
                 atol = 0.3
+            if f["case"] == "Lift-PandaDexRH" and key.endswith("joint_acc"):
+                atol = 1.1  # robosuite's own reload of this XML differs by 1.07 (README)
             np.testing.assert_allclose(
                 np.asarray(got[key], dtype=np.float64).ravel(),
                 np.asarray(value, dtype=np.float64).ravel(),
@@ -90,7 +92,7 @@ def test_states_give_robosuites_observations(case):
             assert env._check_success() == f["successes"][step]
 
 
-@pytest.mark.parametrize("robot", ["Panda", "Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7"])
+@pytest.mark.parametrize("robot", ["Panda", "Sawyer", "IIWA", "Jaco", "Kinova3", "UR5e", "XArm7", "PandaDexRH"])
 def test_robot_models_are_robosuites(robot, tmp_path):
     # robosuite.models.robots.<Robot>(): the robot's own names and its prepared joints equal
     # those of the scene robosuite 1.5.2 saved (its robot0_ elements and their joint

@@ -72,6 +72,11 @@ impl GripController {
                     *c = (*c + sign * speed * sign_of(*a)).clamp(-1.0, 1.0);
                 }
             }
+            GripAction::Direct { indices, .. } => {
+                for (c, &i) in self.command.iter_mut().zip(indices) {
+                    *c = action.get(i).copied().unwrap_or(0.0);
+                }
+            }
         }
     }
 
@@ -80,11 +85,13 @@ impl GripController {
         &self.command
     }
 
-    /// Sets the command (for snapshots), each entry clipped to `[-1, 1]`; extra or missing
-    /// entries are ignored.
+    /// Sets the command (for snapshots), each entry clipped to `[-1, 1]` (an integrator's
+    /// range; a [`GripAction::Direct`] command, the action itself, is kept as given);
+    /// extra or missing entries are ignored.
     pub fn set_command(&mut self, command: &[f64]) {
+        let direct = matches!(self.action, GripAction::Direct { .. });
         for (c, v) in self.command.iter_mut().zip(command) {
-            *c = v.clamp(-1.0, 1.0);
+            *c = if direct { *v } else { v.clamp(-1.0, 1.0) };
         }
     }
 
@@ -169,5 +176,38 @@ mod tests {
         assert_eq!(g.action_dim(), 3);
         g.set_goal(&[1.0, 0.0, -3.0]);
         assert_eq!(g.command(), [-0.01, 0.0, 0.01]);
+    }
+
+    #[test]
+    fn inspire_hand_copies_its_actions_to_the_actuators() {
+        use crate::models::grippers::INSPIRE_RIGHT_HAND;
+        let ranges = vec![[0.0, 1.5]; 12];
+        let mut g = GripController::new(INSPIRE_RIGHT_HAND.action, ranges.clone(), false);
+        assert_eq!(g.action_dim(), 6);
+        g.set_goal(&[0.1, 0.2, 0.3, 0.4, 2.0, -0.5]);
+        assert_eq!(
+            g.command(),
+            [0.1, 0.1, 0.2, 0.2, 0.3, 0.3, 0.4, 0.4, 2.0, 2.0, 2.0, -0.5]
+        );
+        let ctrl: Vec<f64> = (0..12).map(|i| g.ctrl(i)).collect();
+        assert_eq!(
+            ctrl,
+            [0.1, 0.1, 0.2, 0.2, 0.3, 0.3, 0.4, 0.4, 1.5, 1.5, 1.5, 0.0]
+        );
+        // A snapshot keeps the command as given (no integrator range).
+        let copy = g.command().to_vec();
+        g.reset();
+        g.set_command(&copy);
+        assert_eq!(g.command(), copy.as_slice());
+        // With action scaling (robosuite's GRIP default), [-1, 1] spans the ctrlrange.
+        let mut scaled = GripController::new(INSPIRE_RIGHT_HAND.action, ranges, true);
+        scaled.set_goal(&[1.0, 0.0, -1.0, 0.5, 3.0, -3.0]);
+        let ctrl: Vec<f64> = (0..12).map(|i| scaled.ctrl(i)).collect();
+        assert_eq!(
+            ctrl,
+            [
+                1.5, 1.5, 0.75, 0.75, 0.0, 0.0, 1.125, 1.125, 1.5, 1.5, 1.5, 0.0
+            ]
+        );
     }
 }

@@ -5,6 +5,7 @@
 use super::GRIPPER_COLLISION_COLOR;
 use crate::assets::Assets;
 use crate::mjcf::XmlModel;
+use crate::mjcf::tree::{array_to_string, set_attr};
 use gym_core::{Error, Result};
 
 /// How a gripper turns its action into commands for its actuators (robosuite's
@@ -44,6 +45,15 @@ pub enum GripAction {
         /// The number of actions (and actuators).
         dof: usize,
     },
+    /// One action per hand joint group, copied to the actuators without integration:
+    /// actuator `i`'s command is `a[indices[i]]` (robosuite's Inspire hands: thumb
+    /// rotation, thumb bend on three actuators, each finger on two).
+    Direct {
+        /// The action index each actuator copies.
+        indices: &'static [usize],
+        /// The number of actions.
+        dof: usize,
+    },
 }
 
 impl GripAction {
@@ -52,7 +62,7 @@ impl GripAction {
         match self {
             Self::None => 0,
             Self::SignIntegrator { .. } | Self::ValueIntegrator { .. } => 1,
-            Self::PerActuator { dof, .. } => *dof,
+            Self::PerActuator { dof, .. } | Self::Direct { dof, .. } => *dof,
         }
     }
 }
@@ -336,6 +346,94 @@ pub const BD_GRIPPER: GripperInfo = GripperInfo {
     corners: &[],
 };
 
+/// The action index each actuator of an Inspire hand copies (robosuite's `format_action`:
+/// actuators pinky, ring, middle, index (two each), thumb bend (three), thumb rotation).
+const INSPIRE_ACTION_INDICES: &[usize] = &[0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 5];
+
+/// robosuite's `InspireRightHand` (the Inspire dexterous hand: 12 joints, 12 position
+/// actuators, 6 actions).
+pub const INSPIRE_RIGHT_HAND: GripperInfo = GripperInfo {
+    name: "InspireRightHand",
+    file: "grippers/inspire_right_hand.xml",
+    init_qpos: Some(&[0.0; 12]),
+    action: GripAction::Direct {
+        indices: INSPIRE_ACTION_INDICES,
+        dof: 6,
+    },
+    left_fingerpad: &[
+        "r_thumb_proximal_col",
+        "r_thumb_proximal_2_col",
+        "r_thumb_middle_col",
+        "r_thumb_distal_col",
+    ],
+    right_fingerpad: &[
+        "r_index_proximal_col",
+        "r_index_distal_col",
+        "r_middle_proximal_col",
+        "r_middle_distal_col",
+        "r_ring_proximal_col",
+        "r_ring_distal_col",
+        "r_pinky_proximal_col",
+        "r_pinky_distal_col",
+    ],
+    left_finger: &[
+        "r_thumb_proximal_col",
+        "r_thumb_proximal_2_col",
+        "r_thumb_middle_col",
+        "r_thumb_distal_col",
+    ],
+    right_finger: &[
+        "r_index_proximal_col",
+        "r_index_distal_col",
+        "r_middle_proximal_col",
+        "r_middle_distal_col",
+        "r_ring_proximal_col",
+        "r_ring_distal_col",
+        "r_pinky_proximal_col",
+        "r_pinky_distal_col",
+    ],
+    corners: &[],
+};
+
+/// robosuite's `InspireLeftHand` (the mirror of [`INSPIRE_RIGHT_HAND`]).
+pub const INSPIRE_LEFT_HAND: GripperInfo = GripperInfo {
+    name: "InspireLeftHand",
+    file: "grippers/inspire_left_hand.xml",
+    left_fingerpad: &[
+        "l_thumb_proximal_col",
+        "l_thumb_proximal_2_col",
+        "l_thumb_middle_col",
+        "l_thumb_distal_col",
+    ],
+    right_fingerpad: &[
+        "l_index_proximal_col",
+        "l_index_distal_col",
+        "l_middle_proximal_col",
+        "l_middle_distal_col",
+        "l_ring_proximal_col",
+        "l_ring_distal_col",
+        "l_pinky_proximal_col",
+        "l_pinky_distal_col",
+    ],
+    left_finger: &[
+        "l_thumb_proximal_col",
+        "l_thumb_proximal_2_col",
+        "l_thumb_middle_col",
+        "l_thumb_distal_col",
+    ],
+    right_finger: &[
+        "l_index_proximal_col",
+        "l_index_distal_col",
+        "l_middle_proximal_col",
+        "l_middle_distal_col",
+        "l_ring_proximal_col",
+        "l_ring_distal_col",
+        "l_pinky_proximal_col",
+        "l_pinky_distal_col",
+    ],
+    ..INSPIRE_RIGHT_HAND
+};
+
 /// Every gripper [`gripper_info`] knows, by robosuite's class name (with `None`, robosuite
 /// attaches [`NULL_GRIPPER`]).
 pub const GRIPPERS: &[GripperInfo] = &[
@@ -350,6 +448,8 @@ pub const GRIPPERS: &[GripperInfo] = &[
     XARM7_GRIPPER,
     WIPING_GRIPPER,
     BD_GRIPPER,
+    INSPIRE_RIGHT_HAND,
+    INSPIRE_LEFT_HAND,
 ];
 
 /// The gripper robosuite names `name`.
@@ -398,5 +498,17 @@ impl GripperModel {
             GRIPPER_COLLISION_COLOR,
         )?;
         Ok(Self { xml, info })
+    }
+
+    /// robosuite's custom gripper mount: sets the position and (w, x, y, z) orientation
+    /// of the gripper's first body, where given.
+    pub fn set_mount_offset(&mut self, pos: Option<[f64; 3]>, quat: Option<[f64; 4]>) {
+        let body = self.xml.root_body_element_mut();
+        if let Some(pos) = pos {
+            set_attr(body, "pos", array_to_string(&pos));
+        }
+        if let Some(quat) = quat {
+            set_attr(body, "quat", array_to_string(&quat));
+        }
     }
 }

@@ -132,6 +132,23 @@ pub struct RobotInfo {
     pub init_torso_qpos: Option<&'static [f64]>,
     /// The base joints' rest positions (robosuite's `init_base_qpos`), if any.
     pub init_base_qpos: Option<&'static [f64]>,
+    /// Per arm, the pose a gripper's first body takes on the eef body in place of its
+    /// file's (robosuite's `gripper_mount_pos_offset` / `gripper_mount_quat_offset`);
+    /// empty: every gripper as its file places it.
+    pub gripper_mount_offsets: &'static [GripperMountOffset],
+}
+
+/// robosuite's custom gripper mount of one arm (`gripper_mount_pos_offset` and
+/// `gripper_mount_quat_offset`): whatever gripper the arm carries, its first body is
+/// placed at `pos` with orientation `quat` on the eef body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GripperMountOffset {
+    /// The arm (`"right"` or `"left"`).
+    pub arm: &'static str,
+    /// The position, if robosuite sets one.
+    pub pos: Option<[f64; 3]>,
+    /// The orientation (w, x, y, z), if robosuite sets one.
+    pub quat: Option<[f64; 4]>,
 }
 
 /// The fields every single-arm robot of robosuite shares: one right arm with its gripper on
@@ -152,6 +169,7 @@ const SINGLE_ARM: RobotInfo = RobotInfo {
     kind: RobotKind::FixedBase,
     init_torso_qpos: None,
     init_base_qpos: None,
+    gripper_mount_offsets: &[],
 };
 
 /// robosuite's `Panda` (Franka Emika Panda, 7 joints).
@@ -253,6 +271,7 @@ pub const BAXTER: RobotInfo = RobotInfo {
     kind: RobotKind::FixedBase,
     init_torso_qpos: None,
     init_base_qpos: None,
+    gripper_mount_offsets: &[],
 };
 
 /// robosuite's `PandaOmron`: a Panda on the Omron LD-60 mobile base (a `WheeledRobot`
@@ -302,6 +321,31 @@ pub const TIAGO: RobotInfo = RobotInfo {
     kind: RobotKind::Wheeled,
     init_torso_qpos: None,
     init_base_qpos: None,
+    gripper_mount_offsets: &[],
+};
+
+/// robosuite's `PandaDexRH`: a Panda with the Inspire right hand on its flange.
+pub const PANDA_DEX_RH: RobotInfo = RobotInfo {
+    name: "PandaDexRH",
+    default_grippers: &["InspireRightHand"],
+    gripper_mount_offsets: &[GripperMountOffset {
+        arm: "right",
+        pos: Some([0.0, 0.0, 0.0]),
+        quat: Some([-0.5, 0.5, 0.5, -0.5]),
+    }],
+    ..PANDA
+};
+
+/// robosuite's `PandaDexLH`: a Panda with the Inspire left hand on its flange.
+pub const PANDA_DEX_LH: RobotInfo = RobotInfo {
+    name: "PandaDexLH",
+    default_grippers: &["InspireLeftHand"],
+    gripper_mount_offsets: &[GripperMountOffset {
+        arm: "right",
+        pos: Some([0.0, 0.0, 0.0]),
+        quat: Some([0.5, -0.5, 0.5, -0.5]),
+    }],
+    ..PANDA
 };
 
 /// robosuite's `SpotWithArm` (Boston Dynamics Spot: the 6-joint Spot arm with the
@@ -351,6 +395,8 @@ pub const ROBOTS: &[RobotInfo] = &[
     TIAGO,
     SPOT_WITH_ARM,
     SPOT_WITH_ARM_FLOATING,
+    PANDA_DEX_RH,
+    PANDA_DEX_LH,
 ];
 
 /// The names of [`ROBOTS`].
@@ -480,7 +526,10 @@ impl RobotModel {
         model.add_mount(MountModel::load(assets, mount, idn)?)?;
         for (i, side) in info.arms.iter().enumerate() {
             let (gripper_info, has_gripper) = grippers[i].resolve(&info, i)?;
-            let gripper = GripperModel::load(assets, gripper_info, idn, side)?;
+            let mut gripper = GripperModel::load(assets, gripper_info, idn, side)?;
+            if let Some(offset) = info.gripper_mount_offsets.iter().find(|o| o.arm == *side) {
+                gripper.set_mount_offset(offset.pos, offset.quat);
+            }
             let eef = model.xml.name(info.eef_bodies[i]);
             model
                 .xml

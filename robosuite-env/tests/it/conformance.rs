@@ -180,6 +180,8 @@ robot_tests! {
     every_task_on_panda_omron_passes_check_env => "PandaOmron";
     every_task_on_spot_with_arm_passes_check_env => "SpotWithArm";
     every_task_on_spot_with_arm_floating_passes_check_env => "SpotWithArmFloating";
+    every_task_on_panda_dex_rh_passes_check_env => "PandaDexRH";
+    every_task_on_panda_dex_lh_passes_check_env => "PandaDexLH";
 }
 
 /// Tiago, a bimanual mobile robot, alone on a two-arm task (robosuite's single-robot
@@ -199,5 +201,30 @@ fn tiago_on_two_arm_lift_passes_check_env() {
         conformance_tests::Check::StepAfterEnd,
     ] {
         assert!(report.passed(check), "TwoArmLift on Tiago: {check:?}");
+    }
+}
+
+/// A right-hand and a left-hand Panda with Inspire hands on a two-arm task (robosuite's
+/// opposed set-up): check_env with the hands' six actions each.
+#[test]
+fn panda_dex_pair_on_two_arm_lift_passes_check_env() {
+    let mut env = make_with(
+        "TwoArmLift",
+        EnvConfig::default()
+            .with_horizon(30)
+            .with_robots(["PandaDexRH", "PandaDexLH"]),
+    )
+    .unwrap();
+    assert_eq!(env.action_dim(), 24);
+    let report = check_env(&mut env, &CheckOptions::default()).unwrap();
+    for check in [
+        conformance_tests::Check::ResetSeedDeterminism,
+        conformance_tests::Check::InvalidAction,
+        conformance_tests::Check::StepAfterEnd,
+    ] {
+        assert!(
+            report.passed(check),
+            "TwoArmLift on PandaDexRH and PandaDexLH: {check:?}"
+        );
     }
 }

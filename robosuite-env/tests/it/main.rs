@@ -12,6 +12,7 @@ mod controller_config;
 mod controller_conformance;
 mod controller_reference;
 mod controller_replay;
+mod dex_robots;
 mod door_env;
 mod legged_robots;
 mod lift_env;
