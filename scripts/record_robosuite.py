@@ -703,6 +703,68 @@ for _task in ["TwoArmLift"]:
     POLICIES[f"{_task}-Tiago"] = [POLICIES[_task][1]]
 
 
+# robosuite's GR1 humanoids, each with its default composite controller (GR1 and GR1ArmsOnly:
+# WHOLE_BODY_IK, GR1FloatingBody: HYBRID_MOBILE_BASE), as one bimanual robot on TwoArmLift
+# ("single-robot") and on Lift. The WHOLE_BODY_IK rollouts move the grip sites around their
+# reset poses (`ik_policy`): random absolute targets send the IK anywhere.
+GR1_ROBOTS = ["GR1", "GR1ArmsOnly", "GR1FloatingBody"]
+MOBILE_ROBOTS.append("GR1FloatingBody")
+
+
+def ik_policy(env, toggle=True):
+    """Absolute grip-site targets (WHOLE_BODY_IK, in its input frame) circling each site's
+    reset pose, the hands opening and closing, the other parts at rest."""
+    from scipy.spatial.transform import Rotation
+
+    robot = env.robots[0]
+    cc = robot.composite_controller
+    ik = cc.joint_action_policy
+    m, d = env.sim.model._model, env.sim.data._data
+    start = {}
+    for site in ik.site_names:
+        sid = m.site(site).id
+        start[site] = (d.site_xpos[sid].copy(), Rotation.from_matrix(d.site_xmat[sid].reshape(3, 3)))
+    frame = ik.input_ref_frame
+    if frame != "world":
+        bid = m.body("robot0_base" if frame == "base" else frame).id
+        fp, fr = d.xpos[bid].copy(), Rotation.from_matrix(d.xmat[bid].reshape(3, 3))
+    state = {"t": 0}
+
+    def act(obs):
+        t = state["t"]
+        state["t"] += 1
+        w = 2 * np.pi * t / 30.0
+        action = np.zeros(env.action_dim)
+        for i, site in enumerate(ik.site_names):
+            p0, r0 = start[site]
+            sign = 1.0 if i == 0 else -1.0
+            p = p0 + np.array([0.08 * np.sin(w), sign * 0.06 * np.sin(2 * w), 0.05 * (1 - np.cos(w))])
+            r = Rotation.from_rotvec([0.15 * np.sin(w), sign * 0.1 * np.sin(w), 0.2 * np.sin(w)]) * r0
+            if frame != "world":
+                p, r = fr.inv().apply(p - fp), fr.inv() * r
+            action[6 * i : 6 * i + 6] = np.concatenate([p, r.as_rotvec()])
+        for part, (a, b) in cc._whole_body_controller_action_split_indexes.items():
+            if part.endswith("_gripper"):
+                action[a:b] = 1.0 if toggle and (t // 10) % 2 else -1.0
+        return np.round(action, 6)
+
+    return act
+
+
+def default_policy(env, seed):
+    """WHOLE_BODY_IK robots: `ik_policy`; the others: seeded random actions."""
+    if type(env.robots[0].composite_controller).__name__ == "WholeBodyIK":
+        return ik_policy(env)
+    return random_policy(seed, env.action_dim)
+
+
+for _robot in GR1_ROBOTS:
+    SETUPS[f"TwoArmLift-{_robot}"] = ("TwoArmLift", [_robot], {})
+    POLICIES[f"TwoArmLift-{_robot}"] = [("random", lambda env: default_policy(env, 5), 60)]
+    SETUPS[f"Lift-{_robot}"] = ("Lift", _robot, {})
+    POLICIES[f"Lift-{_robot}"] = [("random", lambda env: default_policy(env, 7), 60)]
+
+
 def scripted_and_random(scripted, steps, seed):
     """A task's rollouts: the scripted policy for `steps` steps, then 60 random actions."""
     return [("scripted", scripted, steps), ("random", lambda env: random_policy(seed, env.action_dim), 60)]
@@ -743,7 +805,12 @@ def base_policy(env, steps=60):
     def act(obs):
         state["t"] += 1
         t = state["t"]
-        parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]), "torso": np.array([0.5])}
+        torso = robot.part_controllers["torso"].control_dim if "torso" in robot.part_controllers else 0
+        parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)])}
+        if torso == 1:
+            parts["torso"] = np.array([0.5])
+        elif torso:
+            parts["torso"] = np.full(torso, 0.2 * np.sin(t / 11.0))
         parts["base_mode"] = 1.0 if t > steps // 2 else -1.0
         return robot.create_action_vector(parts)
 

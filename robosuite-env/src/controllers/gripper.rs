@@ -72,6 +72,11 @@ impl GripController {
                     *c = (*c + sign * speed * sign_of(*a)).clamp(-1.0, 1.0);
                 }
             }
+            GripAction::Indexed { indices, .. } => {
+                for (c, &i) in self.command.iter_mut().zip(indices) {
+                    *c = action.get(i).copied().unwrap_or(0.0);
+                }
+            }
         }
     }
 
@@ -80,11 +85,17 @@ impl GripController {
         &self.command
     }
 
-    /// Sets the command (for snapshots), each entry clipped to `[-1, 1]`; extra or missing
-    /// entries are ignored.
+    /// Sets the command (for snapshots), each entry clipped to `[-1, 1]` (an
+    /// [`GripAction::Indexed`] gripper's to its actuator's ctrlrange without action
+    /// scaling); extra or missing entries are ignored.
     pub fn set_command(&mut self, command: &[f64]) {
-        for (c, v) in self.command.iter_mut().zip(command) {
-            *c = v.clamp(-1.0, 1.0);
+        let raw = matches!(self.action, GripAction::Indexed { .. }) && !self.scaling;
+        for ((c, v), [lo, hi]) in self.command.iter_mut().zip(command).zip(&self.ranges) {
+            *c = if raw {
+                v.clamp(*lo, *hi)
+            } else {
+                v.clamp(-1.0, 1.0)
+            };
         }
     }
 
