@@ -199,3 +199,45 @@ fn tiago_on_two_arm_lift_passes_check_env() {
         assert!(report.passed(check), "TwoArmLift on Tiago: {check:?}");
     }
 }
+
+/// robosuite's GR1 humanoids, each with its default composite controller (GR1FixedLowerBody,
+/// whose default `WHOLE_BODY_MINK_IK` is not served, with robosuite's WHOLE_BODY_IK
+/// config), alone on the tasks robosuite accepts them on.
+#[test]
+fn gr1_humanoids_pass_check_env() {
+    let assets = robosuite_env::assets::Assets::locate().unwrap();
+    let wbik = robosuite_env::controllers::config::load_composite_controller_config(
+        &assets,
+        Some("WHOLE_BODY_IK"),
+        Some("GR1FixedLowerBody"),
+    )
+    .unwrap();
+    for task in GR1_TASKS {
+        for robot in ["GR1", "GR1ArmsOnly", "GR1FloatingBody", "GR1FixedLowerBody"] {
+            let mut config = EnvConfig::default().with_horizon(30).with_robots([robot]);
+            if robot == "GR1FixedLowerBody" {
+                config = config.with_controller_configs([
+                    robosuite_env::controllers::ControllerConfig::from_value(
+                        &wbik,
+                        "controller_configs",
+                    )
+                    .unwrap(),
+                ]);
+            }
+            let what = format!("{task} on {robot}");
+            let mut env = make_with(task, config).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let report = check_env(&mut env, &CheckOptions::default())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            for check in [
+                conformance_tests::Check::ResetSeedDeterminism,
+                conformance_tests::Check::InvalidAction,
+                conformance_tests::Check::StepAfterEnd,
+            ] {
+                assert!(report.passed(check), "{what}: {check:?}");
+            }
+        }
+    }
+}
+
+/// The tasks the GR1 humanoids are checked on.
+const GR1_TASKS: &[&str] = &["TwoArmLift"];

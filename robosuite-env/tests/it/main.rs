@@ -13,6 +13,7 @@ mod controller_conformance;
 mod controller_reference;
 mod controller_replay;
 mod door_env;
+mod humanoids;
 mod lift_env;
 mod mobile_robots;
 mod nut_assembly_env;
