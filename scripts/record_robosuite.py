@@ -15,8 +15,12 @@ JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
 
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
+       record_robosuite.py --layouts --robot NAME
+(the robot's observation layouts on every single-arm task, as `TASK-ROBOT` entries of
+observations.json)
 """
 import argparse
+import json
 import os
 import sys
 
@@ -841,16 +845,55 @@ def record(fixture, robot, out, resets):
     print(f"{stem}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
 
 
+# robosuite's single-arm tasks (every one takes a bimanual robot too).
+SINGLE_ARM_TASKS = ["Lift", "Stack", "Door", "Wipe", "ToolHang"] + PICK_PLACE + NUT_ASSEMBLY
+
+
+def observation_layouts(robot, out):
+    """Adds `TASK-ROBOT` entries to observations.json: robosuite's action dimension and
+    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task,
+    made with its defaults and reset (as the file's per-task entries)."""
+    path = os.path.join(out, "observations.json")
+    with open(path) as f:
+        data = json.load(f)
+    for task in SINGLE_ARM_TASKS:
+        env = make(task, 0, robots=robot)
+        obs = env.reset()
+        data[f"{task}-{robot}"] = {
+            "action_dim": int(env.action_dim),
+            "env_configuration": env.env_configuration,
+            "obs": [[k, list(np.asarray(v).shape), str(np.asarray(v).dtype)] for k, v in obs.items()],
+        }
+        env.close()
+        print(f"{task}-{robot}: action_dim {env.action_dim}, {len(obs)} keys")
+    # The file's layout: one observation key per line.
+    entries = []
+    for name, entry in data.items():
+        keys = ",\n".join(f"      {json.dumps(k, separators=(', ', ': '))}" for k in entry["obs"])
+        entries.append(
+            f'  {json.dumps(name)}: {{\n    "action_dim": {entry["action_dim"]},\n'
+            f'    "env_configuration": {json.dumps(entry["env_configuration"])},\n'
+            f'    "obs": [\n{keys}\n    ]\n  }}'
+        )
+    with open(path, "w") as f:
+        f.write("{\n" + ",\n".join(entries) + "\n}\n")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite"))
     parser.add_argument("--resets", type=int, default=200)
     parser.add_argument("--robot", default="Panda")
+    parser.add_argument("--layouts", action="store_true",
+                        help="record the --robot robot's observation layouts on every single-arm task into observations.json")
     parser.add_argument("tasks", nargs="*", default=list(POLICIES))
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
         sys.exit(f"record_robosuite: robosuite {robosuite.__version__} is installed, 1.5.2 is needed")
     os.makedirs(args.out, exist_ok=True)
+    if args.layouts:
+        observation_layouts(args.robot, args.out)
+        return
     for task in args.tasks:
         if task not in POLICIES:
             sys.exit(f"record_robosuite: unknown task {task}; known: {', '.join(POLICIES)}")

@@ -128,16 +128,73 @@ pub fn is_grasped(sim: &Sim, gripper: &Gripper, geoms: &GeomSet) -> bool {
     any_contact_between(sim.data(), left, geoms) && any_contact_between(sim.data(), right, geoms)
 }
 
-/// Whether robot 0's (first arm's) gripper grasps `geoms`.
+/// robosuite's `_check_grasp(self.robots[0].gripper, geoms)`: whether a gripper of robot 0
+/// grasps `geoms` (any arm's, for a bimanual robot, whose `gripper` is a dict per arm).
 pub fn robot0_grasps(sim: &Sim, robots: &[Robot], geoms: &GeomSet) -> bool {
     robots
         .first()
-        .is_some_and(|r| is_grasped(sim, r.arm().gripper(), geoms))
+        .is_some_and(|r| r.arms().iter().any(|a| is_grasped(sim, a.gripper(), geoms)))
 }
 
-/// Robot 0's grip-site position (the origin when there is no robot).
+/// Robot 0's (first arm's) grip-site position (the origin when there is no robot).
 pub fn eef_pos(sim: &Sim, robots: &[Robot]) -> [f64; 3] {
     robots.first().map_or([0.0; 3], |r| r.eef_pos(sim, 0))
+}
+
+/// robosuite's `_gripper_to_target(self.robots[0].gripper, target, return_distance=True)`:
+/// the distance from robot 0's grip site to `target`, the smallest over its arms for a
+/// bimanual robot (infinite when there is no robot).
+pub fn robot0_eef_dist(sim: &Sim, robots: &[Robot], target: [f64; 3]) -> f64 {
+    robots.first().map_or(f64::INFINITY, |r| {
+        (0..r.arms().len())
+            .map(|arm| dist(r.eef_pos(sim, arm), target))
+            .fold(f64::INFINITY, f64::min)
+    })
+}
+
+/// One arm of robot 0 as robosuite's single-arm tasks name its observables.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TaskArm {
+    /// robosuite's `_get_arm_prefixes(robot, include_robot_name=False)` entry: empty for a
+    /// single-arm robot, `"{side}_"` (`"right_"`, `"left_"`) for each arm of a bimanual one.
+    pub prefix: String,
+    /// The same with the robot's prefix (`"robot0_"`, `"robot0_right_"`).
+    pub full_prefix: String,
+    /// The arm's index in [`Robot::arms`].
+    pub arm: usize,
+    /// The arm's grip site.
+    pub eef_site: usize,
+    /// The body of the arm's end effector (the hand).
+    pub eef_body: usize,
+}
+
+/// Robot 0's arms in robosuite's order (`robot.arms`: right, then left), with the prefixes
+/// its single-arm tasks give their per-arm observables (`{prefix}gripper_to_cube_pos`,
+/// `door_to_{full_prefix}eef_pos`).
+pub fn robot0_arms(robots: &[Robot]) -> Vec<TaskArm> {
+    let Some(robot) = robots.first() else {
+        return Vec::new();
+    };
+    let one = robot.arms().len() == 1;
+    robot
+        .arms()
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let prefix = if one {
+                String::new()
+            } else {
+                format!("{}_", a.side())
+            };
+            TaskArm {
+                full_prefix: format!("robot{}_{prefix}", robot.index()),
+                prefix,
+                arm: i,
+                eef_site: a.eef_site(),
+                eef_body: a.eef_body(),
+            }
+        })
+        .collect()
 }
 
 /// Applies `reward_scale` (`None`: unnormalised) with robosuite's normalisation divisor, in

@@ -53,3 +53,22 @@ fn every_task_lays_out_its_observations_as_robosuite() {
         }
     }
 }
+
+/// The single-arm tasks whose layouts with a bimanual robot were recorded
+/// (`TASK-ROBOT` entries of `observations.json`).
+const BIMANUAL_TASKS: &[&str] = &["Lift"];
+
+#[test]
+fn bimanual_robots_lay_out_single_arm_tasks_as_robosuite() {
+    for &task in BIMANUAL_TASKS {
+        for robot in ["Baxter", "Tiago"] {
+            let entry = format!("{task}-{robot}");
+            let expected = with_single_object_prefix(task, robosuite_observations(&entry));
+            let config = EnvConfig::default().with_robots([robot]);
+            let mut env = make_with(task, config).unwrap_or_else(|e| panic!("{entry}: {e}"));
+            let (obs, _) = env.reset(Some(1), None).unwrap();
+            assert_observation_layout(&env, &obs, &expected);
+            assert_eq!(env.action_dim(), robosuite_action_dim(&entry), "{entry}");
+        }
+    }
+}
