@@ -144,12 +144,13 @@ def task_state(task, env):
         body = env.sim.model.body_name2id(env.door.root_body)
         return [float(x) for x in env.sim.model.body_pos[body]] + [float(x) for x in env.sim.model.body_quat[body]]
     if task == "Wipe":
-        # Marker positions (model body_pos), wiped flags, force bias, the step's force and the
-        # force sensor now.
+        # Marker positions (model body_pos), wiped flags, then per arm the force bias, the
+        # step's force and the force sensor now.
         markers = env.model.mujoco_arena.markers
         pos = [float(x) for m in markers for x in env.sim.model.body_pos[env.sim.model.body_name2id(m.root_body)]]
-        force = [float(x) for x in env.robots[0].ee_force["right"]]
-        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * 6 + force
+        arms = env.robots[0].arms
+        force = [float(x) for arm in arms for x in env.robots[0].ee_force[arm]]
+        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * (6 * len(arms)) + force
     active = active_object(task, env)
     if active is not None:
         # The object in play.
@@ -725,14 +726,27 @@ POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, 
 def for_robot(env, policy):
     """A single-arm policy's [arm (6), gripper (1)] actions in the layout of the robot's
     composite controller (robosuite's `create_action_vector`; other parts at rest, a
-    HYBRID_MOBILE_BASE robot in arm mode), for robots whose action is not that layout."""
+    HYBRID_MOBILE_BASE robot in arm mode), for robots whose action is not that layout. A
+    bimanual robot's right arm follows the policy (which reads `robot0_eef_*` from the
+    right arm's `robot0_right_eef_*`); its left arm holds still, its gripper open."""
     robot = env.robots[0]
-    if env.action_dim == 7 or len(robot.arms) != 1:
+    if env.action_dim == 7 and len(robot.arms) == 1:
         return policy
+    bimanual = len(robot.arms) == 2
 
     def act(obs):
+        if bimanual:
+            obs = dict(obs)
+            for k in ("eef_pos", "eef_quat"):
+                obs[f"robot0_{k}"] = obs[f"robot0_right_{k}"]
         a = np.asarray(policy(obs), dtype=np.float64)
-        return robot.create_action_vector({"right": a[:6], "right_gripper": a[6:7]})
+        parts = {"right": a[:6]}
+        if bimanual:
+            parts["left"] = np.zeros(6)
+        for arm in robot.arms:
+            if robot.gripper[arm].dof > 0:
+                parts[f"{arm}_gripper"] = a[6:7] if arm == "right" else np.array([-1.0])
+        return robot.create_action_vector(parts)
 
     return act
 
