@@ -15,8 +15,12 @@ JSON file to robosuite-env/tests/fixtures/robosuite/ holding figures only:
 
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
+       record_robosuite.py --layouts --robot NAME
+(the robot's observation layouts on every single-arm task, as `TASK-ROBOT` entries of
+observations.json)
 """
 import argparse
+import json
 import os
 import sys
 
@@ -140,12 +144,13 @@ def task_state(task, env):
         body = env.sim.model.body_name2id(env.door.root_body)
         return [float(x) for x in env.sim.model.body_pos[body]] + [float(x) for x in env.sim.model.body_quat[body]]
     if task == "Wipe":
-        # Marker positions (model body_pos), wiped flags, force bias, the step's force and the
-        # force sensor now.
+        # Marker positions (model body_pos), wiped flags, then per arm the force bias, the
+        # step's force and the force sensor now.
         markers = env.model.mujoco_arena.markers
         pos = [float(x) for m in markers for x in env.sim.model.body_pos[env.sim.model.body_name2id(m.root_body)]]
-        force = [float(x) for x in env.robots[0].ee_force["right"]]
-        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * 6 + force
+        arms = env.robots[0].arms
+        force = [float(x) for arm in arms for x in env.robots[0].ee_force[arm]]
+        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * (6 * len(arms)) + force
     active = active_object(task, env)
     if active is not None:
         # The object in play.
@@ -783,14 +788,27 @@ POLICIES["NutAssemblySingle"] = scripted_and_random(lambda env: nut_policy(env, 
 def for_robot(env, policy):
     """A single-arm policy's [arm (6), gripper (1)] actions in the layout of the robot's
     composite controller (robosuite's `create_action_vector`; other parts at rest, a
-    HYBRID_MOBILE_BASE robot in arm mode), for robots whose action is not that layout."""
+    HYBRID_MOBILE_BASE robot in arm mode), for robots whose action is not that layout. A
+    bimanual robot's right arm follows the policy (which reads `robot0_eef_*` from the
+    right arm's `robot0_right_eef_*`); its left arm holds still, its gripper open."""
     robot = env.robots[0]
-    if env.action_dim == 7 or len(robot.arms) != 1:
+    if env.action_dim == 7 and len(robot.arms) == 1:
         return policy
+    bimanual = len(robot.arms) == 2
 
     def act(obs):
+        if bimanual:
+            obs = dict(obs)
+            for k in ("eef_pos", "eef_quat"):
+                obs[f"robot0_{k}"] = obs[f"robot0_right_{k}"]
         a = np.asarray(policy(obs), dtype=np.float64)
-        return robot.create_action_vector({"right": a[:6], "right_gripper": a[6:7]})
+        parts = {"right": a[:6]}
+        if bimanual:
+            parts["left"] = np.zeros(6)
+        for arm in robot.arms:
+            if robot.gripper[arm].dof > 0:
+                parts[f"{arm}_gripper"] = a[6:7] if arm == "right" else np.array([-1.0])
+        return robot.create_action_vector(parts)
 
     return act
 
@@ -908,16 +926,55 @@ def record(fixture, robot, out, resets):
     print(f"{stem}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
 
 
+# robosuite's single-arm tasks (every one takes a bimanual robot too).
+SINGLE_ARM_TASKS = ["Lift", "Stack", "Door", "Wipe", "ToolHang"] + PICK_PLACE + NUT_ASSEMBLY
+
+
+def observation_layouts(robot, out):
+    """Adds `TASK-ROBOT` entries to observations.json: robosuite's action dimension and
+    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task,
+    made with its defaults and reset (as the file's per-task entries)."""
+    path = os.path.join(out, "observations.json")
+    with open(path) as f:
+        data = json.load(f)
+    for task in SINGLE_ARM_TASKS:
+        env = make(task, 0, robots=robot)
+        obs = env.reset()
+        data[f"{task}-{robot}"] = {
+            "action_dim": int(env.action_dim),
+            "env_configuration": env.env_configuration,
+            "obs": [[k, list(np.asarray(v).shape), str(np.asarray(v).dtype)] for k, v in obs.items()],
+        }
+        env.close()
+        print(f"{task}-{robot}: action_dim {env.action_dim}, {len(obs)} keys")
+    # The file's layout: one observation key per line.
+    entries = []
+    for name, entry in data.items():
+        keys = ",\n".join(f"      {json.dumps(k, separators=(', ', ': '))}" for k in entry["obs"])
+        entries.append(
+            f'  {json.dumps(name)}: {{\n    "action_dim": {entry["action_dim"]},\n'
+            f'    "env_configuration": {json.dumps(entry["env_configuration"])},\n'
+            f'    "obs": [\n{keys}\n    ]\n  }}'
+        )
+    with open(path, "w") as f:
+        f.write("{\n" + ",\n".join(entries) + "\n}\n")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite"))
     parser.add_argument("--resets", type=int, default=200)
     parser.add_argument("--robot", default="Panda")
+    parser.add_argument("--layouts", action="store_true",
+                        help="record the --robot robot's observation layouts on every single-arm task into observations.json")
     parser.add_argument("tasks", nargs="*", default=list(POLICIES))
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
         sys.exit(f"record_robosuite: robosuite {robosuite.__version__} is installed, 1.5.2 is needed")
     os.makedirs(args.out, exist_ok=True)
+    if args.layouts:
+        observation_layouts(args.robot, args.out)
+        return
     for task in args.tasks:
         if task not in POLICIES:
             sys.exit(f"record_robosuite: unknown task {task}; known: {', '.join(POLICIES)}")

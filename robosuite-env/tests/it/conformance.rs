@@ -114,19 +114,21 @@ fn every_task_reports_success_in_info() {
 }
 
 /// Every task on `robot` against `check_env` (its own default gripper and controller; the
-/// two-arm tasks with two of it, `opposed`).
+/// two-arm tasks with two of it, `opposed`, or a bimanual robot alone).
 fn every_task_on(robot: &str) {
+    let info = robosuite_env::models::robots::robot_info(robot).unwrap();
     for name in ENV_NAMES {
-        let count = robosuite_env::make_task(name)
-            .unwrap()
-            .robots()
-            .num_robots();
+        let count = if info.arms.len() == 2 {
+            1
+        } else {
+            robosuite_env::make_task(name)
+                .unwrap()
+                .robots()
+                .num_robots()
+        };
         // Two mobile robots cannot share a scene (robosuite fails on it): a mobile robot
         // takes a Panda as its partner.
-        let mobile = robosuite_env::models::robots::robot_info(robot)
-            .unwrap()
-            .kind
-            .is_mobile();
+        let mobile = info.kind.is_mobile();
         let mut robots = vec![robot; count];
         if mobile && count > 1 {
             robots[1..].fill("Panda");
@@ -149,8 +151,8 @@ fn every_task_on(robot: &str) {
     }
 }
 
-/// One test per single-arm robot other than the Panda (which the tests above cover), so
-/// they run in parallel. (Baxter, the bimanual robot, is covered by the two-arm tests.)
+/// One test per robot other than the Panda (which the tests above cover), so they run in
+/// parallel; the bimanual Baxter and Tiago alone on every task.
 macro_rules! robot_tests {
     ($($test:ident => $robot:literal;)*) => {
         $(
@@ -163,7 +165,7 @@ macro_rules! robot_tests {
         #[test]
         fn every_robot_is_covered() {
             let covered = ["Panda", $($robot),*];
-            for robot in robosuite_env::models::robots::single_arm_robot_names() {
+            for robot in robosuite_env::models::robots::robot_names() {
                 assert!(covered.contains(&robot), "{robot} has no conformance test");
             }
         }
@@ -178,26 +180,8 @@ robot_tests! {
     every_task_on_ur5e_passes_check_env => "UR5e";
     every_task_on_xarm7_passes_check_env => "XArm7";
     every_task_on_panda_omron_passes_check_env => "PandaOmron";
-}
-
-/// Tiago, a bimanual mobile robot, alone on a two-arm task (robosuite's single-robot
-/// set-up): check_env with its BASIC layout (arms, torso, head, base, grippers).
-#[test]
-fn tiago_on_two_arm_lift_passes_check_env() {
-    let mut env = make_with(
-        "TwoArmLift",
-        EnvConfig::default().with_horizon(30).with_robots(["Tiago"]),
-    )
-    .unwrap();
-    assert_eq!(env.action_dim(), 20);
-    let report = check_env(&mut env, &CheckOptions::default()).unwrap();
-    for check in [
-        conformance_tests::Check::ResetSeedDeterminism,
-        conformance_tests::Check::InvalidAction,
-        conformance_tests::Check::StepAfterEnd,
-    ] {
-        assert!(report.passed(check), "TwoArmLift on Tiago: {check:?}");
-    }
+    every_task_on_baxter_passes_check_env => "Baxter";
+    every_task_on_tiago_passes_check_env => "Tiago";
 }
 
 /// robosuite's GR1 humanoids, each with its default composite controller (GR1FixedLowerBody,
