@@ -224,4 +224,4 @@ fn gr1_humanoids_pass_check_env() {
 }
 
 /// The tasks the GR1 humanoids are checked on.
-const GR1_TASKS: &[&str] = &["TwoArmLift"];
+const GR1_TASKS: &[&str] = &["TwoArmLift", "Lift"];

@@ -44,7 +44,12 @@ fn gr1_robots_have_robosuites_parts_and_action_sizes() {
     for (robot, composite, parts, dim) in [
         ("GR1", "WHOLE_BODY_IK", &["legs", "head", "torso"][..], 24),
         ("GR1ArmsOnly", "WHOLE_BODY_IK", &[][..], 24),
-        ("GR1FloatingBody", "HYBRID_MOBILE_BASE", &["base", "head", "torso"][..], 34),
+        (
+            "GR1FloatingBody",
+            "HYBRID_MOBILE_BASE",
+            &["base", "head", "torso"][..],
+            34,
+        ),
     ] {
         let mut env = gr1(robot);
         let r = &env.robots()[0];
@@ -63,11 +68,7 @@ fn gr1_robots_have_robosuites_parts_and_action_sizes() {
             assert!(obs.get(key).is_some(), "{robot}: {key}");
         }
         // Each Fourier hand has 11 finger joints.
-        assert_eq!(
-            get(&obs, "robot0_right_gripper_qpos").len(),
-            11,
-            "{robot}"
-        );
+        assert_eq!(get(&obs, "robot0_right_gripper_qpos").len(), 11, "{robot}");
     }
 }
 
