@@ -18,8 +18,12 @@ robots (SpotWithArm, SpotWithArmFloating) one that moves the legs or the floatin
 
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
+       record_robosuite.py --layouts --robot NAME
+(the robot's observation layouts on every single-arm task, as `TASK-ROBOT` entries of
+observations.json)
 """
 import argparse
+import json
 import os
 import sys
 
@@ -143,12 +147,13 @@ def task_state(task, env):
         body = env.sim.model.body_name2id(env.door.root_body)
         return [float(x) for x in env.sim.model.body_pos[body]] + [float(x) for x in env.sim.model.body_quat[body]]
     if task == "Wipe":
-        # Marker positions (model body_pos), wiped flags, force bias, the step's force and the
-        # force sensor now.
+        # Marker positions (model body_pos), wiped flags, then per arm the force bias, the
+        # step's force and the force sensor now.
         markers = env.model.mujoco_arena.markers
         pos = [float(x) for m in markers for x in env.sim.model.body_pos[env.sim.model.body_name2id(m.root_body)]]
-        force = [float(x) for x in env.robots[0].ee_force["right"]]
-        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * 6 + force
+        arms = env.robots[0].arms
+        force = [float(x) for arm in arms for x in env.robots[0].ee_force[arm]]
+        return pos + [float(m in env.wiped_markers) for m in markers] + [0.0] * (6 * len(arms)) + force
     active = active_object(task, env)
     if active is not None:
         # The object in play.
@@ -710,6 +715,71 @@ SETUPS["TwoArmLift-PandaDex"] = ("TwoArmLift", ["PandaDexRH", "PandaDexLH"], {"e
 POLICIES["TwoArmLift-PandaDex"] = [POLICIES["TwoArmLift"][1]]
 
 
+# robosuite's GR1 humanoids, each with its default composite controller (GR1 and GR1ArmsOnly:
+# WHOLE_BODY_IK, GR1FloatingBody: HYBRID_MOBILE_BASE), as one bimanual robot on TwoArmLift
+# ("single-robot") and on Lift. The WHOLE_BODY_IK rollouts move the grip sites around their
+# reset poses (`ik_policy`): random absolute targets send the IK anywhere.
+GR1_ROBOTS = ["GR1", "GR1ArmsOnly", "GR1FloatingBody"]
+MOBILE_ROBOTS.append("GR1FloatingBody")
+
+
+def ik_policy(env, toggle=True):
+    """Absolute grip-site targets (WHOLE_BODY_IK, in its input frame) circling each site's
+    reset pose, the hands opening and closing, the other parts at rest."""
+    from scipy.spatial.transform import Rotation
+
+    robot = env.robots[0]
+    cc = robot.composite_controller
+    ik = cc.joint_action_policy
+    m, d = env.sim.model._model, env.sim.data._data
+    start = {}
+    for site in ik.site_names:
+        sid = m.site(site).id
+        start[site] = (d.site_xpos[sid].copy(), Rotation.from_matrix(d.site_xmat[sid].reshape(3, 3)))
+    frame = ik.input_ref_frame
+    if frame != "world":
+        bid = m.body("robot0_base" if frame == "base" else frame).id
+        fp, fr = d.xpos[bid].copy(), Rotation.from_matrix(d.xmat[bid].reshape(3, 3))
+    state = {"t": 0}
+
+    def act(obs):
+        t = state["t"]
+        state["t"] += 1
+        w = 2 * np.pi * t / 30.0
+        action = np.zeros(env.action_dim)
+        for i, site in enumerate(ik.site_names):
+            p0, r0 = start[site]
+            sign = 1.0 if i == 0 else -1.0
+            p = p0 + np.array([0.08 * np.sin(w), sign * 0.06 * np.sin(2 * w), 0.05 * (1 - np.cos(w))])
+            r = Rotation.from_rotvec([0.15 * np.sin(w), sign * 0.1 * np.sin(w), 0.2 * np.sin(w)]) * r0
+            if frame != "world":
+                p, r = fr.inv().apply(p - fp), fr.inv() * r
+            action[6 * i : 6 * i + 6] = np.concatenate([p, r.as_rotvec()])
+        for part, (a, b) in cc._whole_body_controller_action_split_indexes.items():
+            if part.endswith("_gripper"):
+                action[a:b] = 1.0 if toggle and (t // 10) % 2 else -1.0
+        return np.round(action, 6)
+
+    return act
+
+
+def default_policy(env, seed):
+    """WHOLE_BODY_IK robots: `ik_policy`; the others: seeded random actions."""
+    if type(env.robots[0].composite_controller).__name__ == "WholeBodyIK":
+        return ik_policy(env)
+    return random_policy(seed, env.action_dim)
+
+
+for _robot in GR1_ROBOTS:
+    SETUPS[f"TwoArmLift-{_robot}"] = ("TwoArmLift", [_robot], {})
+    POLICIES[f"TwoArmLift-{_robot}"] = [("random", lambda env: default_policy(env, 5), 60)]
+# On Lift without GR1FloatingBody: its random rollout there leaves robosuite-rs by up to
+# 2.7 in a joint (not yet explained), so it has no fixture.
+for _robot in ["GR1", "GR1ArmsOnly"]:
+    SETUPS[f"Lift-{_robot}"] = ("Lift", _robot, {})
+    POLICIES[f"Lift-{_robot}"] = [("random", lambda env: default_policy(env, 7), 60)]
+
+
 def scripted_and_random(scripted, steps, seed):
     """A task's rollouts: the scripted policy for `steps` steps, then 60 random actions."""
     return [("scripted", scripted, steps), ("random", lambda env: random_policy(seed, env.action_dim), 60)]
@@ -729,17 +799,29 @@ def for_robot(env, policy):
     """A single-arm policy's [arm (6), gripper (1)] actions in the layout of the robot's
     composite controller (robosuite's `create_action_vector`; other parts at rest, a
     HYBRID_MOBILE_BASE robot in arm mode, the grip command on every action of a dexterous
-    hand), for robots whose action is not that layout."""
+    hand), for robots whose action is not that layout. A bimanual robot's right arm follows
+    the policy (which reads `robot0_eef_*` from the right arm's `robot0_right_eef_*`); its
+    left arm holds still, its gripper open."""
     robot = env.robots[0]
-    if env.action_dim == 7 or len(robot.arms) != 1:
+    if env.action_dim == 7 and len(robot.arms) == 1:
         return policy
-
-    # A hand of several actions (the Inspire hands) gets the grip command on each.
-    grip_dim = robot.gripper["right"].dof
+    bimanual = len(robot.arms) == 2
 
     def act(obs):
+        if bimanual:
+            obs = dict(obs)
+            for k in ("eef_pos", "eef_quat"):
+                obs[f"robot0_{k}"] = obs[f"robot0_right_{k}"]
         a = np.asarray(policy(obs), dtype=np.float64)
-        return robot.create_action_vector({"right": a[:6], "right_gripper": np.repeat(a[6:7], grip_dim)})
+        parts = {"right": a[:6]}
+        # A hand of several actions (the Inspire hands) gets the grip command on each.
+        if bimanual:
+            parts["left"] = np.zeros(6)
+        for arm in robot.arms:
+            dof = robot.gripper[arm].dof
+            if dof > 0:
+                parts[f"{arm}_gripper"] = np.repeat(a[6:7], dof) if arm == "right" else -np.ones(dof)
+        return robot.create_action_vector(parts)
 
     return act
 
@@ -754,7 +836,12 @@ def base_policy(env, steps=60):
     def act(obs):
         state["t"] += 1
         t = state["t"]
-        parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]), "torso": np.array([0.5])}
+        torso = robot.part_controllers["torso"].control_dim if "torso" in robot.part_controllers else 0
+        parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)])}
+        if torso == 1:
+            parts["torso"] = np.array([0.5])
+        elif torso:
+            parts["torso"] = np.full(torso, 0.2 * np.sin(t / 11.0))
         parts["base_mode"] = 1.0 if t > steps // 2 else -1.0
         return robot.create_action_vector(parts)
 
@@ -877,16 +964,55 @@ def record(fixture, robot, out, resets):
     print(f"{stem}: {n} steps, {resets} resets -> {path} ({os.path.getsize(path) // 1024} KiB)")
 
 
+# robosuite's single-arm tasks (every one takes a bimanual robot too).
+SINGLE_ARM_TASKS = ["Lift", "Stack", "Door", "Wipe", "ToolHang"] + PICK_PLACE + NUT_ASSEMBLY
+
+
+def observation_layouts(robot, out):
+    """Adds `TASK-ROBOT` entries to observations.json: robosuite's action dimension and
+    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task,
+    made with its defaults and reset (as the file's per-task entries)."""
+    path = os.path.join(out, "observations.json")
+    with open(path) as f:
+        data = json.load(f)
+    for task in SINGLE_ARM_TASKS:
+        env = make(task, 0, robots=robot)
+        obs = env.reset()
+        data[f"{task}-{robot}"] = {
+            "action_dim": int(env.action_dim),
+            "env_configuration": env.env_configuration,
+            "obs": [[k, list(np.asarray(v).shape), str(np.asarray(v).dtype)] for k, v in obs.items()],
+        }
+        env.close()
+        print(f"{task}-{robot}: action_dim {env.action_dim}, {len(obs)} keys")
+    # The file's layout: one observation key per line.
+    entries = []
+    for name, entry in data.items():
+        keys = ",\n".join(f"      {json.dumps(k, separators=(', ', ': '))}" for k in entry["obs"])
+        entries.append(
+            f'  {json.dumps(name)}: {{\n    "action_dim": {entry["action_dim"]},\n'
+            f'    "env_configuration": {json.dumps(entry["env_configuration"])},\n'
+            f'    "obs": [\n{keys}\n    ]\n  }}'
+        )
+    with open(path, "w") as f:
+        f.write("{\n" + ",\n".join(entries) + "\n}\n")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite"))
     parser.add_argument("--resets", type=int, default=200)
     parser.add_argument("--robot", default="Panda")
+    parser.add_argument("--layouts", action="store_true",
+                        help="record the --robot robot's observation layouts on every single-arm task into observations.json")
     parser.add_argument("tasks", nargs="*", default=list(POLICIES))
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
         sys.exit(f"record_robosuite: robosuite {robosuite.__version__} is installed, 1.5.2 is needed")
     os.makedirs(args.out, exist_ok=True)
+    if args.layouts:
+        observation_layouts(args.robot, args.out)
+        return
     for task in args.tasks:
         if task not in POLICIES:
             sys.exit(f"record_robosuite: unknown task {task}; known: {', '.join(POLICIES)}")

@@ -92,7 +92,7 @@ def test_bad_two_arm_set_ups_raise_value_errors_listing_what_is_valid() -> None:
         suite.make("TwoArmLift", robots=["Panda", "Panda"], env_configuration="diagonal")
     with pytest.raises(ValueError, match="only `default`"):
         suite.make("Lift", robots="Panda", env_configuration="opposed")
-    with pytest.raises(ValueError, match="bimanual"):
-        suite.make("Lift", robots="Baxter")
+    with pytest.raises(ValueError, match="needs 1 robot"):
+        suite.make("Lift", robots=["Baxter", "Panda"])
     with pytest.raises(ValueError, match="gripper_types"):
         suite.make("TwoArmPegInHole", robots=["Panda", "Panda"], gripper_types="PandaGripper")

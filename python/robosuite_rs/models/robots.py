@@ -66,11 +66,11 @@ class RobotModel:
         self._init_qpos = np.array(d["init_qpos"])
         self._default_grippers = dict(zip(self.arms, d["default_grippers"]))
         self._default_base = d["default_base"]
-        bins, empty, table_x = d["base_xpos_offset"]
+        bins, empty, table_x, table_z = d["base_xpos_offset"]
         self._base_xpos_offset: dict[str, Any] = {
             "bins": np.array(bins),
             "empty": np.array(empty),
-            "table": lambda table_length: np.array((table_x - table_length / 2, 0, 0)),
+            "table": lambda table_length: np.array((table_x - table_length / 2, 0, table_z)),
         }
         self._eef_name = dict(zip(self.arms, d["eef_name"]))
         self._xml: str = d["xml"]

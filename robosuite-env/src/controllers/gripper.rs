@@ -72,7 +72,7 @@ impl GripController {
                     *c = (*c + sign * speed * sign_of(*a)).clamp(-1.0, 1.0);
                 }
             }
-            GripAction::Direct { indices, .. } => {
+            GripAction::Indexed { indices, .. } => {
                 for (c, &i) in self.command.iter_mut().zip(indices) {
                     *c = action.get(i).copied().unwrap_or(0.0);
                 }
@@ -86,10 +86,10 @@ impl GripController {
     }
 
     /// Sets the command (for snapshots), each entry clipped to `[-1, 1]` (an integrator's
-    /// range; a [`GripAction::Direct`] command, the action itself, is kept as given);
+    /// range; an [`GripAction::Indexed`] command, the action itself, is kept as given);
     /// extra or missing entries are ignored.
     pub fn set_command(&mut self, command: &[f64]) {
-        let direct = matches!(self.action, GripAction::Direct { .. });
+        let direct = matches!(self.action, GripAction::Indexed { .. });
         for (c, v) in self.command.iter_mut().zip(command) {
             *c = if direct { *v } else { v.clamp(-1.0, 1.0) };
         }

@@ -34,7 +34,7 @@ impl ElementNames {
     /// named `g{n}_col` (group 0) or `g{n}_vis` (group 1), as `MujocoXMLModel` does.
     ///
     /// # Errors
-    /// [`Error::Model`] for an unnamed body, joint, site, actuator or sensor, an unnamed geom
+    /// [`Error::Model`] for an unnamed top-level body, joint, site, actuator or sensor, an unnamed geom
     /// of another group, or not exactly one top-level body.
     pub fn sort(root: &mut Element, name_geoms: bool, what: &str) -> Result<Self> {
         let mut names = Self::default();
@@ -84,11 +84,11 @@ fn sort(
             out.joints.push(named(e)?);
         }
     } else if e.name == "body" {
-        let name = named(e)?;
+        // robosuite keeps an unnamed inner body (a Fourier hand's frame) without a name.
         if parent == Some("body") {
-            out.bodies.push(name);
+            out.bodies.extend(attr(e, "name").map(str::to_owned));
         } else {
-            roots.push(name);
+            roots.push(named(e)?);
         }
     } else if e.name == "site" {
         out.sites.push(named(e)?);

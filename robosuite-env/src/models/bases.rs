@@ -138,6 +138,26 @@ impl MountInfo {
     }
 }
 
+/// robosuite's `NoActuationBase` (a mobile base without joints: GR1's, which fixes the
+/// robot's root in place).
+pub const NO_ACTUATION_BASE: MountInfo = MountInfo {
+    name: "NoActuationBase",
+    kind: BaseKind::MobileBase,
+    file: "bases/no_actuation_base.xml",
+    top_offset: [0.0, 0.0, 0.0],
+    horizontal_radius: 0.0,
+};
+
+/// robosuite's `FloatingLeggedBase` (forward, side and yaw velocity actuators without a
+/// body: GR1FloatingBody's).
+pub const FLOATING_LEGGED_BASE: MountInfo = MountInfo {
+    name: "FloatingLeggedBase",
+    kind: BaseKind::MobileBase,
+    file: "bases/floating_legged_base.xml",
+    top_offset: [0.0, 0.0, 0.0],
+    horizontal_radius: 0.0,
+};
+
 /// Every base [`mount_info`] knows.
 pub const MOUNTS: &[MountInfo] = &[
     RETHINK_MOUNT,
@@ -147,6 +167,8 @@ pub const MOUNTS: &[MountInfo] = &[
     NULL_MOBILE_BASE,
     SPOT,
     SPOT_FLOATING,
+    NO_ACTUATION_BASE,
+    FLOATING_LEGGED_BASE,
 ];
 
 /// The mount robosuite names `name`.

@@ -45,11 +45,13 @@ pub enum GripAction {
         /// The number of actions (and actuators).
         dof: usize,
     },
-    /// One action per hand joint group, copied to the actuators without integration:
-    /// actuator `i`'s command is `a[indices[i]]` (robosuite's Inspire hands: thumb
-    /// rotation, thumb bend on three actuators, each finger on two).
-    Direct {
-        /// The action index each actuator copies.
+    /// One action per finger group, copied to the actuators by `indices` (actuator `i`
+    /// gets action `indices[i]`) and used as is: the actuator's target with robosuite's
+    /// `use_action_scaling: false`, else mapped from `[-1, 1]` onto its ctrlrange (the
+    /// dexterous hands: `InspireLeftHand` / `InspireRightHand`, `FourierLeftHand` /
+    /// `FourierRightHand`).
+    Indexed {
+        /// The action each actuator takes.
         indices: &'static [usize],
         /// The number of actions.
         dof: usize,
@@ -62,7 +64,7 @@ impl GripAction {
         match self {
             Self::None => 0,
             Self::SignIntegrator { .. } | Self::ValueIntegrator { .. } => 1,
-            Self::PerActuator { dof, .. } | Self::Direct { dof, .. } => *dof,
+            Self::PerActuator { dof, .. } | Self::Indexed { dof, .. } => *dof,
         }
     }
 }
@@ -356,7 +358,7 @@ pub const INSPIRE_RIGHT_HAND: GripperInfo = GripperInfo {
     name: "InspireRightHand",
     file: "grippers/inspire_right_hand.xml",
     init_qpos: Some(&[0.0; 12]),
-    action: GripAction::Direct {
+    action: GripAction::Indexed {
         indices: INSPIRE_ACTION_INDICES,
         dof: 6,
     },
@@ -391,6 +393,48 @@ pub const INSPIRE_RIGHT_HAND: GripperInfo = GripperInfo {
         "r_ring_distal_col",
         "r_pinky_proximal_col",
         "r_pinky_distal_col",
+/// The actions of a Fourier hand's 11 actuators (pinky, ring, middle, index: two each;
+/// the thumb's bend two, its rotation one): robosuite's `format_action` indices.
+const FOURIER_HAND_ACTION: GripAction = GripAction::Indexed {
+    indices: &[0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5],
+    dof: 6,
+};
+
+/// robosuite's `FourierLeftHand` (GR1's left hand: 11 finger joints, 6 actions).
+pub const FOURIER_LEFT_HAND: GripperInfo = GripperInfo {
+    name: "FourierLeftHand",
+    file: "grippers/fourier_left_hand.xml",
+    init_qpos: Some(&[0.0; 11]),
+    action: FOURIER_HAND_ACTION,
+    left_fingerpad: &[
+        "L_thumb_proximal_base_link_col",
+        "L_thumb_proximal_link_col",
+        "L_thumb_distal_link_col",
+    ],
+    right_fingerpad: &[
+        "L_index_proximal_link_col",
+        "L_index_intermediate_link_col",
+        "L_middle_proximal_link_col",
+        "L_middle_proximal_link_col",
+        "L_ring_proximal_link_col",
+        "L_ring_intermediate_link_col",
+        "L_pinky_proximal_link_col",
+        "L_pinky_intermediate_link_col",
+    ],
+    left_finger: &[
+        "L_thumb_proximal_base_link_col",
+        "L_thumb_proximal_link_col",
+        "L_thumb_distal_link_col",
+    ],
+    right_finger: &[
+        "L_index_proximal_link_col",
+        "L_index_intermediate_link_col",
+        "L_middle_proximal_link_col",
+        "L_middle_proximal_link_col",
+        "L_ring_proximal_link_col",
+        "L_ring_intermediate_link_col",
+        "L_pinky_proximal_link_col",
+        "L_pinky_intermediate_link_col",
     ],
     corners: &[],
 };
@@ -432,6 +476,43 @@ pub const INSPIRE_LEFT_HAND: GripperInfo = GripperInfo {
         "l_pinky_distal_col",
     ],
     ..INSPIRE_RIGHT_HAND
+/// robosuite's `FourierRightHand` (GR1's right hand).
+pub const FOURIER_RIGHT_HAND: GripperInfo = GripperInfo {
+    name: "FourierRightHand",
+    file: "grippers/fourier_right_hand.xml",
+    init_qpos: Some(&[0.0; 11]),
+    action: FOURIER_HAND_ACTION,
+    left_fingerpad: &[
+        "R_thumb_proximal_base_link_col",
+        "R_thumb_proximal_link_col",
+        "R_thumb_distal_link_col",
+    ],
+    right_fingerpad: &[
+        "R_index_proximal_link_col",
+        "R_index_intermediate_link_col",
+        "R_middle_proximal_link_col",
+        "R_middle_proximal_link_col",
+        "R_ring_proximal_link_col",
+        "R_ring_intermediate_link_col",
+        "R_pinky_proximal_link_col",
+        "R_pinky_intermediate_link_col",
+    ],
+    left_finger: &[
+        "R_thumb_proximal_base_link_col",
+        "R_thumb_proximal_link_col",
+        "R_thumb_distal_link_col",
+    ],
+    right_finger: &[
+        "R_index_proximal_link_col",
+        "R_index_intermediate_link_col",
+        "R_middle_proximal_link_col",
+        "R_middle_proximal_link_col",
+        "R_ring_proximal_link_col",
+        "R_ring_intermediate_link_col",
+        "R_pinky_proximal_link_col",
+        "R_pinky_intermediate_link_col",
+    ],
+    corners: &[],
 };
 
 /// Every gripper [`gripper_info`] knows, by robosuite's class name (with `None`, robosuite
@@ -450,6 +531,8 @@ pub const GRIPPERS: &[GripperInfo] = &[
     BD_GRIPPER,
     INSPIRE_RIGHT_HAND,
     INSPIRE_LEFT_HAND,
+    FOURIER_LEFT_HAND,
+    FOURIER_RIGHT_HAND,
 ];
 
 /// The gripper robosuite names `name`.

@@ -19,9 +19,10 @@ pub struct BaseOffsets {
     pub bins: [f64; 3],
     /// In the empty arena.
     pub empty: [f64; 3],
-    /// At a table of length `l`: `(table_x - l / 2, 0, z)`, where `z` is the empty arena's
-    /// height offset (equal for every robosuite robot: 0, or Spot's -0.22).
+    /// At a table of length `l`: `(table_x - l / 2, 0, table_z)`.
     pub table_x: f64,
+    /// The height of the offset at a table (a humanoid's pelvis).
+    pub table_z: f64,
 }
 
 impl BaseOffsets {
@@ -30,13 +31,14 @@ impl BaseOffsets {
         bins: [-0.5, -0.1, 0.0],
         empty: [-0.6, 0.0, 0.0],
         table_x: -0.16,
+        table_z: 0.0,
     };
 
     /// The offset in an arena.
     pub fn for_arena(&self, kind: super::arenas::ArenaKind) -> [f64; 3] {
         match kind {
             super::arenas::ArenaKind::Table { length } => {
-                [self.table_x - length / 2.0, 0.0, self.empty[2]]
+                [self.table_x - length / 2.0, 0.0, self.table_z]
             }
             super::arenas::ArenaKind::Bins => self.bins,
             super::arenas::ArenaKind::Empty => self.empty,
@@ -149,6 +151,12 @@ pub struct GripperMountOffset {
     pub pos: Option<[f64; 3]>,
     /// The orientation (w, x, y, z), if robosuite sets one.
     pub quat: Option<[f64; 4]>,
+    /// The body parts whose joints and actuators the class removes from the file
+    /// (robosuite's `_remove_joint_actuation`, by name substring: `"leg"`, `"head"`,
+    /// `"torso"`), after the default joint attributes are set.
+    pub removed_parts: &'static [&'static str],
+    /// Whether the class removes the file's free joints (robosuite's `_remove_free_joint`).
+    pub remove_free_joint: bool,
 }
 
 /// The fields every single-arm robot of robosuite shares: one right arm with its gripper on
@@ -170,6 +178,8 @@ const SINGLE_ARM: RobotInfo = RobotInfo {
     init_torso_qpos: None,
     init_base_qpos: None,
     gripper_mount_offsets: &[],
+    removed_parts: &[],
+    remove_free_joint: false,
 };
 
 /// robosuite's `Panda` (Franka Emika Panda, 7 joints).
@@ -265,6 +275,7 @@ pub const BAXTER: RobotInfo = RobotInfo {
         bins: [-0.5, -0.1, 0.0],
         empty: [-0.29, 0.0, 0.0],
         table_x: -0.26,
+        table_z: 0.0,
     },
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
@@ -272,6 +283,8 @@ pub const BAXTER: RobotInfo = RobotInfo {
     init_torso_qpos: None,
     init_base_qpos: None,
     gripper_mount_offsets: &[],
+    removed_parts: &[],
+    remove_free_joint: false,
 };
 
 /// robosuite's `PandaOmron`: a Panda on the Omron LD-60 mobile base (a `WheeledRobot`
@@ -292,6 +305,7 @@ pub const PANDA_OMRON: RobotInfo = RobotInfo {
         bins: [-0.6, -0.1, 0.0],
         empty: [-0.6, 0.0, 0.0],
         table_x: -0.16,
+        table_z: 0.0,
     },
     kind: RobotKind::Wheeled,
     init_torso_qpos: Some(&[0.2]),
@@ -315,6 +329,7 @@ pub const TIAGO: RobotInfo = RobotInfo {
         bins: [-0.5, -0.1, 0.0],
         empty: [-0.29, 0.0, 0.0],
         table_x: -0.20,
+        table_z: 0.0,
     },
     top_offset: [0.0, 0.0, 1.0],
     horizontal_radius: 0.5,
@@ -322,6 +337,8 @@ pub const TIAGO: RobotInfo = RobotInfo {
     init_torso_qpos: None,
     init_base_qpos: None,
     gripper_mount_offsets: &[],
+    removed_parts: &[],
+    remove_free_joint: false,
 };
 
 /// robosuite's `PandaDexRH`: a Panda with the Inspire right hand on its flange.
@@ -362,6 +379,7 @@ pub const SPOT_WITH_ARM: RobotInfo = RobotInfo {
         bins: [-1.05, -0.1, -0.22],
         empty: [-1.1, 0.0, -0.22],
         table_x: -0.5,
+        table_z: -0.22,
     },
     kind: RobotKind::Legged,
     ..SINGLE_ARM
@@ -377,8 +395,88 @@ pub const SPOT_WITH_ARM_FLOATING: RobotInfo = RobotInfo {
         bins: [-0.7, -0.1, 0.0],
         empty: [-0.6, 0.0, 0.0],
         table_x: -0.5,
+        table_z: 0.0,
     },
     ..SPOT_WITH_ARM
+};
+
+/// GR1's rest posture: the torso and head (6 joints) upright, both arms half extended.
+const GR1_UPPER_QPOS: [f64; 20] = [
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.1, 0.0, -1.57, 0.0, 0.0, 0.0, 0.0, 0.1, 0.0, -1.57, 0.0,
+    0.0, 0.0,
+];
+
+/// [`GR1_UPPER_QPOS`] then the legs (12 joints) straight.
+const GR1_QPOS: [f64; 32] = {
+    let mut q = [0.0; 32];
+    let mut i = 0;
+    while i < 20 {
+        q[i] = GR1_UPPER_QPOS[i];
+        i += 1;
+    }
+    q
+};
+
+/// robosuite's `GR1` (Fourier GR1 humanoid, a `LeggedRobot`: a torso of 3 joints, a head of
+/// 3, two arms of 7 with Fourier hands and two legs of 6, on robosuite's
+/// `NoActuationBase`, which fixes its pelvis in place).
+pub const GR1: RobotInfo = RobotInfo {
+    name: "GR1",
+    file: "robots/gr1/robot.xml",
+    arms: &["right", "left"],
+    eef_bodies: &["right_eef", "left_eef"],
+    init_qpos: &GR1_QPOS,
+    damping: None,
+    default_mount: super::bases::NO_ACTUATION_BASE,
+    default_grippers: &["FourierRightHand", "FourierLeftHand"],
+    base_offsets: BaseOffsets {
+        bins: [-0.30, -0.1, 0.95],
+        empty: [-0.29, 0.0, 0.95],
+        table_x: -0.15,
+        table_z: 0.95,
+    },
+    top_offset: [0.0, 0.0, 1.0],
+    horizontal_radius: 0.5,
+    kind: RobotKind::Legged,
+    init_torso_qpos: None,
+    init_base_qpos: None,
+    gripper_mount_offsets: &[],
+    removed_parts: &[],
+    remove_free_joint: false,
+};
+
+/// robosuite's `GR1FixedLowerBody`: [`GR1`] without its legs' joints.
+pub const GR1_FIXED_LOWER_BODY: RobotInfo = RobotInfo {
+    name: "GR1FixedLowerBody",
+    init_qpos: &GR1_UPPER_QPOS,
+    removed_parts: &["leg"],
+    remove_free_joint: true,
+    ..GR1
+};
+
+/// robosuite's `GR1FloatingBody`: [`GR1`] without its legs' joints, its pelvis driven by
+/// robosuite's `FloatingLeggedBase` (forward, side and yaw velocity actuators).
+pub const GR1_FLOATING_BODY: RobotInfo = RobotInfo {
+    name: "GR1FloatingBody",
+    default_mount: super::bases::FLOATING_LEGGED_BASE,
+    base_offsets: BaseOffsets {
+        bins: [-0.30, -0.1, 0.97],
+        empty: [-0.29, 0.0, 0.97],
+        table_x: -0.15,
+        table_z: 0.97,
+    },
+    ..GR1_FIXED_LOWER_BODY
+};
+
+/// robosuite's `GR1ArmsOnly`: [`GR1`] with only its arms' (and hands') joints.
+pub const GR1_ARMS_ONLY: RobotInfo = RobotInfo {
+    name: "GR1ArmsOnly",
+    init_qpos: &[
+        0.0, -0.1, 0.0, -1.57, 0.0, 0.0, 0.0, 0.0, 0.1, 0.0, -1.57, 0.0, 0.0, 0.0,
+    ],
+    removed_parts: &["leg", "head", "torso"],
+    remove_free_joint: true,
+    ..GR1
 };
 
 /// Every robot [`robot_info`] knows.
@@ -397,6 +495,10 @@ pub const ROBOTS: &[RobotInfo] = &[
     SPOT_WITH_ARM_FLOATING,
     PANDA_DEX_RH,
     PANDA_DEX_LH,
+    GR1,
+    GR1_FIXED_LOWER_BODY,
+    GR1_ARMS_ONLY,
+    GR1_FLOATING_BODY,
 ];
 
 /// The names of [`ROBOTS`].
@@ -775,10 +877,12 @@ fn load_prepared(assets: &Assets, info: RobotInfo, idn: usize) -> Result<XmlMode
         ROBOT_COLLISION_COLOR,
     )?;
     let dof = xml.names.joints.len();
-    if dof != info.init_qpos.len() {
+    let removed = removed_joints(&xml, info.removed_parts);
+    if dof - removed != info.init_qpos.len() {
         return Err(Error::model(format!(
-            "{} has {dof} joints in {}, but {} initial positions",
+            "{} has {} joints in {}, but {} initial positions",
             info.name,
+            dof - removed,
             info.file,
             info.init_qpos.len()
         )));
@@ -789,10 +893,69 @@ fn load_prepared(assets: &Assets, info: RobotInfo, idn: usize) -> Result<XmlMode
     set_joint_attribute(&mut xml, "frictionloss", &frictionloss, false)?;
     set_joint_attribute(&mut xml, "damping", &damping, false)?;
     set_joint_attribute(&mut xml, "armature", &armature, false)?;
+    for part in info.removed_parts {
+        remove_joint_actuation(&mut xml, part);
+    }
+    if info.remove_free_joint {
+        tree::visit_mut(xml.doc.worldbody_mut(), &mut |e| {
+            tree::take_children(e, |c| c.name == "freejoint");
+        });
+    }
     if let Some(values) = info.damping {
         set_joint_attribute(&mut xml, "damping", values, true)?;
     }
     Ok(xml)
+}
+
+/// How many of the file's joints [`remove_joint_actuation`] removes for `parts`.
+fn removed_joints(xml: &XmlModel, parts: &[&str]) -> usize {
+    xml.names_of(&xml.names.joints)
+        .iter()
+        .filter(|j| parts.iter().any(|p| j.contains(p)))
+        .count()
+}
+
+/// robosuite's `_remove_joint_actuation(part)`: removes every joint whose (prefixed) name
+/// contains `part`, the motors and position actuators so named, the fixed tendons and
+/// joint equalities over such joints, and the joint sensors on them.
+fn remove_joint_actuation(xml: &mut XmlModel, part: &str) {
+    let has = |e: &xmltree::Element, key: &str| attr(e, key).is_some_and(|v| v.contains(part));
+    let prefix = xml.prefix.clone();
+    let named = |raw: &String| format!("{prefix}{raw}").contains(part);
+    xml.names.joints.retain(|j| !named(j));
+    let doc = &mut xml.doc;
+    tree::visit_mut(doc.worldbody_mut(), &mut |e| {
+        tree::take_children(e, |c| c.name == "joint" && has(c, "name"));
+    });
+    let mut removed_actuators = Vec::new();
+    tree::visit_mut(doc.section_mut("actuator"), &mut |e| {
+        for a in tree::take_children(e, |c| {
+            (c.name == "motor" || c.name == "position") && has(c, "name")
+        }) {
+            removed_actuators.extend(attr(&a, "name").map(str::to_owned));
+        }
+    });
+    xml.names
+        .actuators
+        .retain(|a| !removed_actuators.contains(&format!("{prefix}{a}")));
+    tree::visit_mut(doc.section_mut("tendon"), &mut |e| {
+        tree::take_children(e, |c| {
+            c.name == "fixed" && tree::children(c).any(|j| j.name == "joint" && has(j, "joint"))
+        });
+    });
+    tree::visit_mut(doc.section_mut("equality"), &mut |e| {
+        tree::take_children(e, |c| {
+            c.name == "joint" && (has(c, "joint1") || has(c, "joint2"))
+        });
+    });
+    tree::visit_mut(doc.root_mut(), &mut |e| {
+        tree::take_children(e, |c| {
+            matches!(
+                c.name.as_str(),
+                "jointpos" | "jointvel" | "jointactuatorfrc"
+            ) && has(c, "joint")
+        });
+    });
 }
 
 /// A robot model as robosuite's `RobotModel` describes it on its own (`robosuite.models.
@@ -832,9 +995,9 @@ pub struct RobotDescription {
     pub default_grippers: &'static [&'static str],
     /// The default base (mount) class name.
     pub default_base: &'static str,
-    /// Where the robot stands in the bins and empty arenas, and the x of its offset at a
-    /// table (minus half the table's length).
-    pub base_xpos_offset: ([f64; 3], [f64; 3], f64),
+    /// Where the robot stands in the bins and empty arenas, and the x (minus half the
+    /// table's length) and z of its offset at a table.
+    pub base_xpos_offset: ([f64; 3], [f64; 3], f64, f64),
     /// From the root body to the robot's top.
     pub top_offset: [f64; 3],
     /// The robot's horizontal radius.
@@ -879,6 +1042,7 @@ pub fn describe_robot(assets: &Assets, name: &str, idn: usize) -> Result<RobotDe
             info.base_offsets.bins,
             info.base_offsets.empty,
             info.base_offsets.table_x,
+            info.base_offsets.table_z,
         ),
         top_offset: info.top_offset,
         horizontal_radius: info.horizontal_radius,

@@ -128,16 +128,73 @@ pub fn is_grasped(sim: &Sim, gripper: &Gripper, geoms: &GeomSet) -> bool {
     any_contact_between(sim.data(), left, geoms) && any_contact_between(sim.data(), right, geoms)
 }
 
-/// Whether robot 0's (first arm's) gripper grasps `geoms`.
+/// robosuite's `_check_grasp(self.robots[0].gripper, geoms)`: whether a gripper of robot 0
+/// grasps `geoms` (any arm's, for a bimanual robot, whose `gripper` is a dict per arm).
 pub fn robot0_grasps(sim: &Sim, robots: &[Robot], geoms: &GeomSet) -> bool {
     robots
         .first()
-        .is_some_and(|r| is_grasped(sim, r.arm().gripper(), geoms))
+        .is_some_and(|r| r.arms().iter().any(|a| is_grasped(sim, a.gripper(), geoms)))
 }
 
-/// Robot 0's grip-site position (the origin when there is no robot).
+/// Robot 0's (first arm's) grip-site position (the origin when there is no robot).
 pub fn eef_pos(sim: &Sim, robots: &[Robot]) -> [f64; 3] {
     robots.first().map_or([0.0; 3], |r| r.eef_pos(sim, 0))
+}
+
+/// robosuite's `_gripper_to_target(self.robots[0].gripper, target, return_distance=True)`:
+/// the distance from robot 0's grip site to `target`, the smallest over its arms for a
+/// bimanual robot (infinite when there is no robot).
+pub fn robot0_eef_dist(sim: &Sim, robots: &[Robot], target: [f64; 3]) -> f64 {
+    robots.first().map_or(f64::INFINITY, |r| {
+        (0..r.arms().len())
+            .map(|arm| dist(r.eef_pos(sim, arm), target))
+            .fold(f64::INFINITY, f64::min)
+    })
+}
+
+/// One arm of robot 0 as robosuite's single-arm tasks name its observables.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct TaskArm {
+    /// robosuite's `_get_arm_prefixes(robot, include_robot_name=False)` entry: empty for a
+    /// single-arm robot, `"{side}_"` (`"right_"`, `"left_"`) for each arm of a bimanual one.
+    pub prefix: String,
+    /// The same with the robot's prefix (`"robot0_"`, `"robot0_right_"`).
+    pub full_prefix: String,
+    /// The arm's index in [`Robot::arms`].
+    pub arm: usize,
+    /// The arm's grip site.
+    pub eef_site: usize,
+    /// The body of the arm's end effector (the hand).
+    pub eef_body: usize,
+}
+
+/// Robot 0's arms in robosuite's order (`robot.arms`: right, then left), with the prefixes
+/// its single-arm tasks give their per-arm observables (`{prefix}gripper_to_cube_pos`,
+/// `door_to_{full_prefix}eef_pos`).
+pub fn robot0_arms(robots: &[Robot]) -> Vec<TaskArm> {
+    let Some(robot) = robots.first() else {
+        return Vec::new();
+    };
+    let one = robot.arms().len() == 1;
+    robot
+        .arms()
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let prefix = if one {
+                String::new()
+            } else {
+                format!("{}_", a.side())
+            };
+            TaskArm {
+                full_prefix: format!("robot{}_{prefix}", robot.index()),
+                prefix,
+                arm: i,
+                eef_site: a.eef_site(),
+                eef_body: a.eef_body(),
+            }
+        })
+        .collect()
 }
 
 /// Applies `reward_scale` (`None`: unnormalised) with robosuite's normalisation divisor, in
@@ -190,25 +247,25 @@ impl PoseRef {
 /// of the grip-site position and the hand-body orientation) before it samples `{obj}_pos`
 /// and `{obj}_quat` in the same pass, from its observation cache: so they combine the
 /// current gripper pose with the object pose of the *previous* observation, and are zero
-/// in the first observation after a reset. This keeps that cache.
+/// in the first observation after a reset. This keeps that cache. With a bimanual robot
+/// every arm has its own relative pose (`{obj}_to_robot0_right_eef_pos`, ...).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectSensors {
     poses: Vec<PoseRef>,
-    eef_site: usize,
-    eef_body: usize,
+    /// Robot 0's arms: (full prefix, arm prefix, grip site, hand body).
+    arms: Vec<(String, String, usize, usize)>,
     previous: Option<Vec<([f64; 3], [f64; 4])>>,
 }
 
 impl ObjectSensors {
-    /// Sensors for objects whose poses `poses` reads, relative to robot 0's first arm.
+    /// Sensors for objects whose poses `poses` reads, relative to each arm of robot 0.
     pub fn new(poses: Vec<PoseRef>, robots: &[Robot]) -> Self {
-        let (eef_site, eef_body) = robots
-            .first()
-            .map_or((0, 0), |r| (r.arm().eef_site(), r.arm().eef_body()));
         Self {
             poses,
-            eef_site,
-            eef_body,
+            arms: robot0_arms(robots)
+                .into_iter()
+                .map(|a| (a.full_prefix, a.prefix, a.eef_site, a.eef_body))
+                .collect(),
             previous: None,
         }
     }
@@ -269,15 +326,16 @@ impl ObjectSensors {
         7 * self.poses.len()
     }
 
-    /// The relative pose of object `i`'s cached pose in the current gripper frame:
-    /// position and `xyzw` quaternion (`w ≥ 0`), or zeros before the first pass.
-    fn relative(&self, sim: &Sim, i: usize) -> ([f64; 3], [f64; 4]) {
+    /// The relative pose of object `i`'s cached pose in the current frame of arm `arm`'s
+    /// gripper: position and `xyzw` quaternion (`w ≥ 0`), or zeros before the first pass.
+    fn relative(&self, sim: &Sim, i: usize, arm: usize) -> ([f64; 3], [f64; 4]) {
         let Some((pos, quat_xyzw)) = self.previous.as_ref().map(|p| p[i]) else {
             return ([0.0; 3], [0.0; 4]);
         };
+        let (_, _, eef_site, eef_body) = self.arms[arm];
         let d = sim.data();
-        let eef_p = d.site_xpos()[self.eef_site];
-        let eef_q = d.xquat()[self.eef_body];
+        let eef_p = d.site_xpos()[eef_site];
+        let eef_q = d.xquat()[eef_body];
         let q = [quat_xyzw[3], quat_xyzw[0], quat_xyzw[1], quat_xyzw[2]];
         let inv = conj(eef_q);
         let rel_p = quat_rotate(inv, sub(pos, eef_p));
@@ -288,65 +346,88 @@ impl ObjectSensors {
         (rel_p, xyzw(rel_q))
     }
 
-    /// robosuite's `world_pose_in_gripper`: the world's pose in the gripper frame (grip-site
-    /// position, hand-body orientation), `T.pose_inv(T.pose2mat((eef_pos, eef_quat)))`.
-    fn world_pose(&self, sim: &Sim) -> [f64; 16] {
+    /// robosuite's `world_pose_in_gripper`: the world's pose in arm `arm`'s gripper frame
+    /// (grip-site position, hand-body orientation), `T.pose_inv(T.pose2mat((eef_pos,
+    /// eef_quat)))`.
+    fn world_pose(&self, sim: &Sim, arm: usize) -> [f64; 16] {
+        let (_, _, eef_site, eef_body) = self.arms[arm];
         let d = sim.data();
-        pose_inv_of(d.site_xpos()[self.eef_site], xyzw(d.xquat()[self.eef_body]))
+        pose_inv_of(d.site_xpos()[eef_site], xyzw(d.xquat()[eef_body]))
     }
 
-    /// robosuite's `world_pose_in_gripper` observable (a 4x4 float64 matrix, modality
-    /// `object`), enabled and inactive as robosuite makes it: read in every observation
-    /// pass (robosuite's relative-pose sensors read it from the observation cache) but not
-    /// in the observation dict. `get` finds the sensors in the task.
-    pub fn world_pose_observable<T: 'static>(get: fn(&T) -> &ObjectSensors) -> Observable<T> {
-        Observable::new(
-            "world_pose_in_gripper",
-            &[4, 4],
-            DType::F64,
-            Modality::Object,
-            move |t: &T, sim, out| out.copy_from_slice(&get(t).world_pose(sim)),
-        )
-        .inactive()
+    /// robosuite's `world_pose_in_{arm}gripper` observables, one per arm of robot 0
+    /// (`world_pose_in_gripper` for a single-arm robot; 4x4 float64 matrices, modality
+    /// `object`), enabled and inactive as robosuite makes them: read in every observation
+    /// pass (robosuite's relative-pose sensors read them from the observation cache) but
+    /// not in the observation dict. `get` finds the sensors in the task.
+    pub fn world_pose_observables<T: 'static>(
+        &self,
+        get: fn(&T) -> &ObjectSensors,
+    ) -> Vec<Observable<T>> {
+        self.arms
+            .iter()
+            .enumerate()
+            .map(|(arm, (_, prefix, _, _))| {
+                Observable::new(
+                    format!("world_pose_in_{prefix}gripper"),
+                    &[4, 4],
+                    DType::F64,
+                    Modality::Object,
+                    move |t: &T, sim, out| out.copy_from_slice(&get(t).world_pose(sim, arm)),
+                )
+                .inactive()
+            })
+            .collect()
     }
 
-    /// The four observables of object `i` named `name`, in robosuite's order:
-    /// `{name}_to_robot0_eef_pos`, `{name}_to_robot0_eef_quat`, `{name}_pos`, `{name}_quat`
-    /// (modality `object`). `get` finds the sensors in the task; `quat_dtype` is the dtype
-    /// robosuite gives `{name}_quat` (float32 where it reads a frame's matrix, as ToolHang's
-    /// sensors do); the relative quaternion is always float64.
+    /// The observables of object `i` named `name`, in robosuite's order:
+    /// `{name}_to_robot0_eef_pos` per arm (`{name}_to_robot0_right_eef_pos`,
+    /// `{name}_to_robot0_left_eef_pos` for a bimanual robot), `{name}_to_robot0_eef_quat`
+    /// per arm, `{name}_pos`, `{name}_quat` (modality `object`). `get` finds the sensors in
+    /// the task; `quat_dtype` is the dtype robosuite gives `{name}_quat` (float32 where it
+    /// reads a frame's matrix, as ToolHang's sensors do); the relative quaternion is always
+    /// float64.
     pub fn observables<T: 'static>(
+        &self,
         get: fn(&T) -> &ObjectSensors,
         i: usize,
         name: &str,
         quat_dtype: DType,
     ) -> Vec<Observable<T>> {
-        vec![
-            Observable::vec(
-                format!("{name}_to_robot0_eef_pos"),
-                Modality::Object,
-                move |t: &T, sim| get(t).relative(sim, i).0,
-            ),
+        let mut out: Vec<Observable<T>> = self
+            .arms
+            .iter()
+            .enumerate()
+            .map(|(arm, (full, _, _, _))| {
+                Observable::vec(
+                    format!("{name}_to_{full}eef_pos"),
+                    Modality::Object,
+                    move |t: &T, sim| get(t).relative(sim, i, arm).0,
+                )
+            })
+            .collect();
+        out.extend(self.arms.iter().enumerate().map(|(arm, (full, _, _, _))| {
             Observable::new(
-                format!("{name}_to_robot0_eef_quat"),
+                format!("{name}_to_{full}eef_quat"),
                 &[4],
                 DType::F64,
                 Modality::Object,
-                move |t: &T, sim, out| out.copy_from_slice(&get(t).relative(sim, i).1),
-            ),
-            Observable::vec(
-                format!("{name}_pos"),
-                Modality::Object,
-                move |t: &T, sim| get(t).poses[i].pose(sim).0,
-            ),
-            Observable::new(
-                format!("{name}_quat"),
-                &[4],
-                quat_dtype,
-                Modality::Object,
-                move |t: &T, sim, out| out.copy_from_slice(&get(t).poses[i].pose(sim).1),
-            ),
-        ]
+                move |t: &T, sim, out| out.copy_from_slice(&get(t).relative(sim, i, arm).1),
+            )
+        }));
+        out.push(Observable::vec(
+            format!("{name}_pos"),
+            Modality::Object,
+            move |t: &T, sim| get(t).poses[i].pose(sim).0,
+        ));
+        out.push(Observable::new(
+            format!("{name}_quat"),
+            &[4],
+            quat_dtype,
+            Modality::Object,
+            move |t: &T, sim, out| out.copy_from_slice(&get(t).poses[i].pose(sim).1),
+        ));
+        out
     }
 }
 

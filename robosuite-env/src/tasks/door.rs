@@ -1,7 +1,7 @@
 //! robosuite's `Door`: open a hinged door, turning its latched handle first
 //! (`environments/manipulation/door.py`, `DoorObject`).
 
-use super::common::{dist, eef_pos, scale_reward, sub};
+use super::common::{TaskArm, robot0_arms, robot0_eef_dist, scale_reward, sub};
 use super::options::{self, TaskOptions};
 use super::table::table_arena;
 use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
@@ -133,9 +133,8 @@ impl TaskSpec for DoorSpec {
             } else {
                 None
             },
-            eef_site: robots.first().map_or(0, |r| r.arm().eef_site()),
         };
-        let observables = task.make_observables();
+        let observables = task.make_observables(&robot0_arms(robots));
         Ok(Bound::boxed(task, observables))
     }
 }
@@ -148,7 +147,8 @@ impl TaskSpec for DoorSpec {
 /// * Reset: the door's root is placed through the model (`body_pos` / `body_quat`, part of
 ///   [`Task::save_state`]): `x ∈ U(0.07, 0.09)`, `y ∈ U(−0.01, 0.01)` around the table top,
 ///   its bottom on the table, yaw `U(−π/2 − 0.25, −π/2)`.
-/// * Reward: 1 on success; shaped `0.25·(1 − tanh(10·d(grip site, handle)))` plus, with
+/// * Reward: 1 on success; shaped `0.25·(1 − tanh(10·d(grip site, handle)))` (the nearest
+///   grip site of a bimanual robot) plus, with
 ///   the latch, `clip(0.25·|handle angle / (π/2)|, −0.25, 0.25)`; times `reward_scale`.
 /// * Success: hinge angle above 0.3 rad.
 #[derive(Debug, Clone)]
@@ -162,14 +162,15 @@ pub struct Door {
     handle_site: usize,
     hinge_qpos: usize,
     latch_qpos: Option<usize>,
-    eef_site: usize,
 }
 
 impl Door {
     /// robosuite's object observables, in its order: `door_pos` (door panel body),
-    /// `handle_pos` (handle site), `hinge_qpos`, `door_to_eef_pos` and `handle_to_eef_pos`
-    /// (door / handle − grip site, despite the names), and with the latch `handle_qpos`.
-    fn make_observables(&self) -> Vec<Observable<Door>> {
+    /// `handle_pos` (handle site), `hinge_qpos`, `door_to_{arm}eef_pos` per arm, then
+    /// `handle_to_{arm}eef_pos` per arm (door / handle − grip site, despite the names; `arm`
+    /// empty for a single-arm robot, `right_` / `left_` for a bimanual one), and with the
+    /// latch `handle_qpos`.
+    fn make_observables(&self, arms: &[TaskArm]) -> Vec<Observable<Door>> {
         let mut obs = vec![
             Observable::vec("door_pos", Modality::Object, |t: &Door, sim| {
                 t.door_pos(sim)
@@ -186,13 +187,23 @@ impl Door {
                     out[0] = t.hinge_angle(sim);
                 },
             ),
-            Observable::vec("door_to_eef_pos", Modality::Object, |t: &Door, sim| {
-                sub(t.door_pos(sim), t.eef(sim))
-            }),
-            Observable::vec("handle_to_eef_pos", Modality::Object, |t: &Door, sim| {
-                sub(t.handle_pos(sim), t.eef(sim))
-            }),
         ];
+        obs.extend(arms.iter().map(|arm| {
+            let site = arm.eef_site;
+            Observable::vec(
+                format!("door_to_{}eef_pos", arm.prefix),
+                Modality::Object,
+                move |t: &Door, sim| sub(t.door_pos(sim), sim.data().site_xpos()[site]),
+            )
+        }));
+        obs.extend(arms.iter().map(|arm| {
+            let site = arm.eef_site;
+            Observable::vec(
+                format!("handle_to_{}eef_pos", arm.prefix),
+                Modality::Object,
+                move |t: &Door, sim| sub(t.handle_pos(sim), sim.data().site_xpos()[site]),
+            )
+        }));
         if self.use_latch {
             obs.push(Observable::new(
                 "handle_qpos",
@@ -203,10 +214,6 @@ impl Door {
             ));
         }
         obs
-    }
-
-    fn eef(&self, sim: &Sim) -> [f64; 3] {
-        sim.data().site_xpos()[self.eef_site]
     }
 
     /// The door panel's position (`door_pos`).
@@ -254,7 +261,7 @@ impl TaskLogic for Door {
         if self.check_success(sim, robots) {
             reward = 1.0;
         } else if config.reward_shaping {
-            let d = dist(self.handle_pos(sim), eef_pos(sim, robots));
+            let d = robot0_eef_dist(sim, robots, self.handle_pos(sim));
             reward += 0.25 * (1.0 - (10.0 * d).tanh());
             if let Some(q) = self.handle_angle(sim) {
                 reward += (0.25 * (q / (0.5 * PI)).abs()).clamp(-0.25, 0.25);

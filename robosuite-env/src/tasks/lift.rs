@@ -1,6 +1,8 @@
 //! robosuite's `Lift`: lift a small box off the table (`environments/manipulation/lift.py`).
 
-use super::common::{FreeBody, dist, eef_pos, robot0_grasps, scale_reward, sub, wood_material};
+use super::common::{
+    FreeBody, robot0_arms, robot0_eef_dist, robot0_grasps, scale_reward, sub, wood_material,
+};
 use super::options::{self, TaskOptions};
 use super::table::{TABLE_OFFSET, table_arena};
 use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
@@ -102,7 +104,6 @@ impl TaskSpec for LiftSpec {
             .map(|g| geom_id(model, g))
             .collect::<Result<Vec<_>>>()?;
         let half = model.geom_size()[geoms[0]];
-        let eef_site = robots.first().map_or(0, |r| r.arm().eef_site());
         let task = Lift {
             spec: self.clone(),
             sampler: self
@@ -121,16 +122,19 @@ impl TaskSpec for LiftSpec {
             half,
             cube: body,
             cube_geoms: geoms,
-            eef_site,
         };
         let object = Modality::Object;
-        let observables = vec![
+        let mut observables = vec![
             Observable::vec("cube_pos", object, |t: &Lift, sim| t.cube.pos(sim)),
             Observable::vec("cube_quat", object, |t: &Lift, sim| xyzw(t.cube.quat(sim))),
-            Observable::vec("gripper_to_cube_pos", object, |t: &Lift, sim| {
-                sub(t.cube.pos(sim), sim.data().site_xpos()[t.eef_site])
-            }),
         ];
+        observables.extend(robot0_arms(robots).into_iter().map(|arm| {
+            Observable::vec(
+                format!("{}gripper_to_cube_pos", arm.prefix),
+                object,
+                move |t: &Lift, sim| sub(t.cube.pos(sim), sim.data().site_xpos()[arm.eef_site]),
+            )
+        }));
         Ok(Bound::boxed(task, observables))
     }
 }
@@ -143,7 +147,8 @@ impl TaskSpec for LiftSpec {
 ///   yaw `U(0, 2π)`, resting 1 cm above the table.
 /// * Success: cube height above the table top by more than 4 cm.
 /// * Reward: sparse 2.25 on success; shaped `1 − tanh(10·d(grip site, cube))` plus 0.25
-///   when both finger-pad groups touch the cube; scaled by `reward_scale / 2.25`.
+///   when both finger-pad groups of a gripper touch the cube (for a bimanual robot: the
+///   nearest grip site, any gripper); scaled by `reward_scale / 2.25`.
 #[derive(Debug, Clone)]
 pub struct Lift {
     spec: LiftSpec,
@@ -151,7 +156,6 @@ pub struct Lift {
     half: [f64; 3],
     cube: FreeBody,
     cube_geoms: Vec<usize>,
-    eef_site: usize,
 }
 
 impl Lift {
@@ -193,7 +197,7 @@ impl TaskLogic for Lift {
         if self.check_success(sim, robots) {
             reward = 2.25;
         } else if config.reward_shaping {
-            reward = 1.0 - (10.0 * dist(eef_pos(sim, robots), self.cube.pos(sim))).tanh();
+            reward = 1.0 - (10.0 * robot0_eef_dist(sim, robots, self.cube.pos(sim))).tanh();
             if robot0_grasps(sim, robots, &self.cube.geoms) {
                 reward += 0.25;
             }

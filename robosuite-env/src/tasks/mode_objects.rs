@@ -3,7 +3,7 @@
 //! ones, the staged-reward terms the two tasks share, and their part of the task state.
 
 use super::common::{
-    FreeBody, ObjectMode, ObjectSensors, PARKED_POS, PoseRef, dist, robot0_grasps,
+    FreeBody, ObjectMode, ObjectSensors, PARKED_POS, PoseRef, robot0_eef_dist, robot0_grasps,
 };
 use super::options::{self, TaskOptions};
 use crate::models::objects::ObjectModel;
@@ -289,11 +289,11 @@ impl ModeObjects {
             ObjectMode::All => names
                 .iter()
                 .enumerate()
-                .flat_map(|(i, name)| ObjectSensors::observables(sensors, i, name, DType::F64))
+                .flat_map(|(i, name)| self.sensors.observables(sensors, i, name, DType::F64))
                 .collect(),
-            ObjectMode::Single(i) => ObjectSensors::observables(sensors, 0, names[i], DType::F64),
+            ObjectMode::Single(i) => self.sensors.observables(sensors, 0, names[i], DType::F64),
             ObjectMode::RandomSingle => {
-                let mut obs = ObjectSensors::observables(sensors, 0, single, DType::F64);
+                let mut obs = self.sensors.observables(sensors, 0, single, DType::F64);
                 obs.push(Observable::new(
                     format!("{single}_id"),
                     &[],
@@ -346,7 +346,7 @@ impl ModeObjects {
             .fold(0, |mask, (i, _)| mask | 1 << i)
     }
 
-    /// Whether robot 0's gripper grasps the objects of `mask` (robosuite's `_check_grasp`
+    /// Whether a gripper of robot 0 grasps the objects of `mask` (robosuite's `_check_grasp`
     /// on all their contact geoms together: one finger pad may touch one object and the
     /// other another); never for an empty mask.
     pub fn grasps(&self, sim: &Sim, robots: &[Robot], mask: usize) -> bool {
@@ -354,7 +354,8 @@ impl ModeObjects {
     }
 
     /// robosuite's reaching, grasping and lifting stages over the objects of `mask`:
-    /// reaching `0.1·(1 − tanh(10·min d(eef, reach_point(i))))`; grasping 0.35; lifting,
+    /// reaching `0.1·(1 − tanh(10·min d(grip site, reach_point(i))))` (the nearest of robot
+    /// 0's grip sites); grasping 0.35 (any of its grippers); lifting,
     /// when grasping, `0.35 + 0.15·(1 − tanh(15·min max(z_target − z_i, 0)))`. Each is 0
     /// for an empty mask.
     pub fn reach_grasp_lift(
@@ -362,7 +363,6 @@ impl ModeObjects {
         sim: &Sim,
         robots: &[Robot],
         mask: usize,
-        eef: [f64; 3],
         reach_point: impl Fn(usize) -> [f64; 3],
         z_target: f64,
     ) -> [f64; 3] {
@@ -371,7 +371,7 @@ impl ModeObjects {
         let mut r_reach = 0.0;
         if mask != 0 {
             let d = indices()
-                .map(|i| dist(eef, reach_point(i)))
+                .map(|i| robot0_eef_dist(sim, robots, reach_point(i)))
                 .fold(f64::INFINITY, f64::min);
             r_reach = (1.0 - (10.0 * d).tanh()) * REACH_MULT;
         }

@@ -1,7 +1,7 @@
 //! robosuite's `NutAssembly` family: fit the square nut on the square peg and the round nut
 //! on the round peg (`environments/manipulation/nut_assembly.py`).
 
-use super::common::{ObjectMode, ObjectSensors, dist, eef_pos};
+use super::common::{ObjectMode, robot0_eef_dist};
 use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
 use super::options::TaskOptions;
@@ -227,10 +227,11 @@ impl TaskSpec for NutAssemblySpec {
             table: body_id(model, "table")?,
         };
         // robosuite's order: the inactive world pose first, then the nuts'.
-        let observables =
-            std::iter::once(ObjectSensors::world_pose_observable(|t: &NutAssembly| {
-                t.nuts.sensors()
-            }))
+        let observables = task
+            .nuts
+            .sensors()
+            .world_pose_observables(|t: &NutAssembly| t.nuts.sensors())
+            .into_iter()
             .chain(task.nuts.observables(
                 |t: &NutAssembly| t.nuts.sensors(),
                 |t: &NutAssembly| t.nuts.active(),
@@ -288,10 +289,9 @@ impl NutAssembly {
     /// robosuite's `objects_on_pegs` (as `_check_success` updates it): each nut on its peg
     /// with the grip site more than 0.0424 m away.
     pub fn objects_on_pegs(&self, sim: &Sim, robots: &[Robot]) -> [bool; 2] {
-        let eef = eef_pos(sim, robots);
         std::array::from_fn(|i| {
             let p = self.nuts.pos(sim, i);
-            let r_reach = 1.0 - (10.0 * dist(eef, p)).tanh();
+            let r_reach = 1.0 - (10.0 * robot0_eef_dist(sim, robots, p)).tanh();
             self.on_peg(sim, p, i) && r_reach < 0.6
         })
     }
@@ -306,7 +306,6 @@ impl NutAssembly {
             sim,
             robots,
             mask,
-            eef_pos(sim, robots),
             |i| d.site_xpos()[self.handles[i]],
             z_target,
         );

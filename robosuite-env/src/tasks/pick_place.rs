@@ -1,7 +1,7 @@
 //! robosuite's `PickPlace` family: move grocery objects from one bin into their quadrant
 //! of the other (`environments/manipulation/pick_place.py`).
 
-use super::common::{ObjectMode, ObjectSensors, dist, eef_pos};
+use super::common::{ObjectMode, robot0_eef_dist};
 use super::mode_objects::ModeArgs;
 use super::mode_objects::{HOVER_MULT, LIFT_MULT, ModeObjects};
 use super::options::TaskOptions;
@@ -327,16 +327,18 @@ impl TaskSpec for PickPlaceSpec {
             bins: [body_id(model, "bin1")?, body_id(model, "bin2")?],
         };
         // robosuite's order: the inactive world pose first, then the objects'.
-        let observables = std::iter::once(ObjectSensors::world_pose_observable(|t: &PickPlace| {
-            t.objects.sensors()
-        }))
-        .chain(task.objects.observables(
-            |t: &PickPlace| t.objects.sensors(),
-            |t: &PickPlace| t.objects.active(),
-            &PICK_PLACE_OBJECTS,
-            "obj",
-        ))
-        .collect();
+        let observables = task
+            .objects
+            .sensors()
+            .world_pose_observables(|t: &PickPlace| t.objects.sensors())
+            .into_iter()
+            .chain(task.objects.observables(
+                |t: &PickPlace| t.objects.sensors(),
+                |t: &PickPlace| t.objects.active(),
+                &PICK_PLACE_OBJECTS,
+                "obj",
+            ))
+            .collect();
         Ok(Bound::boxed(task, observables))
     }
 }
@@ -384,12 +386,11 @@ impl PickPlace {
     }
 
     /// robosuite's `objects_in_bins` (as `_check_success` updates it): each object in its
-    /// quadrant with the grip site more than 0.0424 m away.
+    /// quadrant with the (nearest) grip site more than 0.0424 m away.
     pub fn objects_in_bins(&self, sim: &Sim, robots: &[Robot]) -> [bool; 4] {
-        let eef = eef_pos(sim, robots);
         std::array::from_fn(|i| {
             let p = self.objects.pos(sim, i);
-            let r_reach = 1.0 - (10.0 * dist(eef, p)).tanh();
+            let r_reach = 1.0 - (10.0 * robot0_eef_dist(sim, robots, p)).tanh();
             self.spec.in_target_bin(p, i) && r_reach < 0.6
         })
     }
@@ -398,13 +399,11 @@ impl PickPlace {
     /// their quadrant (parked ones included).
     pub fn staged_rewards(&self, sim: &Sim, robots: &[Robot], in_bins: &[bool; 4]) -> [f64; 4] {
         let mask = ModeObjects::unplaced(in_bins);
-        let eef = eef_pos(sim, robots);
         let z_target = self.spec.bin2_pos[2] + 0.25;
         let [r_reach, r_grasp, r_lift] = self.objects.reach_grasp_lift(
             sim,
             robots,
             mask,
-            eef,
             |i| self.objects.pos(sim, i),
             z_target,
         );

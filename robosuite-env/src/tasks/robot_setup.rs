@@ -4,14 +4,15 @@ use super::table::place_single_robot;
 use super::two_arm::{check_two_arm_robots, place_two_arm_robots};
 use crate::config::EnvConfiguration;
 use crate::models::arenas::Arena;
-use crate::models::robots::{RobotInfo, RobotModel, single_arm_robot_names};
+use crate::models::robots::{RobotInfo, RobotModel, robot_names};
 use gym_core::{Error, Result};
 
 /// The robots a task takes and where they stand ([`TaskSpec::robots`](super::TaskSpec::robots)):
 /// robosuite's `_check_robot_configuration` and the robot placement of its `_load_model`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum RobotSetup {
-    /// One single-arm robot (configuration `default`), at its base offset for the arena.
+    /// One robot, single-arm or bimanual (configuration `default`), at its base offset for
+    /// the arena.
     SingleArm,
     /// robosuite's two-arm tasks (`two_arm_env.py`): one bimanual robot (`single-robot`) or
     /// two single-arm robots `opposed` (the default) or `parallel`, placed as
@@ -71,31 +72,22 @@ impl RobotSetup {
     }
 }
 
-/// A single-arm task's check: one single-arm robot and configuration `default`.
+/// A single-arm task's check (robosuite's `ManipulationEnv._check_robot_configuration`):
+/// one robot, single-arm or bimanual (a bimanual robot's arms both act on the task: its
+/// grippers and per-arm observables), and configuration `default`.
 fn check_single_arm_robot(
     task: &str,
     robots: &[RobotInfo],
     configuration: EnvConfiguration,
 ) -> Result<EnvConfiguration> {
-    let need = 1;
-    if robots.len() != need {
+    if robots.len() != 1 {
         return Err(Error::invalid_argument(
             "robots",
             format!(
-                "{task} needs {need} single-arm robot(s), got {} ({:?}); valid robots: {}",
+                "{task} needs 1 robot, got {} ({:?}); valid robots: {}",
                 robots.len(),
                 robots.iter().map(|r| r.name).collect::<Vec<_>>(),
-                single_arm_robot_names().join(", ")
-            ),
-        ));
-    }
-    if let Some(r) = robots.iter().find(|r| r.arms.len() != 1) {
-        return Err(Error::invalid_argument(
-            "robots",
-            format!(
-                "{task} is a single-arm task and {} is bimanual; valid robots: {}",
-                r.name,
-                single_arm_robot_names().join(", ")
+                robot_names().join(", ")
             ),
         ));
     }
@@ -103,7 +95,7 @@ fn check_single_arm_robot(
         return Err(Error::invalid_argument(
             "env_configuration",
             format!(
-                "{task} is a single-arm task: only `default` is valid, got `{}`",
+                "{task} is a single-robot task: only `default` is valid, got `{}`",
                 configuration.as_str()
             ),
         ));

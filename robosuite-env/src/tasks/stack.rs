@@ -2,7 +2,8 @@
 //! (`environments/manipulation/stack.py`).
 
 use super::common::{
-    FreeBody, dist, dist_xy, eef_pos, robot0_grasps, scale_reward, sub, wood_material,
+    FreeBody, dist_xy, robot0_arms, robot0_eef_dist, robot0_grasps, scale_reward, sub,
+    wood_material,
 };
 use super::options::{self, TaskOptions};
 use super::table::{TABLE_OFFSET, table_arena};
@@ -100,9 +101,8 @@ impl TaskSpec for StackSpec {
             extents: [a.placement(), b.placement()],
             cube_a: FreeBody::bind(model, a)?,
             cube_b: FreeBody::bind(model, b)?,
-            eef_site: robots.first().map_or(0, |r| r.arm().eef_site()),
         };
-        let observables = Stack::make_observables();
+        let observables = Stack::make_observables(robots);
         Ok(Bound::boxed(task, observables))
     }
 }
@@ -114,7 +114,8 @@ impl TaskSpec for StackSpec {
 ///   1 cm above the table, without overlap (robosuite's rejection sampling; a typed error
 ///   after 5000 tries).
 /// * Reward (robosuite's `staged_rewards`): reach `0.25·(1 − tanh(10·d(grip site, A)))`
-///   plus 0.25 while A is grasped; lift `1 + 0.5·(1 − tanh(‖A_xy − B_xy‖))` once A is 4 cm
+///   (the nearest grip site of a bimanual robot) plus 0.25 while A is grasped (by any
+///   gripper); lift `1 + 0.5·(1 − tanh(‖A_xy − B_xy‖))` once A is 4 cm
 ///   above the table; stack 2 when A is lifted, not grasped and touches B. Shaped: the
 ///   largest stage; sparse: 2 on stack; scaled by `reward_scale / 2`.
 /// * Success: the stack stage.
@@ -124,15 +125,16 @@ pub struct Stack {
     extents: [PlacedObject; 2],
     cube_a: FreeBody,
     cube_b: FreeBody,
-    eef_site: usize,
 }
 
 impl Stack {
     /// robosuite's object observables, in its order: `cubeA_pos`, `cubeA_quat`, `cubeB_pos`,
-    /// `cubeB_quat`, `cubeA_to_cubeB` (B − A), `gripper_to_cubeA` and `gripper_to_cubeB`
-    /// (cube − grip site), each computed from values of the same observation pass.
-    fn make_observables() -> Vec<Observable<Stack>> {
-        vec![
+    /// `cubeB_quat`, `cubeA_to_cubeB` (B − A), then per arm of robot 0
+    /// `{arm}gripper_to_cubeA` and `{arm}gripper_to_cubeB` (cube − grip site; `arm` empty
+    /// for a single-arm robot, `right_` / `left_` for a bimanual one), each computed from
+    /// values of the same observation pass.
+    fn make_observables(robots: &[Robot]) -> Vec<Observable<Stack>> {
+        let mut observables = vec![
             Observable::vec("cubeA_pos", Modality::Object, |t: &Stack, sim| {
                 t.cube_a.pos(sim)
             }),
@@ -148,17 +150,21 @@ impl Stack {
             Observable::vec("cubeA_to_cubeB", Modality::Object, |t: &Stack, sim| {
                 sub(t.cube_b.pos(sim), t.cube_a.pos(sim))
             }),
-            Observable::vec("gripper_to_cubeA", Modality::Object, |t: &Stack, sim| {
-                sub(t.cube_a.pos(sim), t.eef(sim))
-            }),
-            Observable::vec("gripper_to_cubeB", Modality::Object, |t: &Stack, sim| {
-                sub(t.cube_b.pos(sim), t.eef(sim))
-            }),
-        ]
-    }
-
-    fn eef(&self, sim: &Sim) -> [f64; 3] {
-        sim.data().site_xpos()[self.eef_site]
+        ];
+        for arm in robot0_arms(robots) {
+            let site = arm.eef_site;
+            observables.push(Observable::vec(
+                format!("{}gripper_to_cubeA", arm.prefix),
+                Modality::Object,
+                move |t: &Stack, sim| sub(t.cube_a.pos(sim), sim.data().site_xpos()[site]),
+            ));
+            observables.push(Observable::vec(
+                format!("{}gripper_to_cubeB", arm.prefix),
+                Modality::Object,
+                move |t: &Stack, sim| sub(t.cube_b.pos(sim), sim.data().site_xpos()[site]),
+            ));
+        }
+        observables
     }
 
     /// Cube A's binding.
@@ -174,7 +180,7 @@ impl Stack {
     /// robosuite's `staged_rewards`: `(r_reach, r_lift, r_stack)`.
     pub fn staged_rewards(&self, sim: &Sim, robots: &[Robot]) -> (f64, f64, f64) {
         let (a, b) = (self.cube_a.pos(sim), self.cube_b.pos(sim));
-        let mut r_reach = (1.0 - (10.0 * dist(eef_pos(sim, robots), a)).tanh()) * 0.25;
+        let mut r_reach = (1.0 - (10.0 * robot0_eef_dist(sim, robots, a)).tanh()) * 0.25;
         let grasping = robot0_grasps(sim, robots, &self.cube_a.geoms);
         if grasping {
             r_reach += 0.25;

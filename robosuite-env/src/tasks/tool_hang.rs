@@ -215,11 +215,11 @@ impl TaskSpec for ToolHangSpec {
             ),
         };
         // robosuite's order: the inactive world pose first, then the objects'.
-        let mut observables = vec![ObjectSensors::world_pose_observable(|t: &ToolHang| {
-            &t.sensors
-        })];
+        let mut observables = task
+            .sensors
+            .world_pose_observables(|t: &ToolHang| &t.sensors);
         for (i, name) in ["base", "frame", "tool"].iter().enumerate() {
-            observables.extend(ObjectSensors::observables(
+            observables.extend(task.sensors.observables(
                 |t: &ToolHang| &t.sensors,
                 i,
                 name,

@@ -1,7 +1,7 @@
 //! robosuite's `Wipe`: wipe a path of dirt markers off the table with a flat tool
 //! (`environments/manipulation/wipe.py`).
 
-use super::common::{eef_pos, sub};
+use super::common::{TaskArm, robot0_arms, sub};
 use super::options::{self, TaskOptions};
 use super::{Bound, RewardConfig, Task, TaskLogic, TaskScene, TaskSpec};
 use crate::assets::Assets;
@@ -312,13 +312,37 @@ impl TaskSpec for WipeSpec {
         let robot = robots
             .first()
             .ok_or_else(|| Error::model("Wipe needs a robot"))?;
-        let arm = robot.arm();
-        let corners: [usize; 4] = arm.gripper().corners().try_into().map_err(|_| {
-            Error::model(format!(
-                "Wipe needs the wiping tool's four corner geoms, the gripper has {}",
-                arm.gripper().corners().len()
-            ))
-        })?;
+        let tools = robot
+            .arms()
+            .iter()
+            .map(|arm| {
+                let corners: [usize; 4] = arm.gripper().corners().try_into().map_err(|_| {
+                    Error::model(format!(
+                        "Wipe needs the wiping tool's four corner geoms, the gripper has {}",
+                        arm.gripper().corners().len()
+                    ))
+                })?;
+                Ok(WipeTool {
+                    corners,
+                    force_adr: sensor_adr(
+                        model,
+                        &format!("gripper{}_{}_force_ee", robot.index(), arm.side()),
+                        3,
+                    )?,
+                    eef_site: arm.eef_site(),
+                    latest_force: [0.0; 3],
+                    step_force: [0.0; 3],
+                    force_bias: [0.0; 3],
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        if tools.len() > MAX_TOOLS {
+            return Err(Error::model(format!(
+                "Wipe takes a robot of at most {MAX_TOOLS} arms, {} has {}",
+                robot.name(),
+                tools.len()
+            )));
+        }
         let n = config.num_markers;
         let mut markers = Vec::with_capacity(n);
         for i in 0..n {
@@ -358,23 +382,100 @@ impl TaskSpec for WipeSpec {
             wiped: vec![false; n],
             wiped_count: 0,
             markers,
-            corners,
+            tools,
             arm_geoms: robot.contact_geoms().clone(),
             arm_joints,
-            force_adr: sensor_adr(
-                model,
-                &format!("gripper{}_{}_force_ee", robot.index(), arm.side()),
-                3,
-            )?,
-            eef_site: arm.eef_site(),
-            latest_force: [0.0; 3],
-            step_force: [0.0; 3],
-            force_bias: [0.0; 3],
             observed: WipeInfo::default(),
             config,
         };
-        let observables = task.make_observables(&pf, robot.index());
+        let observables = task.make_observables(&pf, robot.index(), &robot0_arms(robots));
         Ok(Bound::boxed(task, observables))
+    }
+}
+
+/// The most arms (wiping tools) a robot has.
+const MAX_TOOLS: usize = 2;
+
+/// One arm's wiping tool: its corners, its force sensor and robosuite's force records.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct WipeTool {
+    corners: [usize; 4],
+    force_adr: usize,
+    eef_site: usize,
+    /// The force sensor as of the last observation pass: what the next step's first
+    /// substep reads (only the last substep's `mj_step2` changes it).
+    latest_force: [f64; 3],
+    /// robosuite's `recent_ee_forcetorques[arm].current[:3]`: the force at this step's
+    /// first substep.
+    step_force: [f64; 3],
+    /// robosuite's `ee_force_bias[arm]`.
+    force_bias: [f64; 3],
+}
+
+impl WipeTool {
+    /// The force sensor (`{gripper}force_ee`) now.
+    fn force_now(&self, sim: &Sim) -> [f64; 3] {
+        let s = &sim.data().sensordata()[self.force_adr..self.force_adr + 3];
+        [s[0], s[1], s[2]]
+    }
+
+    /// robosuite's `_get_active_markers` set-up: the plane of the tool's four corners now.
+    fn plane(&self, sim: &Sim) -> ToolPlane {
+        let d = sim.data();
+        let c = self.corners.map(|g| d.geom_xpos()[g]);
+        let v1 = unit(sub(c[0], c[1]));
+        let v2 = unit(sub(c[3], c[1]));
+        let mut plane = ToolPlane {
+            origin: c[1],
+            v1,
+            v2,
+            n: unit(cross(v1, v2)),
+            corners: [[0.0; 2]; 4],
+        };
+        plane.corners = [
+            plane.project(c[0]),
+            plane.project(c[1]),
+            plane.project(c[3]),
+            plane.project(c[2]),
+        ];
+        plane
+    }
+}
+
+/// The plane of a wiping tool's corners (robosuite's `_get_active_markers`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct ToolPlane {
+    origin: [f64; 3],
+    v1: [f64; 3],
+    v2: [f64; 3],
+    n: [f64; 3],
+    /// The corners in the plane's coordinates, in robosuite's order `[t1, t2, t4, t3]`.
+    corners: [[f64; 2]; 4],
+}
+
+impl ToolPlane {
+    fn project(&self, p: [f64; 3]) -> [f64; 2] {
+        let v = sub(p, self.origin);
+        [dot(v, self.v1), dot(v, self.v2)]
+    }
+
+    /// Whether a marker centred at `m` lies less than 2 cm above the plane, inside the
+    /// corners' rectangle.
+    fn covers(&self, m: [f64; 3]) -> bool {
+        let n = self.n;
+        let dist = dot(sub(m, self.origin), n);
+        if !(dist > 0.0 && dist < 0.02) {
+            return false;
+        }
+        let p = self.project([m[0] - dist * n[0], m[1] - dist * n[1], m[2] - dist * n[2]]);
+        let is_left = |p0: [f64; 2], p1: [f64; 2], p2: [f64; 2]| {
+            (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])
+        };
+        let pp = self.corners;
+        is_left(pp[0], pp[1], p) < 0.0
+            && is_left(pp[1], pp[2], p) < 0.0
+            && is_left(pp[2], pp[3], p) < 0.0
+            && is_left(pp[3], pp[0], p) < 0.0
     }
 }
 
@@ -387,8 +488,8 @@ struct Marker {
 }
 
 /// robosuite's `_get_wipe_information`: the radius around and the centroid of the markers
-/// not wiped, and the centroid relative to the grip site (zeros when every marker is
-/// wiped).
+/// not wiped, and the centroid relative to the nearest grip site (zeros when every marker
+/// is wiped).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct WipeInfo {
     radius: f64,
@@ -398,19 +499,21 @@ struct WipeInfo {
 
 /// The bound Wipe task: robosuite's `WipeArena` table (0.5 × 0.8 × 0.05, top at
 /// (0.15, 0, 0.9), friction (0.03, 0.005, 0.0001)) carrying `num_markers` visual markers
-/// `contact{i}_main`, and a robot with the wiping tool (action: the arm's 6 OSC inputs).
+/// `contact{i}_main`, and a robot with the wiping tool on each arm (action: each arm's 6
+/// OSC inputs).
 ///
 /// * Reset: the markers are laid out by robosuite's random walk ([`MarkerWalk`]) through
 ///   the model (`body_pos`, part of [`Task::save_state`]); every marker is visible again
 ///   and none is wiped; the force bias is cleared.
 /// * Wiping (in the reward, as robosuite): unless an arm link touches anything or an arm
 ///   joint is within 0.1 rad of a limit, each marker whose centre lies less than 2 cm above
-///   the plane of the tool's four corner geoms and inside their rectangle, while there is
+///   the plane of a tool's four corner geoms and inside their rectangle, while there is
 ///   any contact, is wiped (made transparent).
 /// * Reward: robosuite's (shaped by default, see [`WipeConfig`]), times `reward_scale ·
 ///   reward_normalization_factor`. The tool force of the step is the force sensor's value
-///   at the step's first substep (robosuite's `recent_ee_forcetorques`); tool contact is
-///   the current force beyond the bias, which is the force after the first step.
+///   at the step's first substep (robosuite's `recent_ee_forcetorques`; the largest over
+///   the arms); tool contact is the current force beyond the bias (any arm's), which is
+///   the force after the first step.
 /// * Observations are sampled before the step's reward wipes markers, so
 ///   `proportion_wiped`, `wipe_radius` and `wipe_centroid` lag the wiping by one step, as in
 ///   robosuite. `robot0_contact` is a bool, as robosuite's.
@@ -430,20 +533,11 @@ pub struct Wipe {
     newly_wiped: Vec<bool>,
     wiped: Vec<bool>,
     wiped_count: usize,
-    corners: [usize; 4],
+    /// The wiping tools, one per arm of the robot (robosuite's `robots[0].arms`).
+    tools: Vec<WipeTool>,
     arm_geoms: GeomSet,
     /// `(qpos address, range)` of each arm joint.
     arm_joints: Vec<(usize, [f64; 2])>,
-    force_adr: usize,
-    eef_site: usize,
-    /// The force sensor as of the last observation pass: what the next step's first
-    /// substep reads (only the last substep's `mj_step2` changes it).
-    latest_force: [f64; 3],
-    /// robosuite's `recent_ee_forcetorques.current[:3]`: the force at this step's first
-    /// substep.
-    step_force: [f64; 3],
-    /// robosuite's `ee_force_bias`.
-    force_bias: [f64; 3],
     /// The wipe information of the last observation pass.
     observed: WipeInfo,
 }
@@ -451,10 +545,11 @@ pub struct Wipe {
 impl Wipe {
     /// robosuite's observables, in its order: `{robot}contact` (proprio modality, with
     /// `use_contact_obs`), then `proportion_wiped`, `wipe_radius`, `wipe_centroid` and
-    /// `gripper_to_wipe_centroid` (with `use_robot_obs`) — or, without
+    /// `{arm}gripper_to_wipe_centroid` per arm (with `use_robot_obs`) — or, without
     /// `use_condensed_obj_obs`, per marker `marker{i}_pos`, `marker{i}_wiped` (int64) and
-    /// `gripper_to_marker{i}`. All exist only with `use_object_obs`, as in robosuite.
-    fn make_observables(&self, pf: &str, robot: usize) -> Vec<Observable<Wipe>> {
+    /// `{arm}gripper_to_marker{i}` per arm (`arm` empty for a single-arm robot, `right_` /
+    /// `left_` for a bimanual one). All exist only with `use_object_obs`, as in robosuite.
+    fn make_observables(&self, pf: &str, robot: usize, arms: &[TaskArm]) -> Vec<Observable<Wipe>> {
         let mut obs = Vec::new();
         if self.config.use_contact_obs {
             obs.push(
@@ -493,17 +588,20 @@ impl Wipe {
                 |t: &Wipe, _| t.observed.centroid,
             ));
             if self.config.use_robot_obs {
-                obs.push(Observable::f64(
-                    "gripper_to_wipe_centroid",
-                    3,
-                    Modality::Object,
-                    |t: &Wipe, sim, out| {
-                        let eef = sim.data().site_xpos()[t.eef_site];
-                        for k in 0..3 {
-                            out[k] = t.observed.centroid[k] - eef[k];
-                        }
-                    },
-                ));
+                for arm in arms {
+                    let site = arm.eef_site;
+                    obs.push(Observable::f64(
+                        format!("{}gripper_to_wipe_centroid", arm.prefix),
+                        3,
+                        Modality::Object,
+                        move |t: &Wipe, sim, out| {
+                            let eef = sim.data().site_xpos()[site];
+                            for k in 0..3 {
+                                out[k] = t.observed.centroid[k] - eef[k];
+                            }
+                        },
+                    ));
+                }
             }
         } else {
             for i in 0..self.markers.len() {
@@ -522,18 +620,21 @@ impl Wipe {
                     },
                 ));
                 if self.config.use_robot_obs {
-                    obs.push(Observable::f64(
-                        format!("gripper_to_marker{i}"),
-                        3,
-                        Modality::Object,
-                        move |t: &Wipe, sim, out| {
-                            let d = sim.data();
-                            let (m, eef) = (d.xpos()[t.markers[i].body], d.site_xpos()[t.eef_site]);
-                            for k in 0..3 {
-                                out[k] = m[k] - eef[k];
-                            }
-                        },
-                    ));
+                    for arm in arms {
+                        let site = arm.eef_site;
+                        obs.push(Observable::f64(
+                            format!("{}gripper_to_marker{i}", arm.prefix),
+                            3,
+                            Modality::Object,
+                            move |t: &Wipe, sim, out| {
+                                let d = sim.data();
+                                let (m, eef) = (d.xpos()[t.markers[i].body], d.site_xpos()[site]);
+                                for k in 0..3 {
+                                    out[k] = m[k] - eef[k];
+                                }
+                            },
+                        ));
+                    }
                 }
             }
         }
@@ -561,21 +662,12 @@ impl Wipe {
         &self.positions
     }
 
-    /// The force sensor (`{gripper}force_ee`) now.
-    fn force_now(&self, sim: &Sim) -> [f64; 3] {
-        let s = &sim.data().sensordata()[self.force_adr..self.force_adr + 3];
-        [s[0], s[1], s[2]]
-    }
-
-    /// robosuite's `_has_gripper_contact`: the force sensor differs from its bias by more
-    /// than `contact_threshold`.
+    /// robosuite's `_has_gripper_contact`: some arm's force sensor differs from its bias by
+    /// more than `contact_threshold`.
     pub fn has_gripper_contact(&self, sim: &Sim) -> bool {
-        let f = self.force_now(sim);
-        norm([
-            f[0] - self.force_bias[0],
-            f[1] - self.force_bias[1],
-            f[2] - self.force_bias[2],
-        ]) > self.config.contact_threshold
+        self.tools
+            .iter()
+            .any(|t| norm(sub(t.force_now(sim), t.force_bias)) > self.config.contact_threshold)
     }
 
     /// robosuite's `check_contact(robot_model)`: some arm link geom is in a contact.
@@ -597,50 +689,26 @@ impl Wipe {
         self.arm_in_contact(sim) || self.joint_near_limit(sim)
     }
 
-    /// robosuite's `_get_active_markers`: a test of whether marker `i` is under the tool
-    /// now (the tool's plane computed once), or `None` when there is no contact at all (then
-    /// none is).
+    /// robosuite's `_get_active_markers` over the arms: a test of whether marker `i` is
+    /// under a tool now (the tools' planes computed once), or `None` when there is no
+    /// contact at all (then none is).
     fn active_test<'a>(&'a self, sim: &'a Sim) -> Option<impl Fn(usize) -> bool + 'a> {
         let d = sim.data();
         if d.contact().is_empty() {
             return None;
         }
-        let c = self.corners.map(|g| d.geom_xpos()[g]);
-        let v1 = unit(sub(c[0], c[1]));
-        let v2 = unit(sub(c[3], c[1]));
-        let plane = move |p: [f64; 3]| {
-            let v = sub(p, c[1]);
-            [dot(v, v1), dot(v, v2)]
-        };
-        let pp = [plane(c[0]), plane(c[1]), plane(c[3]), plane(c[2])];
-        let n = unit(cross(v1, v2));
-        let is_left = |p0: [f64; 2], p1: [f64; 2], p2: [f64; 2]| {
-            (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])
-        };
-        let in_rectangle = move |p: [f64; 2]| {
-            is_left(pp[0], pp[1], p) < 0.0
-                && is_left(pp[1], pp[2], p) < 0.0
-                && is_left(pp[2], pp[3], p) < 0.0
-                && is_left(pp[3], pp[0], p) < 0.0
-        };
+        let mut planes = [None; MAX_TOOLS];
+        for (plane, tool) in planes.iter_mut().zip(&self.tools) {
+            *plane = Some(tool.plane(sim));
+        }
         Some(move |i: usize| {
             let m = d.xpos()[self.markers[i].body];
-            let dist = dot(sub(m, c[1]), n);
-            if !(dist > 0.0 && dist < 0.02) {
-                return false;
-            }
-            let projected = [m[0] - dist * n[0], m[1] - dist * n[1], m[2] - dist * n[2]];
-            in_rectangle(plane(projected))
+            planes.iter().flatten().any(|p| p.covers(m))
         })
     }
 
     /// robosuite's `_get_wipe_information` over the markers for which `wiped` is false.
-    fn wipe_information(
-        &self,
-        sim: &Sim,
-        eef: [f64; 3],
-        wiped: impl Fn(usize) -> bool,
-    ) -> WipeInfo {
+    fn wipe_information(&self, sim: &Sim, wiped: impl Fn(usize) -> bool) -> WipeInfo {
         let xpos = sim.data().xpos();
         let remaining = || {
             (0..self.markers.len())
@@ -661,7 +729,16 @@ impl Wipe {
         for c in &mut info.centroid {
             *c /= count as f64;
         }
-        info.to_centroid = sub(info.centroid, eef);
+        // The centroid relative to the nearest grip site (the first of equals).
+        let sites = sim.data().site_xpos();
+        let mut nearest = f64::INFINITY;
+        for tool in &self.tools {
+            let to = sub(info.centroid, sites[tool.eef_site]);
+            if norm(to) < nearest {
+                nearest = norm(to);
+                info.to_centroid = to;
+            }
+        }
         info.radius = remaining()
             .map(|p| norm(sub(p, info.centroid)))
             .fold(f64::NEG_INFINITY, f64::max);
@@ -679,7 +756,7 @@ impl Wipe {
     }
 
     fn state_len(&self) -> usize {
-        4 * self.markers.len() + 9
+        4 * self.markers.len() + 9 * self.tools.len()
     }
 }
 
@@ -693,25 +770,34 @@ impl TaskLogic for Wipe {
             self.positions[i] = [x, y, self.marker_z];
             self.show_marker(sim, i);
         }
-        self.step_force = [0.0; 3];
-        self.force_bias = [0.0; 3];
+        for tool in &mut self.tools {
+            tool.step_force = [0.0; 3];
+            tool.force_bias = [0.0; 3];
+        }
         Ok(())
     }
 
     fn before_observe(&mut self, sim: &Sim) {
-        self.latest_force = self.force_now(sim);
-        let eef = sim.data().site_xpos()[self.eef_site];
-        self.observed = self.wipe_information(sim, eef, |i| self.wiped[i]);
+        for tool in &mut self.tools {
+            tool.latest_force = tool.force_now(sim);
+        }
+        self.observed = self.wipe_information(sim, |i| self.wiped[i]);
     }
 
     fn on_policy_step(&mut self, _sim: &Sim, _robots: &[Robot]) {
-        self.step_force = self.latest_force;
+        for tool in &mut self.tools {
+            tool.step_force = tool.latest_force;
+        }
     }
 
-    fn reward(&self, sim: &Sim, robots: &[Robot], config: &RewardConfig) -> f64 {
+    fn reward(&self, sim: &Sim, _robots: &[Robot], config: &RewardConfig) -> f64 {
         let c = &self.config;
         let shaping = config.reward_shaping;
-        let total_force_ee = norm(self.step_force);
+        let total_force_ee = self
+            .tools
+            .iter()
+            .map(|t| norm(t.step_force))
+            .fold(f64::NEG_INFINITY, f64::max);
         let ncon = sim.data().contact().len();
         let mut reward = 0.0;
         if self.unsafe_state(sim) {
@@ -730,9 +816,7 @@ impl TaskLogic for Wipe {
             }
             if shaping {
                 if wiped < c.num_markers {
-                    let info = self.wipe_information(sim, eef_pos(sim, robots), |i| {
-                        self.wiped[i] || is_new(i)
-                    });
+                    let info = self.wipe_information(sim, |i| self.wiped[i] || is_new(i));
                     reward += c.distance_multiplier
                         * (1.0 - (c.distance_th_multiplier * norm(info.to_centroid)).tanh());
                 }
@@ -776,8 +860,10 @@ impl TaskLogic for Wipe {
             }
             self.newly_wiped = new;
         }
-        if norm(self.force_bias) == 0.0 {
-            self.force_bias = self.force_now(sim);
+        if self.tools.iter().all(|t| norm(t.force_bias) == 0.0) {
+            for tool in &mut self.tools {
+                tool.force_bias = tool.force_now(sim);
+            }
         }
     }
 
@@ -793,14 +879,15 @@ impl TaskLogic for Wipe {
     }
 
     /// The markers' positions (`body_pos`, 3 per marker), their wiped flags (0 or 1), the
-    /// force bias, the step's force and the force of the last observation pass (3 each).
+    /// force biases, the step's forces and the forces of the last observation pass (3 per
+    /// arm each, arms in robosuite's order).
     fn save_state(&self) -> Vec<f64> {
         let mut s = Vec::with_capacity(self.state_len());
         s.extend(self.positions.iter().flatten());
         s.extend(self.wiped.iter().map(|w| f64::from(u8::from(*w))));
-        s.extend(self.force_bias);
-        s.extend(self.step_force);
-        s.extend(self.latest_force);
+        s.extend(self.tools.iter().flat_map(|t| t.force_bias));
+        s.extend(self.tools.iter().flat_map(|t| t.step_force));
+        s.extend(self.tools.iter().flat_map(|t| t.latest_force));
         s
     }
 
@@ -810,7 +897,8 @@ impl TaskLogic for Wipe {
         if state.len() != self.state_len() {
             return bad(format!(
                 "Wipe's state is {n} marker positions (3 each), {n} wiped flags and three forces \
-                 (3 each): {} values, got {}",
+                 per arm ({} arm(s), 3 each): {} values, got {}",
+                self.tools.len(),
                 self.state_len(),
                 state.len()
             ));
@@ -829,13 +917,16 @@ impl TaskLogic for Wipe {
             *w = *f == 1.0;
         }
         self.wiped_count = self.wiped.iter().filter(|w| **w).count();
-        let force = |k: usize| {
-            let s = &state[4 * n + 3 * k..4 * n + 3 * k + 3];
-            [s[0], s[1], s[2]]
+        let arms = self.tools.len();
+        let force = |k: usize, arm: usize| {
+            let at = 4 * n + 3 * (k * arms + arm);
+            [state[at], state[at + 1], state[at + 2]]
         };
-        self.force_bias = force(0);
-        self.step_force = force(1);
-        self.latest_force = force(2);
+        for (arm, tool) in self.tools.iter_mut().enumerate() {
+            tool.force_bias = force(0, arm);
+            tool.step_force = force(1, arm);
+            tool.latest_force = force(2, arm);
+        }
         for i in 0..n {
             self.show_marker(sim, i);
         }

@@ -114,15 +114,18 @@ pub fn load(task: &str) -> Fixture {
 /// The tasks that have a fixture: files named after a task (`Lift.json`,
 /// `Lift-Sawyer.json`, ...); the camera fixtures beside them have their own tests.
 pub fn recorded_tasks() -> Vec<String> {
+    // A comma-separated list of fixture stems narrows a local run (not set in CI).
+    let only = std::env::var("ROBOSUITE_FIXTURES").ok();
     let mut out: Vec<String> = std::fs::read_dir(fixture_dir())
         .expect("the fixture folder exists")
         .filter_map(|e| {
             let name = e.ok()?.file_name().into_string().ok()?;
             let stem = name.strip_suffix(".json")?;
             let task = stem.split('-').next()?;
-            robosuite_env::ENV_NAMES
-                .contains(&task)
-                .then(|| stem.to_owned())
+            let wanted = only
+                .as_deref()
+                .is_none_or(|list| list.split(',').any(|s| s == stem));
+            (wanted && robosuite_env::ENV_NAMES.contains(&task)).then(|| stem.to_owned())
         })
         .collect();
     out.sort();

@@ -114,19 +114,21 @@ fn every_task_reports_success_in_info() {
 }
 
 /// Every task on `robot` against `check_env` (its own default gripper and controller; the
-/// two-arm tasks with two of it, `opposed`).
+/// two-arm tasks with two of it, `opposed`, or a bimanual robot alone).
 fn every_task_on(robot: &str) {
+    let info = robosuite_env::models::robots::robot_info(robot).unwrap();
     for name in ENV_NAMES {
-        let count = robosuite_env::make_task(name)
-            .unwrap()
-            .robots()
-            .num_robots();
+        let count = if info.arms.len() == 2 {
+            1
+        } else {
+            robosuite_env::make_task(name)
+                .unwrap()
+                .robots()
+                .num_robots()
+        };
         // Two wheeled robots cannot share a scene (robosuite fails on it): a wheeled robot
         // takes a Panda as its partner. Two legged robots share one, as in robosuite.
-        let mobile = robosuite_env::models::robots::robot_info(robot)
-            .unwrap()
-            .kind
-            == robosuite_env::models::robots::RobotKind::Wheeled;
+        let mobile = info.kind == robosuite_env::models::robots::RobotKind::Wheeled;
         let mut robots = vec![robot; count];
         if mobile && count > 1 {
             robots[1..].fill("Panda");
@@ -149,8 +151,8 @@ fn every_task_on(robot: &str) {
     }
 }
 
-/// One test per single-arm robot other than the Panda (which the tests above cover), so
-/// they run in parallel. (Baxter, the bimanual robot, is covered by the two-arm tests.)
+/// One test per robot other than the Panda (which the tests above cover), so they run in
+/// parallel; the bimanual Baxter and Tiago alone on every task.
 macro_rules! robot_tests {
     ($($test:ident => $robot:literal;)*) => {
         $(
@@ -163,7 +165,8 @@ macro_rules! robot_tests {
         #[test]
         fn every_robot_is_covered() {
             let covered = ["Panda", $($robot),*];
-            for robot in robosuite_env::models::robots::single_arm_robot_names() {
+            let covered: Vec<&str> = covered.iter().chain(GR1_ROBOTS).copied().collect();
+            for robot in robosuite_env::models::robots::robot_names() {
                 assert!(covered.contains(&robot), "{robot} has no conformance test");
             }
         }
@@ -182,25 +185,46 @@ robot_tests! {
     every_task_on_spot_with_arm_floating_passes_check_env => "SpotWithArmFloating";
     every_task_on_panda_dex_rh_passes_check_env => "PandaDexRH";
     every_task_on_panda_dex_lh_passes_check_env => "PandaDexLH";
+    every_task_on_baxter_passes_check_env => "Baxter";
+    every_task_on_tiago_passes_check_env => "Tiago";
 }
 
-/// Tiago, a bimanual mobile robot, alone on a two-arm task (robosuite's single-robot
-/// set-up): check_env with its BASIC layout (arms, torso, head, base, grippers).
+/// robosuite's GR1 humanoids, each with its default composite controller (GR1FixedLowerBody,
+/// whose default `WHOLE_BODY_MINK_IK` is not served, with robosuite's WHOLE_BODY_IK
+/// config), alone on the tasks robosuite accepts them on.
 #[test]
-fn tiago_on_two_arm_lift_passes_check_env() {
-    let mut env = make_with(
-        "TwoArmLift",
-        EnvConfig::default().with_horizon(30).with_robots(["Tiago"]),
+fn gr1_humanoids_pass_check_env() {
+    let assets = robosuite_env::assets::Assets::locate().unwrap();
+    let wbik = robosuite_env::controllers::config::load_composite_controller_config(
+        &assets,
+        Some("WHOLE_BODY_IK"),
+        Some("GR1FixedLowerBody"),
     )
     .unwrap();
-    assert_eq!(env.action_dim(), 20);
-    let report = check_env(&mut env, &CheckOptions::default()).unwrap();
-    for check in [
-        conformance_tests::Check::ResetSeedDeterminism,
-        conformance_tests::Check::InvalidAction,
-        conformance_tests::Check::StepAfterEnd,
-    ] {
-        assert!(report.passed(check), "TwoArmLift on Tiago: {check:?}");
+    for task in GR1_TASKS {
+        for &robot in GR1_ROBOTS {
+            let mut config = EnvConfig::default().with_horizon(30).with_robots([robot]);
+            if robot == "GR1FixedLowerBody" {
+                config = config.with_controller_configs([
+                    robosuite_env::controllers::ControllerConfig::from_value(
+                        &wbik,
+                        "controller_configs",
+                    )
+                    .unwrap(),
+                ]);
+            }
+            let what = format!("{task} on {robot}");
+            let mut env = make_with(task, config).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let report = check_env(&mut env, &CheckOptions::default())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            for check in [
+                conformance_tests::Check::ResetSeedDeterminism,
+                conformance_tests::Check::InvalidAction,
+                conformance_tests::Check::StepAfterEnd,
+            ] {
+                assert!(report.passed(check), "{what}: {check:?}");
+            }
+        }
     }
 }
 
@@ -228,3 +252,8 @@ fn panda_dex_pair_on_two_arm_lift_passes_check_env() {
         );
     }
 }
+/// The GR1 humanoids ([`gr1_humanoids_pass_check_env`]).
+const GR1_ROBOTS: &[&str] = &["GR1", "GR1ArmsOnly", "GR1FloatingBody", "GR1FixedLowerBody"];
+
+/// The tasks the GR1 humanoids are checked on.
+const GR1_TASKS: &[&str] = &["TwoArmLift", "Lift"];

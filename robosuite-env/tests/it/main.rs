@@ -15,6 +15,7 @@ mod controller_replay;
 mod dex_robots;
 mod door_env;
 mod legged_robots;
+mod humanoids;
 mod lift_env;
 mod mobile_robots;
 mod nut_assembly_env;

@@ -17,7 +17,10 @@ fn with_single_object_prefix(task: &str, mut expected: Vec<ObsEntry>) -> Vec<Obs
     };
     let drawn = expected
         .iter()
-        .find_map(|(k, _, _)| k.strip_suffix("_to_robot0_eef_pos"))
+        .find_map(|(k, _, _)| {
+            k.strip_suffix("_to_robot0_eef_pos")
+                .or_else(|| k.strip_suffix("_to_robot0_right_eef_pos"))
+        })
         .expect("an object's relative position")
         .to_owned();
     for (key, _, _) in &mut expected {
@@ -50,6 +53,41 @@ fn every_task_lays_out_its_observations_as_robosuite() {
             let (obs, _) = env.reset(Some(1), None).unwrap();
             assert_observation_layout(&env, &obs, &expected);
             assert_eq!(env.action_dim(), robosuite_action_dim(task), "{what}");
+        }
+    }
+}
+
+/// robosuite's single-arm tasks, whose layouts with each bimanual robot were recorded
+/// (`TASK-ROBOT` entries of `observations.json`).
+const BIMANUAL_TASKS: &[&str] = &[
+    "Lift",
+    "Stack",
+    "Door",
+    "Wipe",
+    "ToolHang",
+    "PickPlace",
+    "PickPlaceSingle",
+    "PickPlaceMilk",
+    "PickPlaceBread",
+    "PickPlaceCereal",
+    "PickPlaceCan",
+    "NutAssembly",
+    "NutAssemblySingle",
+    "NutAssemblySquare",
+    "NutAssemblyRound",
+];
+
+#[test]
+fn bimanual_robots_lay_out_single_arm_tasks_as_robosuite() {
+    for &task in BIMANUAL_TASKS {
+        for robot in ["Baxter", "Tiago"] {
+            let entry = format!("{task}-{robot}");
+            let expected = with_single_object_prefix(task, robosuite_observations(&entry));
+            let config = EnvConfig::default().with_robots([robot]);
+            let mut env = make_with(task, config).unwrap_or_else(|e| panic!("{entry}: {e}"));
+            let (obs, _) = env.reset(Some(1), None).unwrap();
+            assert_observation_layout(&env, &obs, &expected);
+            assert_eq!(env.action_dim(), robosuite_action_dim(&entry), "{entry}");
         }
     }
 }

@@ -472,14 +472,15 @@ fn one_baxter_is_robosuites_single_robot_set_up() {
         invalid_argument(make_with("TwoArmLift", two)).0,
         "env_configuration"
     );
-    // A bimanual robot takes no single-arm task and does not pair up.
+    // A single-arm task takes one robot (bimanual included); a bimanual robot does not
+    // pair up.
     let (name, reason) = invalid_argument(make_with(
         "Lift",
-        EnvConfig::default().with_robots(["Baxter"]),
+        EnvConfig::default().with_robots(["Baxter", "Panda"]),
     ));
     assert_eq!(name, "robots");
     assert!(
-        reason.contains("bimanual") && reason.contains("Panda"),
+        reason.contains("needs 1 robot") && reason.contains("Panda") && reason.contains("Tiago"),
         "{reason}"
     );
     let (name, reason) = invalid_argument(make_with(

@@ -406,13 +406,17 @@ fn refactor_default(assets: &Assets, robot: &str) -> Result<CompositeControllerC
 /// robosuite's default composite config for `robot` (`load_composite_controller_config(robot=...)`).
 ///
 /// # Errors
-/// [`Error::Model`] when the file cannot be read or parsed.
+/// [`Error::Model`] when the file cannot be read or parsed; [`Error::Unsupported`] when it
+/// names a composite controller this crate does not serve (GR1FixedLowerBody's
+/// `WHOLE_BODY_MINK_IK`).
 pub fn robot_default(assets: &Assets, robot: &str) -> Result<CompositeControllerConfig> {
     let value = load_composite_controller_config(assets, None, Some(robot))?;
     CompositeControllerConfig::from_value(&value, "controller_configs").map_err(|e| {
-        Error::model(format!(
-            "robosuite's default controller config for {robot}: {e}"
-        ))
+        let message = format!("robosuite's default controller config for {robot}: {e}");
+        match e {
+            Error::Unsupported(_) => Error::unsupported(message),
+            _ => Error::model(message),
+        }
     })
 }
 
