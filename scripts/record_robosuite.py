@@ -780,6 +780,12 @@ for _robot in ["GR1", "GR1ArmsOnly"]:
     POLICIES[f"Lift-{_robot}"] = [("random", lambda env: default_policy(env, 7), 60)]
 
 
+# Baxter on Wipe: its scripted rollout stops before the arm's contact ends the episode
+# (robosuite on MuJoCo 3.3.7 and 3.17 end it a few steps apart).
+SETUPS["Wipe-Baxter"] = ("Wipe", "Baxter", {})
+POLICIES["Wipe-Baxter"] = [("scripted", wipe_policy, 110), POLICIES["Wipe"][1]]
+
+
 def scripted_and_random(scripted, steps, seed):
     """A task's rollouts: the scripted policy for `steps` steps, then 60 random actions."""
     return [("scripted", scripted, steps), ("random", lambda env: random_policy(seed, env.action_dim), 60)]
