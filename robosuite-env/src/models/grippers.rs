@@ -393,6 +393,49 @@ pub const INSPIRE_RIGHT_HAND: GripperInfo = GripperInfo {
         "r_ring_distal_col",
         "r_pinky_proximal_col",
         "r_pinky_distal_col",
+    ],
+    corners: &[],
+};
+
+/// robosuite's `InspireLeftHand` (the mirror of [`INSPIRE_RIGHT_HAND`]).
+pub const INSPIRE_LEFT_HAND: GripperInfo = GripperInfo {
+    name: "InspireLeftHand",
+    file: "grippers/inspire_left_hand.xml",
+    left_fingerpad: &[
+        "l_thumb_proximal_col",
+        "l_thumb_proximal_2_col",
+        "l_thumb_middle_col",
+        "l_thumb_distal_col",
+    ],
+    right_fingerpad: &[
+        "l_index_proximal_col",
+        "l_index_distal_col",
+        "l_middle_proximal_col",
+        "l_middle_distal_col",
+        "l_ring_proximal_col",
+        "l_ring_distal_col",
+        "l_pinky_proximal_col",
+        "l_pinky_distal_col",
+    ],
+    left_finger: &[
+        "l_thumb_proximal_col",
+        "l_thumb_proximal_2_col",
+        "l_thumb_middle_col",
+        "l_thumb_distal_col",
+    ],
+    right_finger: &[
+        "l_index_proximal_col",
+        "l_index_distal_col",
+        "l_middle_proximal_col",
+        "l_middle_distal_col",
+        "l_ring_proximal_col",
+        "l_ring_distal_col",
+        "l_pinky_proximal_col",
+        "l_pinky_distal_col",
+    ],
+    ..INSPIRE_RIGHT_HAND
+};
+
 /// The actions of a Fourier hand's 11 actuators (pinky, ring, middle, index: two each;
 /// the thumb's bend two, its rotation one): robosuite's `format_action` indices.
 const FOURIER_HAND_ACTION: GripAction = GripAction::Indexed {
@@ -439,43 +482,6 @@ pub const FOURIER_LEFT_HAND: GripperInfo = GripperInfo {
     corners: &[],
 };
 
-/// robosuite's `InspireLeftHand` (the mirror of [`INSPIRE_RIGHT_HAND`]).
-pub const INSPIRE_LEFT_HAND: GripperInfo = GripperInfo {
-    name: "InspireLeftHand",
-    file: "grippers/inspire_left_hand.xml",
-    left_fingerpad: &[
-        "l_thumb_proximal_col",
-        "l_thumb_proximal_2_col",
-        "l_thumb_middle_col",
-        "l_thumb_distal_col",
-    ],
-    right_fingerpad: &[
-        "l_index_proximal_col",
-        "l_index_distal_col",
-        "l_middle_proximal_col",
-        "l_middle_distal_col",
-        "l_ring_proximal_col",
-        "l_ring_distal_col",
-        "l_pinky_proximal_col",
-        "l_pinky_distal_col",
-    ],
-    left_finger: &[
-        "l_thumb_proximal_col",
-        "l_thumb_proximal_2_col",
-        "l_thumb_middle_col",
-        "l_thumb_distal_col",
-    ],
-    right_finger: &[
-        "l_index_proximal_col",
-        "l_index_distal_col",
-        "l_middle_proximal_col",
-        "l_middle_distal_col",
-        "l_ring_proximal_col",
-        "l_ring_distal_col",
-        "l_pinky_proximal_col",
-        "l_pinky_distal_col",
-    ],
-    ..INSPIRE_RIGHT_HAND
 /// robosuite's `FourierRightHand` (GR1's right hand).
 pub const FOURIER_RIGHT_HAND: GripperInfo = GripperInfo {
     name: "FourierRightHand",

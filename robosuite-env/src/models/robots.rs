@@ -138,6 +138,12 @@ pub struct RobotInfo {
     /// file's (robosuite's `gripper_mount_pos_offset` / `gripper_mount_quat_offset`);
     /// empty: every gripper as its file places it.
     pub gripper_mount_offsets: &'static [GripperMountOffset],
+    /// The body parts whose joints and actuators the class removes from the file
+    /// (robosuite's `_remove_joint_actuation`, by name substring: `"leg"`, `"head"`,
+    /// `"torso"`), after the default joint attributes are set.
+    pub removed_parts: &'static [&'static str],
+    /// Whether the class removes the file's free joints (robosuite's `_remove_free_joint`).
+    pub remove_free_joint: bool,
 }
 
 /// robosuite's custom gripper mount of one arm (`gripper_mount_pos_offset` and
@@ -151,12 +157,6 @@ pub struct GripperMountOffset {
     pub pos: Option<[f64; 3]>,
     /// The orientation (w, x, y, z), if robosuite sets one.
     pub quat: Option<[f64; 4]>,
-    /// The body parts whose joints and actuators the class removes from the file
-    /// (robosuite's `_remove_joint_actuation`, by name substring: `"leg"`, `"head"`,
-    /// `"torso"`), after the default joint attributes are set.
-    pub removed_parts: &'static [&'static str],
-    /// Whether the class removes the file's free joints (robosuite's `_remove_free_joint`).
-    pub remove_free_joint: bool,
 }
 
 /// The fields every single-arm robot of robosuite shares: one right arm with its gripper on

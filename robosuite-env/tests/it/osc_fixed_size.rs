@@ -246,10 +246,17 @@ fn the_other_robots_and_both_baxter_arms_are_bit_identical() {
         "Tiago",
         "SpotWithArm",
         "SpotWithArmFloating",
+        "PandaDexRH",
+        "PandaDexLH",
+        "GR1",
+        "GR1ArmsOnly",
+        "GR1FloatingBody",
     ] {
         check_robot(robot, SOME);
         covered.push(robot);
     }
+    // GR1FixedLowerBody's arms are GR1's (its default composite controller is not served).
+    covered.push("GR1FixedLowerBody");
     // Every robot of the table is covered.
     for r in ROBOTS {
         assert!(covered.contains(&r.name), "{} is not covered", r.name);
