@@ -149,44 +149,52 @@ fn every_controller_steps_without_allocating() {
                 .with_controller(config),
         )
         .unwrap();
-        let (mut obs, mut info) = env.reset(Some(2), None).unwrap();
-        let mut rng = rng_from_seed(4);
-        let actions: Vec<ArrayD<f64>> = (0..10)
-            .map(|_| env.action_space().sample(&mut rng))
-            .collect();
-        for (i, action) in actions.iter().enumerate() {
-            let n = allocations(|| {
-                let _ = env.step_into(action, &mut obs, &mut info).unwrap();
-            });
-            assert_eq!(n, 0, "{robot} {text}: step {i} allocated {n} times");
-        }
+        random_steps_do_not_allocate(&mut env, &format!("{robot} {text}"));
+    }
+}
+
+/// Ten random actions from a reset: `step_into` allocates nothing.
+fn random_steps_do_not_allocate(env: &mut robosuite_env::RobosuiteEnv, what: &str) {
+    let (mut obs, mut info) = env.reset(Some(2), None).unwrap();
+    let mut rng = rng_from_seed(4);
+    let actions: Vec<ArrayD<f64>> = (0..10)
+        .map(|_| env.action_space().sample(&mut rng))
+        .collect();
+    for (i, action) in actions.iter().enumerate() {
+        let n = allocations(|| {
+            let _ = env.step_into(action, &mut obs, &mut info).unwrap();
+        });
+        assert_eq!(n, 0, "{what}: step {i} allocated {n} times");
     }
 }
 
 #[test]
-fn mobile_robots_step_without_allocating() {
-    // PandaOmron: HYBRID_MOBILE_BASE (arm OSC, torso, base); Tiago: BASIC with two arms,
-    // torso, head and base; SpotWithArm: BASIC with its legs (a legged robot, controls
-    // divided by gear); SpotWithArmFloating: BASIC with its floating base; each with its
-    // default composite controller.
+fn whole_body_robots_step_without_allocating() {
+    // Each with its default composite controller and shaped rewards. PandaOmron:
+    // HYBRID_MOBILE_BASE (arm OSC, torso, base); Tiago: BASIC with two arms, torso, head and
+    // base; SpotWithArm: BASIC with its legs (a legged robot, controls divided by gear);
+    // SpotWithArmFloating: its floating base; PandaDexRH: the hand's indexed grip actions;
+    // GR1: WHOLE_BODY_IK over arms, torso, head and legs; GR1FloatingBody:
+    // HYBRID_MOBILE_BASE on a floating legged base. Bimanual robots on single-arm tasks:
+    // the per-arm observables, the nearest-arm reward terms and Wipe's tool per arm.
     for (task, robot) in [
         ("Lift", "PandaOmron"),
         ("TwoArmLift", "Tiago"),
         ("Lift", "SpotWithArm"),
         ("Lift", "SpotWithArmFloating"),
+        ("Lift", "PandaDexRH"),
+        ("Lift", "GR1"),
+        ("TwoArmLift", "GR1FloatingBody"),
+        ("Lift", "Baxter"),
+        ("PickPlaceCan", "Tiago"),
+        ("Door", "GR1ArmsOnly"),
+        ("Wipe", "Baxter"),
     ] {
-        let mut env = make_with(task, EnvConfig::default().with_robots([robot])).unwrap();
-        let (mut obs, mut info) = env.reset(Some(2), None).unwrap();
-        let mut rng = rng_from_seed(4);
-        let actions: Vec<ArrayD<f64>> = (0..10)
-            .map(|_| env.action_space().sample(&mut rng))
-            .collect();
-        for (i, action) in actions.iter().enumerate() {
-            let n = allocations(|| {
-                let _ = env.step_into(action, &mut obs, &mut info).unwrap();
-            });
-            assert_eq!(n, 0, "{task} {robot}: step {i} allocated {n} times");
-        }
+        let config = EnvConfig::default()
+            .with_robots([robot])
+            .with_reward_shaping(true);
+        let mut env = make_with(task, config).unwrap();
+        random_steps_do_not_allocate(&mut env, &format!("{task} {robot}"));
     }
 }
 

@@ -26,6 +26,26 @@ pub fn zero() -> ArrayD<f64> {
     action([0.0; 7])
 }
 
+/// An action array of any size.
+pub fn act(values: Vec<f64>) -> ArrayD<f64> {
+    ArrayD::from_shape_vec(IxDyn(&[values.len()]), values).expect("a flat action")
+}
+
+/// `bad` is refused with [`gym_core::Error::InvalidAction`] and the simulation state stays
+/// as it was, bit for bit.
+pub fn assert_action_refused(env: &mut RobosuiteEnv, bad: Vec<f64>) {
+    let before = env.get_state();
+    match env.step(&act(bad)) {
+        Err(gym_core::Error::InvalidAction(_)) => {}
+        other => panic!("expected InvalidAction, got {:?}", other.map(|_| ())),
+    }
+    assert_eq!(
+        env.get_state(),
+        before,
+        "a refused action changed the state"
+    );
+}
+
 fn wrap_quarter(a: f64) -> f64 {
     let q = std::f64::consts::FRAC_PI_2;
     (a + q / 2.0).rem_euclid(q) - q / 2.0
@@ -177,20 +197,27 @@ pub fn assert_observation_layout(
 }
 
 /// Steps `actions` from the current state, taking a snapshot after the first `at`; then
-/// restores it and steps the rest again: observations, rewards and end flags repeat bit for
-/// bit, and the task state comes back with the snapshot.
+/// restores it and steps the rest again: observations, rewards, end flags and the whole
+/// simulation state repeat bit for bit, and the task state comes back with the snapshot.
 pub fn assert_snapshot_replays(env: &mut RobosuiteEnv, actions: &[ArrayD<f64>], at: usize) {
     for a in &actions[..at] {
         let _ = env.step(a).expect("the action steps");
     }
     let snapshot = env.snapshot();
     let task_state = env.task().save_state();
-    let run = |env: &mut RobosuiteEnv| -> Vec<(DictValue, u64, bool, bool)> {
+    let run = |env: &mut RobosuiteEnv| -> Vec<(DictValue, u64, bool, bool, Vec<u64>)> {
         actions[at..]
             .iter()
             .map_while(|a| {
                 let s = env.step(a).ok()?;
-                Some((s.observation, s.reward.to_bits(), s.terminated, s.truncated))
+                let state = env.get_state().iter().map(|x| x.to_bits()).collect();
+                Some((
+                    s.observation,
+                    s.reward.to_bits(),
+                    s.terminated,
+                    s.truncated,
+                    state,
+                ))
             })
             .collect()
     };

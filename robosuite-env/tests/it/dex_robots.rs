@@ -2,16 +2,11 @@
 //! composition and mount, its six-action grip, robosuite's scene sizes, snapshots and typed
 //! errors.
 
-use crate::common::get;
+use crate::common::{act, assert_action_refused, assert_snapshot_replays, get};
 use gym_core::{Env, Error};
-use ndarray::{ArrayD, IxDyn};
 use robosuite_env::models::robots::{GripperChoice, RobotKind};
 use robosuite_env::sim::body_id;
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
-
-fn act(values: Vec<f64>) -> ArrayD<f64> {
-    ArrayD::from_shape_vec(IxDyn(&[values.len()]), values).unwrap()
-}
 
 fn lift(robot: &str) -> RobosuiteEnv {
     make_with("Lift", EnvConfig::default().with_robots([robot])).unwrap()
@@ -156,10 +151,10 @@ fn bad_input_gives_typed_errors() {
         Err(e @ Error::InvalidAction(_)) => assert!(e.to_string().contains("[12]"), "{e}"),
         other => panic!("{:?}", other.map(|_| ())),
     }
+    assert_eq!(env.get_state(), before);
     let mut a = vec![0.0; 12];
     a[9] = f64::INFINITY;
-    assert!(matches!(env.step(&act(a)), Err(Error::InvalidAction(_))));
-    assert_eq!(env.get_state(), before);
+    assert_action_refused(&mut env, a);
     // An unknown hand lists the Inspire hands among the valid grippers.
     let bad = EnvConfig::default()
         .with_robots(["PandaDexRH"])
@@ -187,22 +182,6 @@ fn a_snapshot_continues_a_hand_episode_bit_identically() {
             .map(|i| 1.6 * ((t * 5 + i) as f64 * 0.41).sin())
             .collect())
     };
-    for t in 0..4 {
-        let _ = env.step(&action(t)).unwrap();
-    }
-    let snap = env.snapshot();
-    let run = |env: &mut RobosuiteEnv| {
-        (4..8)
-            .map(|t| {
-                let _ = env.step(&action(t)).unwrap();
-                env.get_state()
-            })
-            .collect::<Vec<_>>()
-    };
-    let first = run(&mut env);
-    env.restore(&snap).unwrap();
-    let second = run(&mut env);
-    let bits =
-        |v: &Vec<Vec<f64>>| -> Vec<u64> { v.iter().flatten().map(|x| x.to_bits()).collect() };
-    assert_eq!(bits(&first), bits(&second));
+    let actions: Vec<_> = (0..8).map(action).collect();
+    assert_snapshot_replays(&mut env, &actions, 4);
 }

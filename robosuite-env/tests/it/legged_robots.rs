@@ -2,17 +2,13 @@
 //! the leg bases' composition, their body parts and controllers, the leg rest posture, the
 //! base observables and typed errors.
 
+use crate::common::{act, assert_action_refused};
 use gym_core::{Env, Error};
-use ndarray::{ArrayD, IxDyn};
 use robosuite_env::controllers::ControllerConfig;
 use robosuite_env::models::bases::SPOT_LEGS_INIT_QPOS;
 use robosuite_env::models::robots::RobotKind;
 use robosuite_env::{EnvConfig, make_with};
 use serde_json::json;
-
-fn act(values: Vec<f64>) -> ArrayD<f64> {
-    ArrayD::from_shape_vec(IxDyn(&[values.len()]), values).unwrap()
-}
 
 fn slots(env: &robosuite_env::RobosuiteEnv) -> Vec<(String, usize)> {
     env.robots()[0]
@@ -151,15 +147,10 @@ fn bad_leg_configs_and_actions_give_typed_errors() {
     assert_eq!(env.action_dim(), 19);
     // A non-finite leg action: refused, nothing simulated.
     env.reset(Some(1), None).unwrap();
-    let before = env.get_state();
     for bad in [f64::NAN, f64::INFINITY] {
         let mut a = vec![0.0; 19];
         a[10] = bad;
-        assert!(matches!(
-            env.step(&act(a)),
-            Err(Error::InvalidAction { .. })
-        ));
-        assert_eq!(env.get_state(), before);
+        assert_action_refused(&mut env, a);
     }
     // A non-finite floating-base action likewise.
     let mut env = make_with(
@@ -168,14 +159,9 @@ fn bad_leg_configs_and_actions_give_typed_errors() {
     )
     .unwrap();
     env.reset(Some(1), None).unwrap();
-    let before = env.get_state();
     let mut a = vec![0.0; 10];
     a[7] = f64::NEG_INFINITY;
-    assert!(matches!(
-        env.step(&act(a)),
-        Err(Error::InvalidAction { .. })
-    ));
-    assert_eq!(env.get_state(), before);
+    assert_action_refused(&mut env, a);
 }
 
 #[test]

@@ -2,16 +2,12 @@
 //! composite controllers' action layouts, the base observables, typed errors and
 //! snapshots.
 
+use crate::common::{act, assert_action_refused, assert_snapshot_replays};
 use gym_core::{Env, Error};
-use ndarray::{ArrayD, IxDyn};
 use robosuite_env::controllers::ControllerConfig;
 use robosuite_env::models::robots::RobotKind;
 use robosuite_env::{EnvConfig, make_with};
 use serde_json::json;
-
-fn act(values: Vec<f64>) -> ArrayD<f64> {
-    ArrayD::from_shape_vec(IxDyn(&[values.len()]), values).unwrap()
-}
 
 fn slots(env: &robosuite_env::RobosuiteEnv) -> Vec<(String, usize)> {
     env.robots()[0]
@@ -118,14 +114,9 @@ fn bad_configs_and_actions_give_typed_errors() {
     assert_eq!(env.action_dim(), 12);
     // A non-finite base action: refused, nothing simulated.
     env.reset(Some(1), None).unwrap();
-    let before = env.get_state();
     let mut a = vec![0.0; 12];
     a[7] = f64::NAN;
-    assert!(matches!(
-        env.step(&act(a)),
-        Err(Error::InvalidAction { .. })
-    ));
-    assert_eq!(env.get_state(), before);
+    assert_action_refused(&mut env, a);
 }
 
 #[test]
@@ -137,24 +128,8 @@ fn a_snapshot_continues_a_mobile_episode_bit_identically() {
         a[11] = if t.is_multiple_of(2) { 1.0 } else { -1.0 };
         act(a)
     };
-    for t in 0..5 {
-        let _ = env.step(&action(t)).unwrap();
-    }
-    let snap = env.snapshot();
-    let run = |env: &mut robosuite_env::RobosuiteEnv| {
-        (5..10)
-            .map(|t| {
-                let _ = env.step(&action(t)).unwrap();
-                env.get_state()
-            })
-            .collect::<Vec<_>>()
-    };
-    let first = run(&mut env);
-    env.restore(&snap).unwrap();
-    let second = run(&mut env);
-    let bits =
-        |v: &Vec<Vec<f64>>| -> Vec<u64> { v.iter().flatten().map(|x| x.to_bits()).collect() };
-    assert_eq!(bits(&first), bits(&second));
+    let actions: Vec<_> = (0..10).map(action).collect();
+    assert_snapshot_replays(&mut env, &actions, 5);
 }
 
 #[test]
