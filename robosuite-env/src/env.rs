@@ -1588,8 +1588,13 @@ impl gym_core::Env for RobosuiteEnv {
         }
     }
 
+    /// Marks the env closed and releases its renderer (a later env of the same scene takes
+    /// over its OpenGL context).
     fn close(&mut self) {
         self.phase = Phase::Closed;
+        if let Some(rig) = &mut self.cameras {
+            rig.release_renderer();
+        }
     }
 
     fn rng(&self) -> Option<&EnvRng> {

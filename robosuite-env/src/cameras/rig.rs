@@ -23,8 +23,9 @@ pub struct CameraRig {
     /// geom of no group).
     instance_ids: Vec<i32>,
     class_ids: Vec<i32>,
+    /// `None` once released ([`CameraRig::release_renderer`]).
     #[cfg(feature = "render")]
-    renderer: crate::render::OffscreenRenderer,
+    renderer: Option<crate::render::OffscreenRenderer>,
 }
 
 /// The id of camera `name`, or an error listing the model's cameras.
@@ -133,7 +134,7 @@ impl CameraRig {
                 render_camera,
                 instance_ids,
                 class_ids,
-                renderer,
+                renderer: Some(renderer),
             }))
         }
         #[cfg(not(feature = "render"))]
@@ -170,7 +171,23 @@ impl CameraRig {
     /// As [`crate::render::OffscreenRenderer::upload_texture`].
     #[cfg(feature = "render")]
     pub fn upload_texture(&mut self, model: &MjModel, texture: usize) -> Result<()> {
-        self.renderer.upload_texture(model, texture)
+        self.renderer()?.upload_texture(model, texture)
+    }
+
+    /// The renderer, or [`Error::Closed`] once released.
+    #[cfg(feature = "render")]
+    fn renderer(&mut self) -> Result<&mut crate::render::OffscreenRenderer> {
+        self.renderer.as_mut().ok_or(Error::Closed)
+    }
+
+    /// Drops the renderer (its OpenGL contexts go to the next renderer of an identical
+    /// model, see [`crate::render`]); the env's `close` calls it. Rendering afterwards is
+    /// [`Error::Closed`]; the frames of the last observation stay.
+    pub fn release_renderer(&mut self) {
+        #[cfg(feature = "render")]
+        {
+            self.renderer = None;
+        }
     }
 
     /// The render mode chosen at construction.
@@ -220,7 +237,10 @@ impl CameraRig {
                     out,
                 }
             });
-            self.renderer.render_each(data, requests)?;
+            self.renderer
+                .as_mut()
+                .ok_or(Error::Closed)?
+                .render_each(data, requests)?;
             self.map_segmentations();
             if self.convention == ImageConvention::OpenCv {
                 for f in &mut self.frames {
@@ -307,7 +327,7 @@ impl CameraRig {
                             ..Outputs::default()
                         },
                     }];
-                    self.renderer.render(data, &mut req)?;
+                    self.renderer()?.render(data, &mut req)?;
                     flip_rows(&mut depth);
                     Frame::Depth(depth)
                 }
@@ -322,7 +342,7 @@ impl CameraRig {
                             ..Outputs::default()
                         },
                     }];
-                    self.renderer.render(data, &mut req)?;
+                    self.renderer()?.render(data, &mut req)?;
                     flip_rows(&mut rgb);
                     Frame::Rgb(rgb)
                 }
