@@ -31,7 +31,7 @@ if os.environ.get("PYTHONHASHSEED") != "0":
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 import robosuite as suite  # noqa: E402
-from record_robosuite import our_key  # noqa: E402
+from record_robosuite import make_kwargs, our_key  # noqa: E402
 
 FIXTURES = os.path.join(os.path.dirname(__file__), "..", "robosuite-env", "tests", "fixtures", "robosuite")
 
@@ -54,7 +54,7 @@ def floor(fixture, index):
         has_offscreen_renderer=False,
         use_camera_obs=False,
         seed=100 + index,
-        **fixture.get("kwargs", {}),
+        **make_kwargs(fixture.get("robots", fixture["robot"]), fixture.get("kwargs", {})),
     )
 
     def no_multiccd():

@@ -64,15 +64,30 @@ COUNTS = {
 }
 
 
+def make_kwargs(robots, kwargs):
+    """A fixture's recorded `make` arguments as robosuite takes them: `composite_controller`
+    (a name) becomes robosuite's `controller_configs` for the robot
+    (`load_composite_controller_config(controller=..., robot=...)`)."""
+    kwargs = dict(kwargs)
+    name = kwargs.pop("composite_controller", None)
+    if name is not None:
+        from robosuite.controllers import load_composite_controller_config
+
+        robot = robots if isinstance(robots, str) else robots[0]
+        kwargs["controller_configs"] = load_composite_controller_config(controller=name, robot=robot)
+    return kwargs
+
+
 def make(task, seed, **kwargs):
+    robots = kwargs.pop("robots", "Panda")
     return suite.make(
         task,
-        robots=kwargs.pop("robots", "Panda"),
+        robots=robots,
         has_renderer=False,
         has_offscreen_renderer=False,
         use_camera_obs=False,
         seed=seed,
-        **kwargs,
+        **make_kwargs(robots, kwargs),
     )
 
 
@@ -779,6 +794,19 @@ for _robot in ["GR1", "GR1ArmsOnly"]:
     SETUPS[f"Lift-{_robot}"] = ("Lift", _robot, {})
     POLICIES[f"Lift-{_robot}"] = [("random", lambda env: default_policy(env, 7), 60)]
 
+# GR1FixedLowerBody: its default WHOLE_BODY_MINK_IK needs the `mink` library (robosuite-rs
+# refuses it with a typed error), so its fixture drives it with robosuite's WHOLE_BODY_IK.
+SETUPS["Lift-GR1FixedLowerBody"] = ("Lift", "GR1FixedLowerBody", {"composite_controller": "WHOLE_BODY_IK"})
+POLICIES["Lift-GR1FixedLowerBody"] = [("random", lambda env: default_policy(env, 7), 60)]
+
+# Robots with one arm on a two-arm task: two of the robot `opposed` (two legged robots share
+# a scene); a wheeled robot with a Panda partner (robosuite cannot compile two wheeled robots).
+# The base / legs rollouts move the first robot's base or legs, its partner at rest.
+for _robot, _partner in [("SpotWithArm", "SpotWithArm"), ("SpotWithArmFloating", "SpotWithArmFloating"),
+                         ("PandaOmron", "Panda")]:
+    SETUPS[f"TwoArmLift-{_robot}"] = ("TwoArmLift", [_robot, _partner], {"env_configuration": "opposed"})
+    POLICIES[f"TwoArmLift-{_robot}"] = [POLICIES["TwoArmLift"][1]]
+
 
 # Baxter on Wipe: its scripted rollout stops before the arm's contact ends the episode
 # (robosuite on MuJoCo 3.3.7 and 3.17 end it a few steps apart).
@@ -832,6 +860,12 @@ def for_robot(env, policy):
     return act
 
 
+def partners_at_rest(env, action):
+    """The first robot's `action` followed by zeros for the other robots of a two-robot
+    scene (their arms and grippers hold still)."""
+    return np.concatenate([action, np.zeros(env.action_dim - len(action))])
+
+
 def base_policy(env, steps=60):
     """A mobile robot's base rollout: the base drives forward, sideways and turns while the
     torso rises, first in arm mode, then in base mode (HYBRID_MOBILE_BASE's last entry), and
@@ -849,7 +883,7 @@ def base_policy(env, steps=60):
         elif torso:
             parts["torso"] = np.full(torso, 0.2 * np.sin(t / 11.0))
         parts["base_mode"] = 1.0 if t > steps // 2 else -1.0
-        return robot.create_action_vector(parts)
+        return partners_at_rest(env, robot.create_action_vector(parts))
 
     return act
 
@@ -872,7 +906,7 @@ def legs_policy(env):
             "legs": 0.2 * np.sin(t / 6.0 + np.arange(12)),
             "base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]),
         }
-        return robot.create_action_vector(parts)
+        return partners_at_rest(env, robot.create_action_vector(parts))
 
     return act
 

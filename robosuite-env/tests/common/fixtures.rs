@@ -20,7 +20,9 @@ pub struct Fixture {
     /// Every robot, where the task has several.
     #[serde(default)]
     pub robots: Option<Vec<String>>,
-    /// robosuite's other `make` arguments of the recording (`env_configuration`).
+    /// robosuite's other `make` arguments of the recording (`env_configuration`;
+    /// `composite_controller`: the name of robosuite's composite controller config for the
+    /// robot, loaded as `load_composite_controller_config(controller=..., robot=...)`).
     #[serde(default)]
     pub kwargs: IndexMap<String, String>,
     /// robosuite's counts (`nq`, `nv`, `nu`, `nbody`, ...).
@@ -204,6 +206,23 @@ pub fn config_for(fixture: &Fixture) -> EnvConfig {
                 config = config.with_env_configuration(
                     robosuite_env::EnvConfiguration::parse(value).expect("a known configuration"),
                 );
+            }
+            "composite_controller" => {
+                // robosuite's `load_composite_controller_config(controller=..., robot=...)`.
+                let assets = robosuite_env::assets::Assets::locate().expect("the model files");
+                let value = robosuite_env::controllers::config::load_composite_controller_config(
+                    &assets,
+                    Some(value),
+                    Some(&fixture.robot),
+                )
+                .expect("robosuite's composite controller config loads");
+                config = config.with_controller_configs([
+                    robosuite_env::controllers::ControllerConfig::from_value(
+                        &value,
+                        "controller_configs",
+                    )
+                    .expect("a valid controller config"),
+                ]);
             }
             other => panic!("{}: unknown recorded argument `{other}`", fixture.task),
         }
