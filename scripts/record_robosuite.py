@@ -714,6 +714,14 @@ for _task in ["TwoArmLift"]:
 SETUPS["TwoArmLift-PandaDex"] = ("TwoArmLift", ["PandaDexRH", "PandaDexLH"], {"env_configuration": "opposed"})
 POLICIES["TwoArmLift-PandaDex"] = [POLICIES["TwoArmLift"][1]]
 
+# Two Spots facing each other (their leg bases are prefixed per robot, robosuite composes
+# both); a PandaOmron with a Panda partner (two wheeled robots cannot share a scene in
+# robosuite). Each adds its legs or base rollout (`record`).
+SETUPS["TwoArmLift-SpotWithArm"] = ("TwoArmLift", ["SpotWithArm", "SpotWithArm"], {"env_configuration": "opposed"})
+POLICIES["TwoArmLift-SpotWithArm"] = [POLICIES["TwoArmLift"][1]]
+SETUPS["TwoArmLift-PandaOmron"] = ("TwoArmLift", ["PandaOmron", "Panda"], {"env_configuration": "opposed"})
+POLICIES["TwoArmLift-PandaOmron"] = [POLICIES["TwoArmLift"][1]]
+
 
 # robosuite's GR1 humanoids, each with its default composite controller (GR1 and GR1ArmsOnly:
 # WHOLE_BODY_IK, GR1FloatingBody: HYBRID_MOBILE_BASE), as one bimanual robot on TwoArmLift
@@ -773,11 +781,13 @@ def default_policy(env, seed):
 for _robot in GR1_ROBOTS:
     SETUPS[f"TwoArmLift-{_robot}"] = ("TwoArmLift", [_robot], {})
     POLICIES[f"TwoArmLift-{_robot}"] = [("random", lambda env: default_policy(env, 5), 60)]
-# On Lift without GR1FloatingBody: its random rollout there leaves robosuite-rs by up to
-# 2.7 in a joint (not yet explained), so it has no fixture.
-for _robot in ["GR1", "GR1ArmsOnly"]:
+for _robot in GR1_ROBOTS:
     SETUPS[f"Lift-{_robot}"] = ("Lift", _robot, {})
     POLICIES[f"Lift-{_robot}"] = [("random", lambda env: default_policy(env, 7), 60)]
+# GR1FloatingBody's random rollout on Lift meets a knife-edge event at its 22nd step: robosuite
+# on MuJoCo 3.3.7 and on 3.17 part there by 8.8e-3 rad in the left wrist from 1e-8 before,
+# and by 3 rad later. Its first 20 steps are recorded (the base rollout runs 60).
+POLICIES["Lift-GR1FloatingBody"] = [("random", lambda env: default_policy(env, 7), 20)]
 
 
 # Baxter on Wipe: its scripted rollout stops before the arm's contact ends the episode
@@ -835,13 +845,10 @@ def for_robot(env, policy):
 def base_policy(env, steps=60):
     """A mobile robot's base rollout: the base drives forward, sideways and turns while the
     torso rises, first in arm mode, then in base mode (HYBRID_MOBILE_BASE's last entry), and
-    the arms hold still."""
-    robot = env.robots[0]
+    the arms hold still (every robot of the scene; a robot without a base holds still)."""
     state = {"t": 0}
 
-    def act(obs):
-        state["t"] += 1
-        t = state["t"]
+    def robot_action(robot, t):
         torso = robot.part_controllers["torso"].control_dim if "torso" in robot.part_controllers else 0
         parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)])}
         if torso == 1:
@@ -850,6 +857,10 @@ def base_policy(env, steps=60):
             parts["torso"] = np.full(torso, 0.2 * np.sin(t / 11.0))
         parts["base_mode"] = 1.0 if t > steps // 2 else -1.0
         return robot.create_action_vector(parts)
+
+    def act(obs):
+        state["t"] += 1
+        return np.concatenate([robot_action(r, state["t"]) for r in env.robots])
 
     return act
 
@@ -861,8 +872,7 @@ LEGGED_ROBOTS = ["SpotWithArm", "SpotWithArmFloating"]
 def legs_policy(env):
     """A legged robot's legs rollout: the leg joints sway about their rest positions
     (SpotWithArm's JOINT_POSITION legs), or the floating base drives forward, sideways and
-    turns (SpotWithArmFloating's base); the arm holds still."""
-    robot = env.robots[0]
+    turns (SpotWithArmFloating's base); the arm holds still (every robot of the scene)."""
     state = {"t": 0}
 
     def act(obs):
@@ -872,7 +882,7 @@ def legs_policy(env):
             "legs": 0.2 * np.sin(t / 6.0 + np.arange(12)),
             "base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]),
         }
-        return robot.create_action_vector(parts)
+        return np.concatenate([r.create_action_vector(parts) for r in env.robots])
 
     return act
 
