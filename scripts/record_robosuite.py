@@ -18,9 +18,10 @@ robots (SpotWithArm, SpotWithArmFloating) one that moves the legs or the floatin
 
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
-       record_robosuite.py --layouts --robot NAME
-(the robot's observation layouts on every single-arm task, as `TASK-ROBOT` entries of
-observations.json)
+       record_robosuite.py --layouts [--every-task] --robot NAME
+(the robot's observation layouts on every single-arm task, or with --every-task on all 19
+tasks with the robot alone, as `TASK-ROBOT` entries of observations.json; GR1FixedLowerBody,
+whose default WHOLE_BODY_MINK_IK needs mink, with robosuite's WHOLE_BODY_IK config)
 """
 import argparse
 import json
@@ -984,15 +985,22 @@ def record(fixture, robot, out, resets):
 SINGLE_ARM_TASKS = ["Lift", "Stack", "Door", "Wipe", "ToolHang"] + PICK_PLACE + NUT_ASSEMBLY
 
 
-def observation_layouts(robot, out):
+def observation_layouts(robot, out, every_task=False):
     """Adds `TASK-ROBOT` entries to observations.json: robosuite's action dimension and
-    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task,
-    made with its defaults and reset (as the file's per-task entries)."""
+    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task
+    (with `every_task`, on every registered task with `robot` alone), made with its defaults
+    and reset (as the file's per-task entries)."""
     path = os.path.join(out, "observations.json")
     with open(path) as f:
         data = json.load(f)
-    for task in SINGLE_ARM_TASKS:
-        env = make(task, 0, robots=robot)
+    kwargs = {}
+    if robot == "GR1FixedLowerBody":
+        from robosuite.controllers import load_composite_controller_config
+
+        kwargs["controller_configs"] = load_composite_controller_config(controller="WHOLE_BODY_IK", robot=robot)
+    tasks = sorted(suite.ALL_ENVIRONMENTS) if every_task else SINGLE_ARM_TASKS
+    for task in tasks:
+        env = make(task, 0, robots=robot, **kwargs)
         obs = env.reset()
         data[f"{task}-{robot}"] = {
             "action_dim": int(env.action_dim),
@@ -1021,13 +1029,15 @@ def main():
     parser.add_argument("--robot", default="Panda")
     parser.add_argument("--layouts", action="store_true",
                         help="record the --robot robot's observation layouts on every single-arm task into observations.json")
+    parser.add_argument("--every-task", action="store_true",
+                        help="with --layouts: on all 19 registered tasks, the robot alone")
     parser.add_argument("tasks", nargs="*", default=list(POLICIES))
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
         sys.exit(f"record_robosuite: robosuite {robosuite.__version__} is installed, 1.5.2 is needed")
     os.makedirs(args.out, exist_ok=True)
     if args.layouts:
-        observation_layouts(args.robot, args.out)
+        observation_layouts(args.robot, args.out, args.every_task)
         return
     for task in args.tasks:
         if task not in POLICIES:
