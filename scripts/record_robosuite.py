@@ -18,9 +18,10 @@ robots (SpotWithArm, SpotWithArmFloating) one that moves the legs or the floatin
 
 Usage: record_robosuite.py [--out DIR] [--resets N] [--robot NAME] [TASK ...]
 (default: every task, with the Panda; another robot's fixtures are named TASK-ROBOT.json)
-       record_robosuite.py --layouts --robot NAME
-(the robot's observation layouts on every single-arm task, as `TASK-ROBOT` entries of
-observations.json)
+       record_robosuite.py --layouts [--every-task] --robot NAME
+(the robot's observation layouts on every single-arm task, or with --every-task on all 19
+tasks with the robot alone, as `TASK-ROBOT` entries of observations.json; GR1FixedLowerBody,
+whose default WHOLE_BODY_MINK_IK needs mink, with robosuite's WHOLE_BODY_IK config)
 """
 import argparse
 import json
@@ -729,6 +730,16 @@ for _task in ["TwoArmLift"]:
 SETUPS["TwoArmLift-PandaDex"] = ("TwoArmLift", ["PandaDexRH", "PandaDexLH"], {"env_configuration": "opposed"})
 POLICIES["TwoArmLift-PandaDex"] = [POLICIES["TwoArmLift"][1]]
 
+# Two Spots facing each other (their leg bases are prefixed per robot, robosuite composes
+# both); a PandaOmron with a Panda partner (two wheeled robots cannot share a scene in
+# robosuite). Each adds its legs or base rollout (`record`).
+SETUPS["TwoArmLift-SpotWithArm"] = ("TwoArmLift", ["SpotWithArm", "SpotWithArm"], {"env_configuration": "opposed"})
+POLICIES["TwoArmLift-SpotWithArm"] = [POLICIES["TwoArmLift"][1]]
+SETUPS["TwoArmLift-PandaOmron"] = ("TwoArmLift", ["PandaOmron", "Panda"], {"env_configuration": "opposed"})
+POLICIES["TwoArmLift-PandaOmron"] = [POLICIES["TwoArmLift"][1]]
+SETUPS["TwoArmLift-SpotWithArmFloating"] = ("TwoArmLift", ["SpotWithArmFloating", "SpotWithArmFloating"], {"env_configuration": "opposed"})
+POLICIES["TwoArmLift-SpotWithArmFloating"] = [POLICIES["TwoArmLift"][1]]
+
 
 # robosuite's GR1 humanoids, each with its default composite controller (GR1 and GR1ArmsOnly:
 # WHOLE_BODY_IK, GR1FloatingBody: HYBRID_MOBILE_BASE), as one bimanual robot on TwoArmLift
@@ -788,24 +799,18 @@ def default_policy(env, seed):
 for _robot in GR1_ROBOTS:
     SETUPS[f"TwoArmLift-{_robot}"] = ("TwoArmLift", [_robot], {})
     POLICIES[f"TwoArmLift-{_robot}"] = [("random", lambda env: default_policy(env, 5), 60)]
-# On Lift without GR1FloatingBody: its random rollout there leaves robosuite-rs by up to
-# 2.7 in a joint (not yet explained), so it has no fixture.
-for _robot in ["GR1", "GR1ArmsOnly"]:
+for _robot in GR1_ROBOTS:
     SETUPS[f"Lift-{_robot}"] = ("Lift", _robot, {})
     POLICIES[f"Lift-{_robot}"] = [("random", lambda env: default_policy(env, 7), 60)]
+# GR1FloatingBody's random rollout on Lift meets a knife-edge event at its 22nd step: robosuite
+# on MuJoCo 3.3.7 and on 3.17 part there by 8.8e-3 rad in the left wrist from 1e-8 before,
+# and by 3 rad later. Its first 20 steps are recorded (the base rollout runs 60).
+POLICIES["Lift-GR1FloatingBody"] = [("random", lambda env: default_policy(env, 7), 20)]
 
 # GR1FixedLowerBody: its default WHOLE_BODY_MINK_IK needs the `mink` library (robosuite-rs
 # refuses it with a typed error), so its fixture drives it with robosuite's WHOLE_BODY_IK.
 SETUPS["Lift-GR1FixedLowerBody"] = ("Lift", "GR1FixedLowerBody", {"composite_controller": "WHOLE_BODY_IK"})
 POLICIES["Lift-GR1FixedLowerBody"] = [("random", lambda env: default_policy(env, 7), 60)]
-
-# Robots with one arm on a two-arm task: two of the robot `opposed` (two legged robots share
-# a scene); a wheeled robot with a Panda partner (robosuite cannot compile two wheeled robots).
-# The base / legs rollouts move the first robot's base or legs, its partner at rest.
-for _robot, _partner in [("SpotWithArm", "SpotWithArm"), ("SpotWithArmFloating", "SpotWithArmFloating"),
-                         ("PandaOmron", "Panda")]:
-    SETUPS[f"TwoArmLift-{_robot}"] = ("TwoArmLift", [_robot, _partner], {"env_configuration": "opposed"})
-    POLICIES[f"TwoArmLift-{_robot}"] = [POLICIES["TwoArmLift"][1]]
 
 
 # Baxter on Wipe: its scripted rollout stops before the arm's contact ends the episode
@@ -860,22 +865,13 @@ def for_robot(env, policy):
     return act
 
 
-def partners_at_rest(env, action):
-    """The first robot's `action` followed by zeros for the other robots of a two-robot
-    scene (their arms and grippers hold still)."""
-    return np.concatenate([action, np.zeros(env.action_dim - len(action))])
-
-
 def base_policy(env, steps=60):
     """A mobile robot's base rollout: the base drives forward, sideways and turns while the
     torso rises, first in arm mode, then in base mode (HYBRID_MOBILE_BASE's last entry), and
-    the arms hold still."""
-    robot = env.robots[0]
+    the arms hold still (every robot of the scene; a robot without a base holds still)."""
     state = {"t": 0}
 
-    def act(obs):
-        state["t"] += 1
-        t = state["t"]
+    def robot_action(robot, t):
         torso = robot.part_controllers["torso"].control_dim if "torso" in robot.part_controllers else 0
         parts = {"base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)])}
         if torso == 1:
@@ -883,7 +879,11 @@ def base_policy(env, steps=60):
         elif torso:
             parts["torso"] = np.full(torso, 0.2 * np.sin(t / 11.0))
         parts["base_mode"] = 1.0 if t > steps // 2 else -1.0
-        return partners_at_rest(env, robot.create_action_vector(parts))
+        return robot.create_action_vector(parts)
+
+    def act(obs):
+        state["t"] += 1
+        return np.concatenate([robot_action(r, state["t"]) for r in env.robots])
 
     return act
 
@@ -895,8 +895,7 @@ LEGGED_ROBOTS = ["SpotWithArm", "SpotWithArmFloating"]
 def legs_policy(env):
     """A legged robot's legs rollout: the leg joints sway about their rest positions
     (SpotWithArm's JOINT_POSITION legs), or the floating base drives forward, sideways and
-    turns (SpotWithArmFloating's base); the arm holds still."""
-    robot = env.robots[0]
+    turns (SpotWithArmFloating's base); the arm holds still (every robot of the scene)."""
     state = {"t": 0}
 
     def act(obs):
@@ -906,7 +905,7 @@ def legs_policy(env):
             "legs": 0.2 * np.sin(t / 6.0 + np.arange(12)),
             "base": np.array([0.6 * np.sin(t / 9.0), 0.3, 0.4 * np.cos(t / 7.0)]),
         }
-        return partners_at_rest(env, robot.create_action_vector(parts))
+        return np.concatenate([r.create_action_vector(parts) for r in env.robots])
 
     return act
 
@@ -1008,15 +1007,22 @@ def record(fixture, robot, out, resets):
 SINGLE_ARM_TASKS = ["Lift", "Stack", "Door", "Wipe", "ToolHang"] + PICK_PLACE + NUT_ASSEMBLY
 
 
-def observation_layouts(robot, out):
+def observation_layouts(robot, out, every_task=False):
     """Adds `TASK-ROBOT` entries to observations.json: robosuite's action dimension and
-    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task,
-    made with its defaults and reset (as the file's per-task entries)."""
+    observation keys in order (with shapes and dtypes) for `robot` on every single-arm task
+    (with `every_task`, on every registered task with `robot` alone), made with its defaults
+    and reset (as the file's per-task entries)."""
     path = os.path.join(out, "observations.json")
     with open(path) as f:
         data = json.load(f)
-    for task in SINGLE_ARM_TASKS:
-        env = make(task, 0, robots=robot)
+    kwargs = {}
+    if robot == "GR1FixedLowerBody":
+        from robosuite.controllers import load_composite_controller_config
+
+        kwargs["controller_configs"] = load_composite_controller_config(controller="WHOLE_BODY_IK", robot=robot)
+    tasks = sorted(suite.ALL_ENVIRONMENTS) if every_task else SINGLE_ARM_TASKS
+    for task in tasks:
+        env = make(task, 0, robots=robot, **kwargs)
         obs = env.reset()
         data[f"{task}-{robot}"] = {
             "action_dim": int(env.action_dim),
@@ -1045,13 +1051,15 @@ def main():
     parser.add_argument("--robot", default="Panda")
     parser.add_argument("--layouts", action="store_true",
                         help="record the --robot robot's observation layouts on every single-arm task into observations.json")
+    parser.add_argument("--every-task", action="store_true",
+                        help="with --layouts: on all 19 registered tasks, the robot alone")
     parser.add_argument("tasks", nargs="*", default=list(POLICIES))
     args = parser.parse_args()
     if robosuite.__version__ != "1.5.2":
         sys.exit(f"record_robosuite: robosuite {robosuite.__version__} is installed, 1.5.2 is needed")
     os.makedirs(args.out, exist_ok=True)
     if args.layouts:
-        observation_layouts(args.robot, args.out)
+        observation_layouts(args.robot, args.out, args.every_task)
         return
     for task in args.tasks:
         if task not in POLICIES:

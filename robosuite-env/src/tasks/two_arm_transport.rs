@@ -273,7 +273,7 @@ impl TaskSpec for TwoArmTransportSpec {
                 },
             )
         };
-        let observables = vec![
+        let mut observables = vec![
             Observable::f64(
                 "payload_pos",
                 3,
@@ -314,11 +314,18 @@ impl TaskSpec for TwoArmTransportSpec {
                 TwoArmTransport::payload_in_target_bin,
             ),
             flag("trash_in_trash_bin", TwoArmTransport::trash_in_trash_bin),
-            to("gripper0_to_payload", 0, |t, s| t.bodies[PAYLOAD_I].pos(s)),
-            to("gripper0_to_lid_handle", 0, TwoArmTransport::lid_handle_pos),
-            to("gripper1_to_payload", 1, |t, s| t.bodies[PAYLOAD_I].pos(s)),
-            to("gripper1_to_trash", 1, |t, s| t.bodies[TRASH_I].pos(s)),
         ];
+        // robosuite's order: per robot (its payload, then lid handle or trash sensor); one
+        // bimanual robot alone ("single-robot") lists both payload sensors first.
+        let payload0 = to("gripper0_to_payload", 0, |t, s| t.bodies[PAYLOAD_I].pos(s));
+        let lid0 = to("gripper0_to_lid_handle", 0, TwoArmTransport::lid_handle_pos);
+        let payload1 = to("gripper1_to_payload", 1, |t, s| t.bodies[PAYLOAD_I].pos(s));
+        let trash1 = to("gripper1_to_trash", 1, |t, s| t.bodies[TRASH_I].pos(s));
+        if robots.len() == 1 {
+            observables.extend([payload0, payload1, lid0, trash1]);
+        } else {
+            observables.extend([payload0, lid0, payload1, trash1]);
+        }
         Ok(Bound::boxed(task, observables))
     }
 }

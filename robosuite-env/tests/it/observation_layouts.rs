@@ -91,3 +91,51 @@ fn bimanual_robots_lay_out_single_arm_tasks_as_robosuite() {
         }
     }
 }
+
+/// Every task with a GR1 humanoid alone against robosuite's layout (`TASK-ROBOT` entries
+/// of `observations.json`, recorded with `record_robosuite.py --layouts --every-task`):
+/// GR1FixedLowerBody with robosuite's WHOLE_BODY_IK config, the others with their defaults.
+fn lays_out_every_task_as_robosuite(robot: &str) {
+    let mut config = EnvConfig::default().with_robots([robot]);
+    if robot == "GR1FixedLowerBody" {
+        let assets = robosuite_env::assets::Assets::locate().unwrap();
+        let wbik = robosuite_env::controllers::config::load_composite_controller_config(
+            &assets,
+            Some("WHOLE_BODY_IK"),
+            Some(robot),
+        )
+        .unwrap();
+        config = config.with_controller_configs([
+            robosuite_env::controllers::ControllerConfig::from_value(&wbik, "controller_configs")
+                .unwrap(),
+        ]);
+    }
+    for &task in ENV_NAMES {
+        let entry = format!("{task}-{robot}");
+        let expected = with_single_object_prefix(task, robosuite_observations(&entry));
+        let mut env = make_with(task, config.clone()).unwrap_or_else(|e| panic!("{entry}: {e}"));
+        let (obs, _) = env.reset(Some(1), None).unwrap();
+        assert_observation_layout(&env, &obs, &expected);
+        assert_eq!(env.action_dim(), robosuite_action_dim(&entry), "{entry}");
+    }
+}
+
+#[test]
+fn gr1_lays_out_every_task_as_robosuite() {
+    lays_out_every_task_as_robosuite("GR1");
+}
+
+#[test]
+fn gr1_arms_only_lays_out_every_task_as_robosuite() {
+    lays_out_every_task_as_robosuite("GR1ArmsOnly");
+}
+
+#[test]
+fn gr1_floating_body_lays_out_every_task_as_robosuite() {
+    lays_out_every_task_as_robosuite("GR1FloatingBody");
+}
+
+#[test]
+fn gr1_fixed_lower_body_lays_out_every_task_as_robosuite() {
+    lays_out_every_task_as_robosuite("GR1FixedLowerBody");
+}
