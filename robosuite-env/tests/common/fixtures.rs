@@ -208,21 +208,7 @@ pub fn config_for(fixture: &Fixture) -> EnvConfig {
                 );
             }
             "composite_controller" => {
-                // robosuite's `load_composite_controller_config(controller=..., robot=...)`.
-                let assets = robosuite_env::assets::Assets::locate().expect("the model files");
-                let value = robosuite_env::controllers::config::load_composite_controller_config(
-                    &assets,
-                    Some(value),
-                    Some(&fixture.robot),
-                )
-                .expect("robosuite's composite controller config loads");
-                config = config.with_controller_configs([
-                    robosuite_env::controllers::ControllerConfig::from_value(
-                        &value,
-                        "controller_configs",
-                    )
-                    .expect("a valid controller config"),
-                ]);
+                config = super::with_composite_controller(config, value, &fixture.robot);
             }
             other => panic!("{}: unknown recorded argument `{other}`", fixture.task),
         }

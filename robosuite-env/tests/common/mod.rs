@@ -26,6 +26,38 @@ pub fn zero() -> ArrayD<f64> {
     action([0.0; 7])
 }
 
+/// `config` with robosuite's `load_composite_controller_config(controller, robot)` as its
+/// controller configuration.
+pub fn with_composite_controller(
+    config: robosuite_env::EnvConfig,
+    controller: &str,
+    robot: &str,
+) -> robosuite_env::EnvConfig {
+    let assets = robosuite_env::assets::Assets::locate().expect("the model files");
+    let value = robosuite_env::controllers::config::load_composite_controller_config(
+        &assets,
+        Some(controller),
+        Some(robot),
+    )
+    .expect("robosuite's composite controller config loads");
+    config.with_controller_configs([robosuite_env::controllers::ControllerConfig::from_value(
+        &value,
+        "controller_configs",
+    )
+    .expect("a valid controller config")])
+}
+
+/// A GR1 humanoid `robot` alone with its default composite controller; GR1FixedLowerBody,
+/// whose default `WHOLE_BODY_MINK_IK` is not served, with robosuite's WHOLE_BODY_IK config.
+pub fn gr1_config(robot: &str) -> robosuite_env::EnvConfig {
+    let config = robosuite_env::EnvConfig::default().with_robots([robot]);
+    if robot == "GR1FixedLowerBody" {
+        with_composite_controller(config, "WHOLE_BODY_IK", robot)
+    } else {
+        config
+    }
+}
+
 /// An action array of any size.
 pub fn act(values: Vec<f64>) -> ArrayD<f64> {
     ArrayD::from_shape_vec(IxDyn(&[values.len()]), values).expect("a flat action")

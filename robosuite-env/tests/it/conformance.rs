@@ -138,16 +138,20 @@ fn every_task_on(robot: &str) {
             EnvConfig::default().with_horizon(30).with_robots(robots),
         )
         .unwrap_or_else(|e| panic!("{name} on {robot} builds: {e}"));
-        let what = format!("{name} on {robot}");
-        let report =
-            check_env(&mut env, &CheckOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
-        for check in [
-            conformance_tests::Check::ResetSeedDeterminism,
-            conformance_tests::Check::InvalidAction,
-            conformance_tests::Check::StepAfterEnd,
-        ] {
-            assert!(report.passed(check), "{what}: {check:?}");
-        }
+        assert_passes_check_env(&mut env, &format!("{name} on {robot}"));
+    }
+}
+
+/// `check_env` with its default options passes on `env`, its seeding, action and
+/// episode-end checks included.
+fn assert_passes_check_env(env: &mut RobosuiteEnv, what: &str) {
+    let report = check_env(env, &CheckOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
+    for check in [
+        conformance_tests::Check::ResetSeedDeterminism,
+        conformance_tests::Check::InvalidAction,
+        conformance_tests::Check::StepAfterEnd,
+    ] {
+        assert!(report.passed(check), "{what}: {check:?}");
     }
 }
 
@@ -196,32 +200,11 @@ robot_tests! {
 /// without its hands), as recorded in observations.json's `TASK-GR1...` entries
 /// (`scripts/record_robosuite.py --layouts --every-task --robot ROBOT`).
 fn every_task_on_gr1(robot: &str) {
-    let mut config = EnvConfig::default().with_horizon(30).with_robots([robot]);
-    if robot == "GR1FixedLowerBody" {
-        let assets = robosuite_env::assets::Assets::locate().unwrap();
-        let wbik = robosuite_env::controllers::config::load_composite_controller_config(
-            &assets,
-            Some("WHOLE_BODY_IK"),
-            Some(robot),
-        )
-        .unwrap();
-        config = config.with_controller_configs([
-            robosuite_env::controllers::ControllerConfig::from_value(&wbik, "controller_configs")
-                .unwrap(),
-        ]);
-    }
+    let config = crate::common::gr1_config(robot).with_horizon(30);
     for task in ENV_NAMES {
         let what = format!("{task} on {robot}");
         let mut env = make_with(task, config.clone()).unwrap_or_else(|e| panic!("{what}: {e}"));
-        let report =
-            check_env(&mut env, &CheckOptions::default()).unwrap_or_else(|e| panic!("{what}: {e}"));
-        for check in [
-            conformance_tests::Check::ResetSeedDeterminism,
-            conformance_tests::Check::InvalidAction,
-            conformance_tests::Check::StepAfterEnd,
-        ] {
-            assert!(report.passed(check), "{what}: {check:?}");
-        }
+        assert_passes_check_env(&mut env, &what);
     }
 }
 
@@ -257,17 +240,7 @@ fn panda_dex_pair_on_two_arm_lift_passes_check_env() {
     )
     .unwrap();
     assert_eq!(env.action_dim(), 24);
-    let report = check_env(&mut env, &CheckOptions::default()).unwrap();
-    for check in [
-        conformance_tests::Check::ResetSeedDeterminism,
-        conformance_tests::Check::InvalidAction,
-        conformance_tests::Check::StepAfterEnd,
-    ] {
-        assert!(
-            report.passed(check),
-            "TwoArmLift on PandaDexRH and PandaDexLH: {check:?}"
-        );
-    }
+    assert_passes_check_env(&mut env, "TwoArmLift on PandaDexRH and PandaDexLH");
 }
 
 /// The GR1 humanoids (`every_task_on_gr1_*`).

@@ -5,9 +5,6 @@
 use crate::common::get;
 use gym_core::{Env, Error};
 use ndarray::{ArrayD, IxDyn};
-use robosuite_env::assets::Assets;
-use robosuite_env::controllers::ControllerConfig;
-use robosuite_env::controllers::config::load_composite_controller_config;
 use robosuite_env::models::robots::RobotKind;
 use robosuite_env::{EnvConfig, RobosuiteEnv, make_with};
 
@@ -110,16 +107,12 @@ fn gr1_fixed_lower_body_serves_basic_and_whole_body_ik_and_refuses_mink() {
         }
         other => panic!("{:?}", other.map(|_| ())),
     }
-    let assets = Assets::locate().unwrap();
     for (controller, dim) in [("BASIC", 30), ("WHOLE_BODY_IK", 24)] {
-        let value =
-            load_composite_controller_config(&assets, Some(controller), Some("GR1FixedLowerBody"))
-                .unwrap();
-        let config = EnvConfig::default()
-            .with_robots(["GR1FixedLowerBody"])
-            .with_controller_configs([
-                ControllerConfig::from_value(&value, "controller_configs").unwrap()
-            ]);
+        let config = crate::common::with_composite_controller(
+            EnvConfig::default().with_robots(["GR1FixedLowerBody"]),
+            controller,
+            "GR1FixedLowerBody",
+        );
         let mut env = make_with("TwoArmLift", config).unwrap();
         assert_eq!(env.action_dim(), dim, "{controller}");
         env.reset(Some(2), None).unwrap();

@@ -1,8 +1,8 @@
 //! Every task's observation layout against robosuite's (`fixtures/robosuite/observations.json`):
 //! keys in order, shapes, dtypes and the action dimension.
 
-use crate::common::assert_observation_layout;
 use crate::common::fixtures::{ObsEntry, robosuite_action_dim, robosuite_observations};
+use crate::common::{assert_observation_layout, gr1_config};
 use gym_core::Env;
 use robosuite_env::{ENV_NAMES, EnvConfig, EnvConfiguration, make_with};
 
@@ -96,20 +96,7 @@ fn bimanual_robots_lay_out_single_arm_tasks_as_robosuite() {
 /// of `observations.json`, recorded with `record_robosuite.py --layouts --every-task`):
 /// GR1FixedLowerBody with robosuite's WHOLE_BODY_IK config, the others with their defaults.
 fn lays_out_every_task_as_robosuite(robot: &str) {
-    let mut config = EnvConfig::default().with_robots([robot]);
-    if robot == "GR1FixedLowerBody" {
-        let assets = robosuite_env::assets::Assets::locate().unwrap();
-        let wbik = robosuite_env::controllers::config::load_composite_controller_config(
-            &assets,
-            Some("WHOLE_BODY_IK"),
-            Some(robot),
-        )
-        .unwrap();
-        config = config.with_controller_configs([
-            robosuite_env::controllers::ControllerConfig::from_value(&wbik, "controller_configs")
-                .unwrap(),
-        ]);
-    }
+    let config = gr1_config(robot);
     for &task in ENV_NAMES {
         let entry = format!("{task}-{robot}");
         let expected = with_single_object_prefix(task, robosuite_observations(&entry));
